@@ -1,0 +1,176 @@
+//! Filling screen triangles through the Z-buffer into any [`DrawTarget`].
+//!
+//! The per-pixel work is the seeds' algorithm and nothing more: step the depth (one
+//! add), compare with the stored depth, store it. Pixels that pass leave as horizontal
+//! runs, one `fill_solid` per run (or one `fill_contiguous` for shaded runs), already
+//! clipped to the target's bounding box.
+
+use core::ops::AddAssign;
+
+use embedded_graphics::{
+    prelude::{DrawTarget, Point, Size},
+    primitives::Rectangle,
+};
+
+use crate::raster::{Clip, Plane, ScreenVertex, Setup};
+use crate::{DepthTest, ZBuffer};
+
+/// Counts from drawing one or more triangles.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct SpanStats {
+    /// Pixel centres inside the triangles and the clip area (depth-tested).
+    pub pixels_tested: u32,
+    /// Pixels that passed the depth test and were drawn.
+    pub pixels_written: u32,
+    /// Horizontal runs handed to the draw target.
+    pub runs: u32,
+}
+
+impl AddAssign for SpanStats {
+    fn add_assign(&mut self, o: SpanStats) {
+        self.pixels_tested += o.pixels_tested;
+        self.pixels_written += o.pixels_written;
+        self.runs += o.runs;
+    }
+}
+
+/// The depth accumulator's bias: half a unit, so `acc >> 16` rounds to nearest (see
+/// [`crate::fixed`] for why the accumulator never wraps).
+const DEPTH_BIAS: i64 = 1 << 15;
+
+/// The pixels both the target and the Z-buffer hold.
+pub(crate) fn clip_of<D: DrawTarget>(target: &D, zbuf: &ZBuffer<'_>) -> Clip {
+    let (r0, r1) = zbuf.row_range();
+    let z = Clip {
+        x0: 0,
+        y0: r0,
+        x1: zbuf.width() as i32,
+        y1: r1,
+    };
+    Clip::from_rect(&target.bounding_box()).intersect(z)
+}
+
+/// Fill a screen triangle with a flat colour, depth-tested against `zbuf`.
+///
+/// Either winding is drawn (cull beforehand with [`Facing`](crate::Facing)); a
+/// zero-area triangle draws nothing. The triangle is clipped to the target's bounding
+/// box and to the rows and columns the Z-buffer holds. Coverage follows pixel centres
+/// and the top-left rule, so a mesh's shared edges are covered exactly once.
+///
+/// ```
+/// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
+/// use zraster::{fill_triangle, ScreenVertex, ZBuffer};
+///
+/// let v = |x, y| ScreenVertex::from_pixels(x, y, 100).unwrap();
+/// let mut display = MockDisplay::<BinaryColor>::new();
+/// let mut depth = [0u16; 64 * 64];
+/// let mut zbuf = ZBuffer::new(&mut depth, 64, 64)?;
+/// zbuf.clear();
+/// fill_triangle(&mut display, &mut zbuf, &[v(0, 0), v(4, 0), v(0, 4)], BinaryColor::On).unwrap();
+/// // Centres on the hypotenuse x + y = 4 belong to the triangle right of it (top-left rule).
+/// display.assert_pattern(&[
+///     "### ",
+///     "##  ",
+///     "#   ",
+/// ]);
+/// # Ok::<(), zraster::Error>(())
+/// ```
+pub fn fill_triangle<D: DrawTarget>(
+    target: &mut D,
+    zbuf: &mut ZBuffer<'_>,
+    tri: &[ScreenVertex; 3],
+    color: D::Color,
+) -> Result<SpanStats, D::Error> {
+    let clip = clip_of(target, zbuf);
+    depth_runs(zbuf, tri, &clip, |y, x0, x1| {
+        target.fill_solid(&run_rect(y, x0, x1), color)
+    })
+}
+
+/// The 1-pixel-high rectangle of a run.
+#[inline]
+pub(crate) fn run_rect(y: i32, x0: i32, x1: i32) -> Rectangle {
+    Rectangle::new(Point::new(x0, y), Size::new((x1 - x0) as u32, 1))
+}
+
+/// Scan-convert `tri` inside `clip`, depth-test every covered pixel and call
+/// `run(y, x0, x1)` for each horizontal run of passing pixels.
+pub(crate) fn depth_runs<E>(
+    zbuf: &mut ZBuffer<'_>,
+    tri: &[ScreenVertex; 3],
+    clip: &Clip,
+    mut run: impl FnMut(i32, i32, i32) -> Result<(), E>,
+) -> Result<SpanStats, E> {
+    let mut stats = SpanStats::default();
+    if clip.is_empty() {
+        return Ok(stats);
+    }
+    let (Some(setup), Some(plane)) = (
+        Setup::new(tri),
+        Plane::new(tri, [tri[0].z(), tri[1].z(), tri[2].z()]),
+    ) else {
+        return Ok(stats);
+    };
+    let zs = [tri[0].z(), tri[1].z(), tri[2].z()].map(i64::from);
+    let (zlo, zhi) = (
+        zs.iter().copied().min().unwrap_or(0),
+        zs.iter().copied().max().unwrap_or(0),
+    );
+    let dz = plane.step_x() as u32;
+    let (test, write) = (zbuf.test(), zbuf.write_enabled());
+    setup.for_each_span(clip, |y, x0, x1| {
+        // Clamping the row start to the vertices' range keeps the accumulator inside
+        // [2¹⁵ − drift, 65535·2¹⁶ + 2¹⁵ + drift] ⊂ u32 whatever the rounding.
+        let acc = (plane.at_pixel(x0, y).clamp(zlo, zhi) + DEPTH_BIAS) as u32;
+        let Some(row) = zbuf.span_mut(y, x0, x1) else {
+            return Ok(());
+        };
+        stats.pixels_tested += (x1 - x0) as u32;
+        let mut emit = |a: usize, b: usize| {
+            stats.runs += 1;
+            stats.pixels_written += (b - a) as u32;
+            run(y, x0 + a as i32, x0 + b as i32)
+        };
+        match test {
+            DepthTest::Less => scan(row, acc, dz, write, |f, s| f < s, &mut emit),
+            DepthTest::LessEqual => scan(row, acc, dz, write, |f, s| f <= s, &mut emit),
+            DepthTest::Greater => scan(row, acc, dz, write, |f, s| f > s, &mut emit),
+            DepthTest::Equal => scan(row, acc, dz, write, |f, s| f == s, &mut emit),
+            DepthTest::Always => scan(row, acc, dz, write, |_, _| true, &mut emit),
+            DepthTest::Never => Ok(()),
+        }
+    })?;
+    Ok(stats)
+}
+
+/// The pixel loop: one add, one compare, one store per pixel; runs of passing pixels
+/// go to `emit(first, end)` as offsets into `row`.
+#[inline(always)]
+fn scan<E>(
+    row: &mut [u16],
+    mut acc: u32,
+    dz: u32,
+    write: bool,
+    pass: impl Fn(u16, u16) -> bool,
+    emit: &mut impl FnMut(usize, usize) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut open: Option<usize> = None;
+    for (i, stored) in row.iter_mut().enumerate() {
+        let z = (acc >> 16) as u16;
+        acc = acc.wrapping_add(dz);
+        if pass(z, *stored) {
+            if write {
+                *stored = z;
+            }
+            if open.is_none() {
+                open = Some(i);
+            }
+        } else if let Some(s) = open.take() {
+            emit(s, i)?;
+        }
+    }
+    match open {
+        Some(s) => emit(s, row.len()),
+        None => Ok(()),
+    }
+}

@@ -1,0 +1,62 @@
+//! A `no_std` Z-buffer 3D rasterizer for microcontroller displays.
+//!
+//! zraster draws triangles with per-pixel hidden-surface removal (the Z-buffer method)
+//! into any [`embedded_graphics`] [`DrawTarget`](embedded_graphics::draw_target::DrawTarget),
+//! with fixed-point screen coordinates, a 16-bit depth buffer in memory you provide,
+//! and no heap.
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use zraster::{fill_triangle, ColorBuffer, ScreenVertex, ZBuffer};
+//!
+//! const W: u32 = 32;
+//! const H: u32 = 24;
+//! let mut pixels = [Rgb565::BLACK; (W * H) as usize];
+//! let mut depth = [0u16; (W * H) as usize];
+//! let mut frame = ColorBuffer::new(&mut pixels, W, H)?;
+//! let mut zbuf = ZBuffer::new(&mut depth, W, H)?;
+//! zbuf.clear();
+//!
+//! // Screen x, y in pixels (y down), depth 0 (near) ..= 65535 (far).
+//! let v = |x, y, z| ScreenVertex::from_pixels(x, y, z);
+//! let far = [v(0, 0, 9000)?, v(32, 0, 9000)?, v(0, 24, 9000)?];
+//! let near = [v(4, 4, 1000)?, v(28, 4, 1000)?, v(4, 20, 1000)?];
+//!
+//! // Draw the near triangle first: the far one is hidden where they overlap.
+//! fill_triangle(&mut frame, &mut zbuf, &near, Rgb565::RED).unwrap();
+//! fill_triangle(&mut frame, &mut zbuf, &far, Rgb565::BLUE).unwrap();
+//! assert_eq!(frame.pixel(5, 5), Some(Rgb565::RED));
+//! assert_eq!(frame.pixel(1, 1), Some(Rgb565::BLUE));
+//! assert_eq!(zbuf.depth(5, 5), Some(1000));
+//! // frame.flush(&mut display) sends it to a display in one fill_contiguous.
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! # Conventions
+//! - Screen coordinates are 28.4 fixed point (see [`fixed`]); pixel (i, j) is sampled
+//!   at its centre (i + ½, j + ½); edges follow the top-left rule.
+//! - Depth is 16-bit, smaller is nearer, cleared to 65535 ([`ZBuffer::FAR`]).
+//! - Front faces have positive [`signed_area`] (clockwise on the y-down screen,
+//!   counter-clockwise in OpenGL's y-up NDC).
+#![no_std]
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
+#![warn(clippy::unwrap_used, clippy::expect_used)]
+
+mod error;
+mod fill;
+pub mod fixed;
+mod raster;
+mod target;
+mod zbuffer;
+
+pub use error::{DrawError, Error};
+pub use fill::{fill_triangle, SpanStats};
+pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex};
+pub use target::ColorBuffer;
+pub use zbuffer::{DepthTest, ZBuffer};
+
+/// The largest width or height of a Z-buffer or colour buffer, in pixels (8192).
+///
+/// It bounds the depth accumulator's drift along a row (see [`fixed`]).
+pub const MAX_DIMENSION: u32 = 8192;

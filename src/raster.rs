@@ -1,0 +1,466 @@
+//! Screen-space triangles: vertices, the back-face test, the depth plane and scan
+//! conversion into spans.
+//!
+//! Scan conversion walks the triangle's left and right edges row by row with an exact
+//! integer DDA (a quotient and a remainder per edge, no division per row), giving each
+//! row's span of covered pixel centres. The result is identical to testing every pixel
+//! centre against the three edge functions with the top-left rule, so triangles that
+//! share an edge cover each pixel along it exactly once.
+
+use crate::fixed::{
+    div_ceil, div_floor, div_floor_wide, round_f32, sat_i32, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
+    SUBPIXEL_BITS,
+};
+use crate::Error;
+
+/// A vertex in screen space: `x`, `y` in 28.4 fixed point (1/16 pixel), depth in 16.16.
+///
+/// The y axis points down (row 0 at the top). Construction checks the ranges documented
+/// in [`fixed`](crate::fixed): `|x|, |y| ≤ GUARD_BAND`, `depth ≤ MAX_DEPTH`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct ScreenVertex {
+    x: i32,
+    y: i32,
+    z: u32,
+}
+
+impl ScreenVertex {
+    /// A vertex from raw fixed-point values: `x`, `y` in 1/16 pixel, `z` in 16.16.
+    pub const fn new(x: i32, y: i32, z: u32) -> Result<Self, Error> {
+        if x < -GUARD_BAND || x > GUARD_BAND || y < -GUARD_BAND || y > GUARD_BAND || z > MAX_DEPTH
+        {
+            return Err(Error::OutOfRange);
+        }
+        Ok(ScreenVertex { x, y, z })
+    }
+
+    /// A vertex at whole-pixel coordinates (the corner of pixel (x, y)) and integer depth.
+    pub const fn from_pixels(x: i32, y: i32, depth: u16) -> Result<Self, Error> {
+        if x < -(GUARD_BAND >> SUBPIXEL_BITS)
+            || x > (GUARD_BAND >> SUBPIXEL_BITS)
+            || y < -(GUARD_BAND >> SUBPIXEL_BITS)
+            || y > (GUARD_BAND >> SUBPIXEL_BITS)
+        {
+            return Err(Error::OutOfRange);
+        }
+        Self::new(x << SUBPIXEL_BITS, y << SUBPIXEL_BITS, (depth as u32) << 16)
+    }
+
+    /// A vertex from floating-point pixel coordinates and a depth in `0.0..=65535.0`,
+    /// each rounded to the nearest representable value.
+    ///
+    /// Errors: [`Error::NotFinite`] for NaN or ±∞, [`Error::OutOfRange`] outside the
+    /// guard band or the depth range.
+    pub fn from_f32(x: f32, y: f32, depth: f32) -> Result<Self, Error> {
+        if !(x.is_finite() && y.is_finite() && depth.is_finite()) {
+            return Err(Error::NotFinite);
+        }
+        let lim = GUARD_BAND as f32;
+        let (xs, ys) = (x * SUBPIXEL as f32, y * SUBPIXEL as f32);
+        if xs.abs() > lim || ys.abs() > lim || !(0.0..=65535.0).contains(&depth) {
+            return Err(Error::OutOfRange);
+        }
+        let z = (depth * 65536.0 + 0.5) as u32; // saturating cast; ≤ MAX_DEPTH by the check
+        Self::new(round_f32(xs), round_f32(ys), z.min(MAX_DEPTH))
+    }
+
+    /// x in 1/16 pixel.
+    pub const fn x(&self) -> i32 {
+        self.x
+    }
+
+    /// y in 1/16 pixel.
+    pub const fn y(&self) -> i32 {
+        self.y
+    }
+
+    /// Depth in 16.16.
+    pub const fn z(&self) -> u32 {
+        self.z
+    }
+}
+
+/// Twice the signed area of a screen triangle: the z component of `V1 × V2` with
+/// `V1 = P1 − P0`, `V2 = P2 − P0`, i.e. `dx1·dy2 − dx2·dy1` (in the vertices' units).
+///
+/// With y pointing down the screen, a positive value means the vertices run clockwise
+/// as seen on the display, which is counter-clockwise in OpenGL's y-up NDC: the seeds'
+/// "> 0 is front-facing" and OpenGL's default front face agree. Exact for any inputs in
+/// the guard band (the products stay below 2⁵¹).
+pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
+    let (dx1, dy1) = (i64::from(p1.0) - i64::from(p0.0), i64::from(p1.1) - i64::from(p0.1));
+    let (dx2, dy2) = (i64::from(p2.0) - i64::from(p0.0), i64::from(p2.1) - i64::from(p0.1));
+    dx1 * dy2 - dx2 * dy1
+}
+
+/// Which way a screen triangle faces, by the sign of [`signed_area`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Facing {
+    /// Positive area: front-facing.
+    Front,
+    /// Negative area: back-facing.
+    Back,
+    /// Zero area: a line or a point, never drawn.
+    Degenerate,
+}
+
+impl Facing {
+    /// The facing of a triangle with twice-signed-area `area`.
+    pub fn of_area(area: i64) -> Facing {
+        match area {
+            a if a > 0 => Facing::Front,
+            a if a < 0 => Facing::Back,
+            _ => Facing::Degenerate,
+        }
+    }
+
+    /// The facing of a screen triangle.
+    pub fn of(tri: &[ScreenVertex; 3]) -> Facing {
+        let p = |v: &ScreenVertex| (v.x, v.y);
+        Facing::of_area(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2])))
+    }
+}
+
+/// A quantity that varies linearly across a screen triangle — its depth, or a colour
+/// channel for Gouraud shading — given by its plane through the three vertices: the
+/// seeds' `ax + by + cz = d` solved for z.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Plane {
+    // Exact form: value(X, Y) = v0 + (a·(X − x0) + b·(Y − y0)) / area2, in 16.16.
+    x0: i32,
+    y0: i32,
+    v0: i64,
+    a: i64,
+    b: i64,
+    area2: i64,
+    // Fast form, per pixel: value at the centre of pixel (px, py) ≈
+    // at_ref + step_x·(px − ref_px) + step_y·(py − ref_py).
+    ref_px: i32,
+    ref_py: i32,
+    at_ref: i64,
+    step_x: i64,
+    step_y: i64,
+    /// The triangle is too large for the fast form's error bound: evaluate exactly.
+    exact: bool,
+}
+
+/// Triangles whose x and y extents stay within this many 1/16 pixels (4096 pixels) use
+/// the fast plane form, whose error stays below 2¹³/65536 of a unit (see [`crate::fixed`]).
+const FAST_EXTENT: i64 = 1 << 16;
+
+impl Plane {
+    /// The plane through the vertices' positions with values `values` (16.16, each
+    /// below 2³²). `None` when the triangle has zero area.
+    pub fn new(tri: &[ScreenVertex; 3], values: [u32; 3]) -> Option<Plane> {
+        let [p0, p1, p2] = tri;
+        let (dx1, dy1) = (i64::from(p1.x - p0.x), i64::from(p1.y - p0.y));
+        let (dx2, dy2) = (i64::from(p2.x - p0.x), i64::from(p2.y - p0.y));
+        let area2 = dx1 * dy2 - dx2 * dy1;
+        if area2 == 0 {
+            return None;
+        }
+        let (v0, v1, v2) = (i64::from(values[0]), i64::from(values[1]), i64::from(values[2]));
+        let (dv1, dv2) = (v1 - v0, v2 - v0);
+        let a = dv1 * dy2 - dv2 * dy1;
+        let b = dx1 * dv2 - dx2 * dv1;
+        let extent = [dx1, dy1, dx2, dy2, dx1 - dx2, dy1 - dy2]
+            .iter()
+            .map(|d| d.abs())
+            .max()
+            .unwrap_or(0);
+        let ref_px = p0.x >> SUBPIXEL_BITS;
+        let ref_py = p0.y >> SUBPIXEL_BITS;
+        let mut plane = Plane {
+            x0: p0.x,
+            y0: p0.y,
+            v0,
+            a,
+            b,
+            area2,
+            ref_px,
+            ref_py,
+            at_ref: 0,
+            step_x: 0,
+            step_y: 0,
+            exact: extent > FAST_EXTENT,
+        };
+        if !plane.exact {
+            // |a|, |b| < 2⁴⁹ here and the offsets to the reference centre are at most 8,
+            // so every product below stays under 2⁵⁴.
+            let cx = i64::from(ref_px * SUBPIXEL + SUBPIXEL / 2 - p0.x);
+            let cy = i64::from(ref_py * SUBPIXEL + SUBPIXEL / 2 - p0.y);
+            plane.at_ref = v0 + div_floor(a * cx + b * cy, area2);
+            plane.step_x = div_floor(a * i64::from(SUBPIXEL), area2);
+            plane.step_y = div_floor(b * i64::from(SUBPIXEL), area2);
+        }
+        Some(plane)
+    }
+
+    /// The plane's exact value (16.16, rounded down) at the point (x, y) in 1/16 pixel.
+    /// Outside the triangle the value may lie outside the vertices' range.
+    pub fn value_at(&self, x: i32, y: i32) -> i64 {
+        let dx = i128::from(x) - i128::from(self.x0);
+        let dy = i128::from(y) - i128::from(self.y0);
+        let num = i128::from(self.a) * dx + i128::from(self.b) * dy;
+        let v = i128::from(self.v0) + div_floor_wide(num, i128::from(self.area2));
+        v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+    }
+
+    /// The value at the centre of pixel (px, py): exact for large triangles, within
+    /// (|Δpx| + |Δpy|)/65536 of a unit of exact otherwise.
+    #[inline]
+    pub(crate) fn at_pixel(&self, px: i32, py: i32) -> i64 {
+        if self.exact {
+            self.value_at(px * SUBPIXEL + SUBPIXEL / 2, py * SUBPIXEL + SUBPIXEL / 2)
+        } else {
+            self.at_ref
+                + self.step_x * i64::from(px - self.ref_px)
+                + self.step_y * i64::from(py - self.ref_py)
+        }
+    }
+
+    /// Change per pixel along x, 16.16, saturated to `i32`.
+    #[inline]
+    pub(crate) fn step_x(&self) -> i32 {
+        if self.exact {
+            sat_i32(div_floor_wide(
+                i128::from(self.a) * i128::from(SUBPIXEL),
+                i128::from(self.area2),
+            ) as i64)
+        } else {
+            sat_i32(self.step_x)
+        }
+    }
+}
+
+/// The depth of a triangle's plane at a point: the seeds' "depth from the plane equation".
+///
+/// `x`, `y` are in 1/16 pixel; the result is depth in 16.16 (rounded down), `None` for a
+/// zero-area triangle. The rasterizer stores the same plane, rounded to the nearest
+/// integer, at each covered pixel centre.
+///
+/// ```
+/// use zraster::{depth_at, ScreenVertex};
+/// let v = |x, y, z| ScreenVertex::from_pixels(x, y, z).unwrap();
+/// let tri = [v(0, 0, 6), v(3, 0, 9), v(0, 3, 9)];
+/// assert_eq!(depth_at(&tri, 16, 16), Some(8 << 16)); // z = 8 at (1, 1)
+/// ```
+pub fn depth_at(tri: &[ScreenVertex; 3], x: i32, y: i32) -> Option<i64> {
+    Plane::new(tri, [tri[0].z, tri[1].z, tri[2].z]).map(|p| p.value_at(x, y))
+}
+
+/// A half-open rectangle of pixels that drawing is confined to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Clip {
+    pub x0: i32,
+    pub y0: i32,
+    pub x1: i32,
+    pub y1: i32,
+}
+
+impl Clip {
+    pub(crate) fn intersect(self, o: Clip) -> Clip {
+        Clip {
+            x0: self.x0.max(o.x0),
+            y0: self.y0.max(o.y0),
+            x1: self.x1.min(o.x1),
+            y1: self.y1.min(o.y1),
+        }
+    }
+
+    pub(crate) fn from_rect(r: &embedded_graphics::primitives::Rectangle) -> Clip {
+        let w = i32::try_from(r.size.width).unwrap_or(i32::MAX);
+        let h = i32::try_from(r.size.height).unwrap_or(i32::MAX);
+        Clip {
+            x0: r.top_left.x,
+            y0: r.top_left.y,
+            x1: r.top_left.x.saturating_add(w),
+            y1: r.top_left.y.saturating_add(h),
+        }
+    }
+
+    pub(crate) fn is_empty(&self) -> bool {
+        self.x0 >= self.x1 || self.y0 >= self.y1
+    }
+}
+
+/// One edge walked downward: at each row, `x` is the first pixel whose centre lies on
+/// or to the right of the edge.
+struct EdgeWalk {
+    x: i32,
+    err: i32,
+    denom: i32,
+    step: i32,
+    rem: i32,
+}
+
+impl EdgeWalk {
+    /// The edge from `a` to `b` (`a.1 < b.1`), positioned at pixel row `py`.
+    ///
+    /// Pixel `px` on row `py` is on or right of the edge when
+    /// `(16px + 8 − xa)·dy ≥ (16py + 8 − ya)·dx`, i.e. `px ≥ T/(16dy)` with
+    /// `T = (16py + 8 − ya)·dx + (xa − 8)·dy`. The walk keeps `x = ⌈T/(16dy)⌉` and
+    /// `err = x·16dy − T ∈ [0, 16dy)`; each row adds `16dx` to `T`.
+    fn new(a: (i32, i32), b: (i32, i32), py: i32) -> EdgeWalk {
+        let dx = i64::from(b.0) - i64::from(a.0);
+        let dy = i64::from(b.1) - i64::from(a.1); // 0 < dy ≤ 2²⁵
+        let denom = dy * i64::from(SUBPIXEL); // ≤ 2²⁹
+        let yc = i64::from(py) * i64::from(SUBPIXEL) + i64::from(SUBPIXEL / 2);
+        let t = (yc - i64::from(a.1)) * dx + (i64::from(a.0) - i64::from(SUBPIXEL / 2)) * dy;
+        let x = div_ceil(t, denom);
+        let err = x * denom - t;
+        let step = div_floor(dx, dy);
+        let rem = (dx - step * dy) * i64::from(SUBPIXEL);
+        EdgeWalk {
+            // py lies within the edge's rows, so x lies within its pixel columns (±1):
+            // inside ±2²⁰ + 1.
+            x: x as i32,
+            err: err as i32,
+            denom: denom as i32,
+            step: step as i32,
+            rem: rem as i32,
+        }
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        self.x += self.step;
+        self.err -= self.rem;
+        if self.err < 0 {
+            self.x += 1;
+            self.err += self.denom;
+        }
+    }
+}
+
+/// A triangle prepared for scan conversion: vertices sorted top to bottom.
+pub(crate) struct Setup {
+    v: [(i32, i32); 3],
+    /// The middle vertex lies right of the long edge v0→v2.
+    mid_right: bool,
+}
+
+impl Setup {
+    /// `None` for a zero-area triangle.
+    pub(crate) fn new(tri: &[ScreenVertex; 3]) -> Option<Setup> {
+        let mut v = [(tri[0].x, tri[0].y), (tri[1].x, tri[1].y), (tri[2].x, tri[2].y)];
+        if v[1].1 < v[0].1 {
+            v.swap(0, 1);
+        }
+        if v[2].1 < v[1].1 {
+            v.swap(1, 2);
+        }
+        if v[1].1 < v[0].1 {
+            v.swap(0, 1);
+        }
+        let area = signed_area(v[0], v[1], v[2]);
+        if area == 0 {
+            return None;
+        }
+        // With y down, area > 0 means v0→v1→v2 turns clockwise on screen: v1 is right of v0→v2.
+        Some(Setup { v, mid_right: area > 0 })
+    }
+
+    /// Call `span(y, x0, x1)` for each row's covered pixels inside `clip`, top to bottom.
+    #[inline]
+    pub(crate) fn for_each_span<E>(
+        &self,
+        clip: &Clip,
+        mut span: impl FnMut(i32, i32, i32) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let [v0, v1, v2] = self.v;
+        // First row whose centre 16py + 8 is ≥ y: ⌈(y − 8)/16⌉ = (y + 7) >> 4.
+        let row = |y: i32| (y + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS;
+        let (top, mid, bottom) = (row(v0.1), row(v1.1), row(v2.1));
+        let start = top.max(clip.y0);
+        let end = bottom.min(clip.y1);
+        if start >= end || clip.x0 >= clip.x1 {
+            return Ok(());
+        }
+        let mut long = EdgeWalk::new(v0, v2, start);
+        let mut emit = |py: i32, long: &EdgeWalk, short: &EdgeWalk| {
+            let (l, r) = if self.mid_right {
+                (long.x, short.x)
+            } else {
+                (short.x, long.x)
+            };
+            let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
+            if x0 < x1 {
+                span(py, x0, x1)
+            } else {
+                Ok(())
+            }
+        };
+        let upper_end = mid.min(end);
+        if start < upper_end {
+            let mut short = EdgeWalk::new(v0, v1, start);
+            for py in start..upper_end {
+                emit(py, &long, &short)?;
+                long.advance();
+                short.advance();
+            }
+        }
+        let lower_start = mid.max(start);
+        if lower_start < end {
+            let mut short = EdgeWalk::new(v1, v2, lower_start);
+            for py in lower_start..end {
+                emit(py, &long, &short)?;
+                long.advance();
+                short.advance();
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(x: i32, y: i32, z: u16) -> ScreenVertex {
+        ScreenVertex::from_pixels(x, y, z).unwrap()
+    }
+
+    #[test]
+    fn edge_walk_matches_direct_ceil_division() {
+        let cases = [((3, -5), (40, 77)), ((100, 0), (-33, 250)), ((0, 0), (0, 160)), ((7, 1), (8, 2))];
+        for (a, b) in cases {
+            let first = (a.1 + 7) >> 4;
+            let mut w = EdgeWalk::new(a, b, first);
+            for py in first..(b.1 + 7) >> 4 {
+                let yc = i64::from(py * 16 + 8);
+                let (dx, dy) = (i64::from(b.0 - a.0), i64::from(b.1 - a.1));
+                let t = (yc - i64::from(a.1)) * dx + (i64::from(a.0) - 8) * dy;
+                assert_eq!(i64::from(w.x), div_ceil(t, 16 * dy), "edge {a:?}→{b:?} row {py}");
+                w.advance();
+            }
+        }
+    }
+
+    #[test]
+    fn plane_fast_form_matches_exact_form_at_pixel_centres() {
+        let tri = [v(2, 3, 100), v(40, 9, 60000), v(11, 50, 3000)];
+        let p = Plane::new(&tri, [tri[0].z(), tri[1].z(), tri[2].z()]).unwrap();
+        assert!(!p.exact);
+        for (px, py) in [(2, 3), (20, 20), (39, 9), (11, 49)] {
+            let exact = p.value_at(px * 16 + 8, py * 16 + 8);
+            let fast = p.at_pixel(px, py);
+            let dist = i64::from((px - p.ref_px).abs() + (py - p.ref_py).abs());
+            assert!((exact - fast).abs() <= dist + 1, "({px},{py}): {exact} vs {fast}");
+        }
+    }
+
+    #[test]
+    fn vertex_ranges_are_checked() {
+        assert_eq!(ScreenVertex::new(GUARD_BAND + 1, 0, 0), Err(Error::OutOfRange));
+        assert_eq!(ScreenVertex::new(0, -GUARD_BAND - 1, 0), Err(Error::OutOfRange));
+        assert_eq!(ScreenVertex::new(0, 0, MAX_DEPTH + 1), Err(Error::OutOfRange));
+        assert!(ScreenVertex::new(-GUARD_BAND, GUARD_BAND, MAX_DEPTH).is_ok());
+        assert_eq!(ScreenVertex::from_f32(f32::NAN, 0.0, 0.0), Err(Error::NotFinite));
+        assert_eq!(ScreenVertex::from_f32(0.0, f32::INFINITY, 0.0), Err(Error::NotFinite));
+        assert_eq!(ScreenVertex::from_f32(2e6, 0.0, 0.0), Err(Error::OutOfRange));
+        assert_eq!(ScreenVertex::from_f32(0.0, 0.0, -1.0), Err(Error::OutOfRange));
+        let p = ScreenVertex::from_f32(1.53, -2.0, 65535.0).unwrap();
+        assert_eq!((p.x(), p.y(), p.z()), (24, -32, MAX_DEPTH));
+    }
+}

@@ -1,0 +1,216 @@
+//! A colour buffer in caller memory that is also a fast [`DrawTarget`].
+
+use embedded_graphics::{
+    pixelcolor::PixelColor,
+    prelude::{Dimensions, DrawTarget, Point, Size},
+    primitives::Rectangle,
+    Pixel,
+};
+
+use crate::raster::Clip;
+use crate::zbuffer::check_dims;
+use crate::Error;
+
+/// A frame (or a band of one) of colours in a caller-provided slice.
+///
+/// `embedded_graphics::framebuffer::Framebuffer` owns its array and draws pixel by
+/// pixel; this one borrows its memory, fills rectangles with slice operations, and sends
+/// itself to a display with a single [`fill_contiguous`](DrawTarget::fill_contiguous)
+/// ([`flush`](ColorBuffer::flush)), which display drivers turn into one address window
+/// and one burst. It covers screen rows `first_row .. first_row + rows`.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+/// use zraster::ColorBuffer;
+/// let mut pixels = [Rgb565::BLACK; 16 * 4];
+/// let mut buf = ColorBuffer::new(&mut pixels, 16, 4)?;
+/// buf.fill_solid(&Rectangle::new(Point::new(2, 1), Size::new(3, 2)), Rgb565::RED).unwrap();
+/// assert_eq!(buf.pixel(4, 2), Some(Rgb565::RED));
+/// assert_eq!(buf.pixel(5, 2), Some(Rgb565::BLACK));
+/// # Ok::<(), zraster::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct ColorBuffer<'a, C> {
+    data: &'a mut [C],
+    width: u16,
+    rows: u16,
+    first_row: i32,
+}
+
+impl<'a, C: PixelColor> ColorBuffer<'a, C> {
+    /// A buffer of `width × rows` pixels covering screen rows `0..rows`.
+    ///
+    /// Errors as for [`ZBuffer::new`](crate::ZBuffer::new): zero or too-large dimensions,
+    /// or a slice shorter than `width × rows`.
+    pub fn new(data: &'a mut [C], width: u32, rows: u32) -> Result<Self, Error> {
+        let (w, r) = check_dims(width, rows, data.len())?;
+        let needed = usize::from(w) * usize::from(r);
+        let data = match data.get_mut(..needed) {
+            Some(d) => d,
+            None => return Err(Error::BufferTooSmall { needed, got: 0 }),
+        };
+        Ok(ColorBuffer {
+            data,
+            width: w,
+            rows: r,
+            first_row: 0,
+        })
+    }
+
+    /// A buffer covering screen rows `first_row .. first_row + rows` (a band).
+    pub fn new_band(data: &'a mut [C], width: u32, rows: u32, first_row: i32) -> Result<Self, Error> {
+        let mut b = Self::new(data, width, rows)?;
+        b.first_row = first_row;
+        Ok(b)
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        u32::from(self.width)
+    }
+
+    /// Rows held.
+    pub fn rows(&self) -> u32 {
+        u32::from(self.rows)
+    }
+
+    /// The first screen row covered.
+    pub fn first_row(&self) -> i32 {
+        self.first_row
+    }
+
+    /// Move the band to cover rows `first_row .. first_row + rows` (contents kept).
+    pub fn set_first_row(&mut self, first_row: i32) {
+        self.first_row = first_row;
+    }
+
+    /// The colour at screen pixel (x, y), `None` outside the buffer.
+    pub fn pixel(&self, x: i32, y: i32) -> Option<C> {
+        let i = self.index(x, y)?;
+        self.data.get(i).copied()
+    }
+
+    /// The pixels, row by row.
+    pub fn as_slice(&self) -> &[C] {
+        self.data
+    }
+
+    /// Send the whole buffer to `display` at its screen position with one
+    /// `fill_contiguous` (clipped to the display's bounding box first, as some drivers
+    /// do not clip `fill_contiguous` themselves).
+    pub fn flush<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
+        let area = self.bounding_box();
+        let visible = area.intersection(&display.bounding_box());
+        if visible == area {
+            return display.fill_contiguous(&area, self.data.iter().copied());
+        }
+        if visible.size.width == 0 || visible.size.height == 0 {
+            return Ok(());
+        }
+        let w = usize::from(self.width);
+        let (vx, vy) = (visible.top_left.x, visible.top_left.y - self.first_row);
+        let vw = visible.size.width as usize;
+        let rows = self.data.chunks_exact(w).skip(vy as usize).take(visible.size.height as usize);
+        display.fill_contiguous(
+            &visible,
+            rows.flat_map(move |row| row.iter().skip(vx as usize).take(vw).copied()),
+        )
+    }
+
+    fn index(&self, x: i32, y: i32) -> Option<usize> {
+        let x = usize::try_from(x).ok()?;
+        let r = usize::try_from(y.checked_sub(self.first_row)?).ok()?;
+        (x < usize::from(self.width) && r < usize::from(self.rows))
+            .then(|| r * usize::from(self.width) + x)
+    }
+
+    /// The rows of `area` (already inside the buffer) as mutable slices.
+    fn rows_of(&mut self, c: Clip) -> impl Iterator<Item = &mut [C]> {
+        let w = usize::from(self.width);
+        let (x0, x1) = (c.x0 as usize, c.x1 as usize);
+        let r0 = (c.y0 - self.first_row) as usize;
+        let n = (c.y1 - c.y0) as usize;
+        self.data
+            .chunks_exact_mut(w)
+            .skip(r0)
+            .take(n)
+            .filter_map(move |row| row.get_mut(x0..x1))
+    }
+
+    fn clip(&self, area: &Rectangle) -> Clip {
+        Clip::from_rect(area).intersect(Clip::from_rect(&self.bounding_box()))
+    }
+}
+
+impl<C: PixelColor> Dimensions for ColorBuffer<'_, C> {
+    fn bounding_box(&self) -> Rectangle {
+        Rectangle::new(
+            Point::new(0, self.first_row),
+            Size::new(u32::from(self.width), u32::from(self.rows)),
+        )
+    }
+}
+
+impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        for Pixel(p, c) in pixels {
+            if let Some(i) = self.index(p.x, p.y) {
+                if let Some(px) = self.data.get_mut(i) {
+                    *px = c;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        let c = self.clip(area);
+        if !c.is_empty() {
+            self.rows_of(c).for_each(|row| row.fill(color));
+        }
+        Ok(())
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        let c = self.clip(area);
+        if c.is_empty() {
+            return Ok(());
+        }
+        let full = Clip::from_rect(area);
+        let mut colors = colors.into_iter();
+        if c == full {
+            for row in self.rows_of(c) {
+                for (px, col) in row.iter_mut().zip(&mut colors) {
+                    *px = col;
+                }
+            }
+            return Ok(());
+        }
+        // Partly outside: walk the whole area, keep what falls inside.
+        let w = area.size.width as usize;
+        for (i, col) in colors.enumerate().take(w * area.size.height as usize) {
+            let x = full.x0 + (i % w) as i32;
+            let y = full.y0 + (i / w) as i32;
+            if let Some(j) = self.index(x, y) {
+                if let Some(px) = self.data.get_mut(j) {
+                    *px = col;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Self::Error> {
+        self.data.fill(color);
+        Ok(())
+    }
+}

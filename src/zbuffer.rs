@@ -1,0 +1,202 @@
+//! The depth buffer: 16 bits per pixel in memory the caller owns.
+
+use crate::{Error, MAX_DIMENSION};
+
+/// How a fragment's depth is compared with the stored depth.
+///
+/// Smaller depth is nearer (window depth 0 = near plane, 65535 = far plane), as in the
+/// seeds' Z-buffer algorithm: a fragment is drawn when its `z < Z(i, j)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum DepthTest {
+    /// Pass when the fragment is strictly nearer (the default, OpenGL's `GL_LESS`).
+    #[default]
+    Less,
+    /// Pass when the fragment is nearer or at the same depth.
+    LessEqual,
+    /// Pass when the fragment is strictly farther.
+    Greater,
+    /// Pass when the depths are equal.
+    Equal,
+    /// Always pass (depth is still written when writing is on).
+    Always,
+    /// Never pass.
+    Never,
+}
+
+impl DepthTest {
+    /// Does a fragment at depth `fragment` pass against a stored `stored`?
+    #[inline(always)]
+    pub fn passes(self, fragment: u16, stored: u16) -> bool {
+        match self {
+            DepthTest::Less => fragment < stored,
+            DepthTest::LessEqual => fragment <= stored,
+            DepthTest::Greater => fragment > stored,
+            DepthTest::Equal => fragment == stored,
+            DepthTest::Always => true,
+            DepthTest::Never => false,
+        }
+    }
+}
+
+/// A 16-bit depth buffer over a caller-provided slice.
+///
+/// It covers `rows` screen rows starting at `first_row`, each `width` entries wide, so
+/// it can hold a whole frame or a horizontal band of one (see [`set_first_row`]). Depth
+/// 0 is nearest; [`clear`] sets every entry to [`ZBuffer::FAR`] (`u16::MAX`).
+///
+/// ```
+/// use zraster::ZBuffer;
+/// let mut depth = [0u16; 32 * 8];
+/// let mut zbuf = ZBuffer::new(&mut depth, 32, 8)?;
+/// zbuf.clear();
+/// assert_eq!(zbuf.depth(31, 7), Some(u16::MAX));
+/// assert_eq!(zbuf.depth(32, 7), None);
+/// # Ok::<(), zraster::Error>(())
+/// ```
+///
+/// [`set_first_row`]: ZBuffer::set_first_row
+/// [`clear`]: ZBuffer::clear
+#[derive(Debug)]
+pub struct ZBuffer<'a> {
+    data: &'a mut [u16],
+    width: u16,
+    rows: u16,
+    first_row: i32,
+    test: DepthTest,
+    write: bool,
+}
+
+impl<'a> ZBuffer<'a> {
+    /// The farthest depth and the clear value.
+    pub const FAR: u16 = u16::MAX;
+
+    /// A Z-buffer of `width × rows` entries covering screen rows `0..rows`.
+    ///
+    /// Errors: [`Error::ZeroSize`] for a zero dimension, [`Error::TooLarge`] above
+    /// [`MAX_DIMENSION`], [`Error::BufferTooSmall`] when `data` is shorter than
+    /// `width × rows`. A longer slice is fine; only its first `width × rows` entries are used.
+    pub fn new(data: &'a mut [u16], width: u32, rows: u32) -> Result<Self, Error> {
+        let (w, r) = check_dims(width, rows, data.len())?;
+        let needed = usize::from(w) * usize::from(r);
+        let data = match data.get_mut(..needed) {
+            Some(d) => d,
+            None => return Err(Error::BufferTooSmall { needed, got: 0 }),
+        };
+        Ok(ZBuffer {
+            data,
+            width: w,
+            rows: r,
+            first_row: 0,
+            test: DepthTest::Less,
+            write: true,
+        })
+    }
+
+    /// A Z-buffer covering screen rows `first_row .. first_row + rows` (a band).
+    pub fn new_band(data: &'a mut [u16], width: u32, rows: u32, first_row: i32) -> Result<Self, Error> {
+        let mut z = Self::new(data, width, rows)?;
+        z.first_row = first_row;
+        Ok(z)
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        u32::from(self.width)
+    }
+
+    /// Number of rows held.
+    pub fn rows(&self) -> u32 {
+        u32::from(self.rows)
+    }
+
+    /// The first screen row covered.
+    pub fn first_row(&self) -> i32 {
+        self.first_row
+    }
+
+    /// Move the band: the buffer now covers rows `first_row .. first_row + rows`.
+    /// The contents are kept; call [`clear`](ZBuffer::clear) before drawing the new band.
+    pub fn set_first_row(&mut self, first_row: i32) {
+        self.first_row = first_row;
+    }
+
+    /// The depth comparison in use.
+    pub fn test(&self) -> DepthTest {
+        self.test
+    }
+
+    /// Set the depth comparison.
+    pub fn set_test(&mut self, test: DepthTest) {
+        self.test = test;
+    }
+
+    /// Whether passing fragments write their depth.
+    pub fn write_enabled(&self) -> bool {
+        self.write
+    }
+
+    /// Turn depth writes on or off (off: test only, as for decals or hidden-line overlays).
+    pub fn set_write(&mut self, write: bool) {
+        self.write = write;
+    }
+
+    /// Set every entry to [`ZBuffer::FAR`].
+    pub fn clear(&mut self) {
+        self.data.fill(Self::FAR);
+    }
+
+    /// Set every entry to `depth`.
+    pub fn fill(&mut self, depth: u16) {
+        self.data.fill(depth);
+    }
+
+    /// The stored depth at screen pixel (x, y), or `None` outside the rows held.
+    pub fn depth(&self, x: i32, y: i32) -> Option<u16> {
+        let i = self.index(x, y)?;
+        self.data.get(i).copied()
+    }
+
+    /// The entries, row by row (row 0 is screen row [`first_row`](ZBuffer::first_row)).
+    pub fn as_slice(&self) -> &[u16] {
+        self.data
+    }
+
+    fn index(&self, x: i32, y: i32) -> Option<usize> {
+        let x = usize::try_from(x).ok()?;
+        let r = usize::try_from(y.checked_sub(self.first_row)?).ok()?;
+        (x < usize::from(self.width) && r < usize::from(self.rows))
+            .then(|| r * usize::from(self.width) + x)
+    }
+
+    /// The part of screen row `y` from column `x0` to `x1` (exclusive); `None` when any of
+    /// it lies outside the buffer.
+    pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [u16]> {
+        let start = self.index(x0, y)?;
+        let len = usize::try_from(x1.checked_sub(x0)?).ok()?;
+        if usize::try_from(x0).ok()? + len > usize::from(self.width) {
+            return None;
+        }
+        self.data.get_mut(start..start + len)
+    }
+
+    /// Screen rows covered, as a half-open range.
+    pub(crate) fn row_range(&self) -> (i32, i32) {
+        (self.first_row, self.first_row.saturating_add(i32::from(self.rows)))
+    }
+}
+
+/// Validate `width × rows` against [`MAX_DIMENSION`] and a slice length.
+pub(crate) fn check_dims(width: u32, rows: u32, len: usize) -> Result<(u16, u16), Error> {
+    if width == 0 || rows == 0 {
+        return Err(Error::ZeroSize);
+    }
+    if width > MAX_DIMENSION || rows > MAX_DIMENSION {
+        return Err(Error::TooLarge);
+    }
+    // Both ≤ 8192, so the product fits any usize of 32 bits or more.
+    let needed = width as usize * rows as usize;
+    if len < needed {
+        return Err(Error::BufferTooSmall { needed, got: len });
+    }
+    Ok((width as u16, rows as u16))
+}
