@@ -60,7 +60,10 @@ impl fmt::Display for Error {
             Error::OutOfRange => f.write_str("coordinate outside the guard band"),
             Error::NotFinite => f.write_str("NaN or infinite value"),
             Error::IndexOutOfRange { face, index } => {
-                write!(f, "face {face} refers to vertex {index}, which does not exist")
+                write!(
+                    f,
+                    "face {face} refers to vertex {index}, which does not exist"
+                )
             }
             Error::DegenerateFace { face } => {
                 write!(f, "face {face} has fewer than three vertices")

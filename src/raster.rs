@@ -27,8 +27,7 @@ pub struct ScreenVertex {
 impl ScreenVertex {
     /// A vertex from raw fixed-point values: `x`, `y` in 1/16 pixel, `z` in 16.16.
     pub const fn new(x: i32, y: i32, z: u32) -> Result<Self, Error> {
-        if x < -GUARD_BAND || x > GUARD_BAND || y < -GUARD_BAND || y > GUARD_BAND || z > MAX_DEPTH
-        {
+        if x < -GUARD_BAND || x > GUARD_BAND || y < -GUARD_BAND || y > GUARD_BAND || z > MAX_DEPTH {
             return Err(Error::OutOfRange);
         }
         Ok(ScreenVertex { x, y, z })
@@ -88,8 +87,14 @@ impl ScreenVertex {
 /// "> 0 is front-facing" and OpenGL's default front face agree. Exact for any inputs in
 /// the guard band (the products stay below 2⁵¹).
 pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
-    let (dx1, dy1) = (i64::from(p1.0) - i64::from(p0.0), i64::from(p1.1) - i64::from(p0.1));
-    let (dx2, dy2) = (i64::from(p2.0) - i64::from(p0.0), i64::from(p2.1) - i64::from(p0.1));
+    let (dx1, dy1) = (
+        i64::from(p1.0) - i64::from(p0.0),
+        i64::from(p1.1) - i64::from(p0.1),
+    );
+    let (dx2, dy2) = (
+        i64::from(p2.0) - i64::from(p0.0),
+        i64::from(p2.1) - i64::from(p0.1),
+    );
     dx1 * dy2 - dx2 * dy1
 }
 
@@ -159,7 +164,11 @@ impl Plane {
         if area2 == 0 {
             return None;
         }
-        let (v0, v1, v2) = (i64::from(values[0]), i64::from(values[1]), i64::from(values[2]));
+        let (v0, v1, v2) = (
+            i64::from(values[0]),
+            i64::from(values[1]),
+            i64::from(values[2]),
+        );
         let (dv1, dv2) = (v1 - v0, v2 - v0);
         let a = dv1 * dy2 - dv2 * dy1;
         let b = dx1 * dv2 - dx2 * dv1;
@@ -343,7 +352,11 @@ pub(crate) struct Setup {
 impl Setup {
     /// `None` for a zero-area triangle.
     pub(crate) fn new(tri: &[ScreenVertex; 3]) -> Option<Setup> {
-        let mut v = [(tri[0].x, tri[0].y), (tri[1].x, tri[1].y), (tri[2].x, tri[2].y)];
+        let mut v = [
+            (tri[0].x, tri[0].y),
+            (tri[1].x, tri[1].y),
+            (tri[2].x, tri[2].y),
+        ];
         if v[1].1 < v[0].1 {
             v.swap(0, 1);
         }
@@ -358,7 +371,10 @@ impl Setup {
             return None;
         }
         // With y down, area > 0 means v0→v1→v2 turns clockwise on screen: v1 is right of v0→v2.
-        Some(Setup { v, mid_right: area > 0 })
+        Some(Setup {
+            v,
+            mid_right: area > 0,
+        })
     }
 
     /// Call `span(y, x0, x1)` for each row's covered pixels inside `clip`, top to bottom.
@@ -423,7 +439,12 @@ mod tests {
 
     #[test]
     fn edge_walk_matches_direct_ceil_division() {
-        let cases = [((3, -5), (40, 77)), ((100, 0), (-33, 250)), ((0, 0), (0, 160)), ((7, 1), (8, 2))];
+        let cases = [
+            ((3, -5), (40, 77)),
+            ((100, 0), (-33, 250)),
+            ((0, 0), (0, 160)),
+            ((7, 1), (8, 2)),
+        ];
         for (a, b) in cases {
             let first = (a.1 + 7) >> 4;
             let mut w = EdgeWalk::new(a, b, first);
@@ -431,7 +452,11 @@ mod tests {
                 let yc = i64::from(py * 16 + 8);
                 let (dx, dy) = (i64::from(b.0 - a.0), i64::from(b.1 - a.1));
                 let t = (yc - i64::from(a.1)) * dx + (i64::from(a.0) - 8) * dy;
-                assert_eq!(i64::from(w.x), div_ceil(t, 16 * dy), "edge {a:?}→{b:?} row {py}");
+                assert_eq!(
+                    i64::from(w.x),
+                    div_ceil(t, 16 * dy),
+                    "edge {a:?}→{b:?} row {py}"
+                );
                 w.advance();
             }
         }
@@ -446,20 +471,44 @@ mod tests {
             let exact = p.value_at(px * 16 + 8, py * 16 + 8);
             let fast = p.at_pixel(px, py);
             let dist = i64::from((px - p.ref_px).abs() + (py - p.ref_py).abs());
-            assert!((exact - fast).abs() <= dist + 1, "({px},{py}): {exact} vs {fast}");
+            assert!(
+                (exact - fast).abs() <= dist + 1,
+                "({px},{py}): {exact} vs {fast}"
+            );
         }
     }
 
     #[test]
     fn vertex_ranges_are_checked() {
-        assert_eq!(ScreenVertex::new(GUARD_BAND + 1, 0, 0), Err(Error::OutOfRange));
-        assert_eq!(ScreenVertex::new(0, -GUARD_BAND - 1, 0), Err(Error::OutOfRange));
-        assert_eq!(ScreenVertex::new(0, 0, MAX_DEPTH + 1), Err(Error::OutOfRange));
+        assert_eq!(
+            ScreenVertex::new(GUARD_BAND + 1, 0, 0),
+            Err(Error::OutOfRange)
+        );
+        assert_eq!(
+            ScreenVertex::new(0, -GUARD_BAND - 1, 0),
+            Err(Error::OutOfRange)
+        );
+        assert_eq!(
+            ScreenVertex::new(0, 0, MAX_DEPTH + 1),
+            Err(Error::OutOfRange)
+        );
         assert!(ScreenVertex::new(-GUARD_BAND, GUARD_BAND, MAX_DEPTH).is_ok());
-        assert_eq!(ScreenVertex::from_f32(f32::NAN, 0.0, 0.0), Err(Error::NotFinite));
-        assert_eq!(ScreenVertex::from_f32(0.0, f32::INFINITY, 0.0), Err(Error::NotFinite));
-        assert_eq!(ScreenVertex::from_f32(2e6, 0.0, 0.0), Err(Error::OutOfRange));
-        assert_eq!(ScreenVertex::from_f32(0.0, 0.0, -1.0), Err(Error::OutOfRange));
+        assert_eq!(
+            ScreenVertex::from_f32(f32::NAN, 0.0, 0.0),
+            Err(Error::NotFinite)
+        );
+        assert_eq!(
+            ScreenVertex::from_f32(0.0, f32::INFINITY, 0.0),
+            Err(Error::NotFinite)
+        );
+        assert_eq!(
+            ScreenVertex::from_f32(2e6, 0.0, 0.0),
+            Err(Error::OutOfRange)
+        );
+        assert_eq!(
+            ScreenVertex::from_f32(0.0, 0.0, -1.0),
+            Err(Error::OutOfRange)
+        );
         let p = ScreenVertex::from_f32(1.53, -2.0, 65535.0).unwrap();
         assert_eq!((p.x(), p.y(), p.z()), (24, -32, MAX_DEPTH));
     }

@@ -58,7 +58,12 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     }
 
     /// A buffer covering screen rows `first_row .. first_row + rows` (a band).
-    pub fn new_band(data: &'a mut [C], width: u32, rows: u32, first_row: i32) -> Result<Self, Error> {
+    pub fn new_band(
+        data: &'a mut [C],
+        width: u32,
+        rows: u32,
+        first_row: i32,
+    ) -> Result<Self, Error> {
         let mut b = Self::new(data, width, rows)?;
         b.first_row = first_row;
         Ok(b)
@@ -110,7 +115,11 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
         let w = usize::from(self.width);
         let (vx, vy) = (visible.top_left.x, visible.top_left.y - self.first_row);
         let vw = visible.size.width as usize;
-        let rows = self.data.chunks_exact(w).skip(vy as usize).take(visible.size.height as usize);
+        let rows = self
+            .data
+            .chunks_exact(w)
+            .skip(vy as usize)
+            .take(visible.size.height as usize);
         display.fill_contiguous(
             &visible,
             rows.flat_map(move |row| row.iter().skip(vx as usize).take(vw).copied()),

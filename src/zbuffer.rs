@@ -93,7 +93,12 @@ impl<'a> ZBuffer<'a> {
     }
 
     /// A Z-buffer covering screen rows `first_row .. first_row + rows` (a band).
-    pub fn new_band(data: &'a mut [u16], width: u32, rows: u32, first_row: i32) -> Result<Self, Error> {
+    pub fn new_band(
+        data: &'a mut [u16],
+        width: u32,
+        rows: u32,
+        first_row: i32,
+    ) -> Result<Self, Error> {
         let mut z = Self::new(data, width, rows)?;
         z.first_row = first_row;
         Ok(z)
@@ -181,7 +186,10 @@ impl<'a> ZBuffer<'a> {
 
     /// Screen rows covered, as a half-open range.
     pub(crate) fn row_range(&self) -> (i32, i32) {
-        (self.first_row, self.first_row.saturating_add(i32::from(self.rows)))
+        (
+            self.first_row,
+            self.first_row.saturating_add(i32::from(self.rows)),
+        )
     }
 }
 
