@@ -44,10 +44,16 @@
 #![warn(clippy::unwrap_used, clippy::expect_used)]
 #![cfg_attr(test, allow(clippy::unwrap_used, clippy::expect_used))]
 
+#[cfg(test)]
+extern crate std;
+
 mod error;
+pub mod math;
+pub mod mesh;
 mod fill;
 pub mod fixed;
 mod raster;
+pub mod shade;
 mod target;
 mod zbuffer;
 

@@ -9,6 +9,7 @@ use embedded_graphics::{
 
 use crate::raster::Clip;
 use crate::zbuffer::check_dims;
+use crate::error::prefix_mut;
 use crate::Error;
 
 /// A frame (or a band of one) of colours in a caller-provided slice.
@@ -45,10 +46,7 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     pub fn new(data: &'a mut [C], width: u32, rows: u32) -> Result<Self, Error> {
         let (w, r) = check_dims(width, rows, data.len())?;
         let needed = usize::from(w) * usize::from(r);
-        let data = match data.get_mut(..needed) {
-            Some(d) => d,
-            None => return Err(Error::BufferTooSmall { needed, got: 0 }),
-        };
+        let data = prefix_mut(data, needed)?;
         Ok(ColorBuffer {
             data,
             width: w,

@@ -1,5 +1,6 @@
 //! The depth buffer: 16 bits per pixel in memory the caller owns.
 
+use crate::error::prefix_mut;
 use crate::{Error, MAX_DIMENSION};
 
 /// How a fragment's depth is compared with the stored depth.
@@ -78,10 +79,7 @@ impl<'a> ZBuffer<'a> {
     pub fn new(data: &'a mut [u16], width: u32, rows: u32) -> Result<Self, Error> {
         let (w, r) = check_dims(width, rows, data.len())?;
         let needed = usize::from(w) * usize::from(r);
-        let data = match data.get_mut(..needed) {
-            Some(d) => d,
-            None => return Err(Error::BufferTooSmall { needed, got: 0 }),
-        };
+        let data = prefix_mut(data, needed)?;
         Ok(ZBuffer {
             data,
             width: w,

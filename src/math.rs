@@ -1,0 +1,362 @@
+//! Small `f32` vector and matrix types for building a frame's transforms.
+//!
+//! These run once per frame (or once per object), not per vertex: the per-vertex path
+//! uses the fixed-point form of [`Mat4`] built by the pipeline. Trigonometry and square
+//! roots are computed here to about 1e-7 relative error without `std`, so that host
+//! tests and firmware produce the same matrices. (micromath's `sin` is within ~1e-3,
+//! which moves vertices by a fifth of a pixel on a 320-pixel screen; its `sqrt` seeds
+//! the Newton steps used here.)
+
+use core::ops::{Add, Mul, Neg, Sub};
+use micromath::F32Ext;
+
+/// A 3-component `f32` vector.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Vec3 {
+    /// x
+    pub x: f32,
+    /// y
+    pub y: f32,
+    /// z
+    pub z: f32,
+}
+
+impl Vec3 {
+    /// A vector from components.
+    pub const fn new(x: f32, y: f32, z: f32) -> Vec3 {
+        Vec3 { x, y, z }
+    }
+
+    /// The dot product.
+    pub fn dot(self, o: Vec3) -> f32 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// The cross product `self × o`.
+    pub fn cross(self, o: Vec3) -> Vec3 {
+        Vec3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
+    /// The length.
+    pub fn length(self) -> f32 {
+        sqrt(self.dot(self))
+    }
+
+    /// The unit vector in the same direction, or zero for a zero (or non-finite) vector.
+    pub fn normalize(self) -> Vec3 {
+        let l = self.length();
+        if l > 0.0 && l.is_finite() {
+            self * (1.0 / l)
+        } else {
+            Vec3::default()
+        }
+    }
+
+    /// Are all components finite?
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+}
+
+impl Add for Vec3 {
+    type Output = Vec3;
+    fn add(self, o: Vec3) -> Vec3 {
+        Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl Sub for Vec3 {
+    type Output = Vec3;
+    fn sub(self, o: Vec3) -> Vec3 {
+        Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl Neg for Vec3 {
+    type Output = Vec3;
+    fn neg(self) -> Vec3 {
+        Vec3::new(-self.x, -self.y, -self.z)
+    }
+}
+
+impl Mul<f32> for Vec3 {
+    type Output = Vec3;
+    fn mul(self, s: f32) -> Vec3 {
+        Vec3::new(self.x * s, self.y * s, self.z * s)
+    }
+}
+
+/// A 4×4 `f32` matrix, row-major: `m[row][col]`, applied to column vectors (`M · v`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mat4 {
+    /// The elements, `m[row][col]`.
+    pub m: [[f32; 4]; 4],
+}
+
+impl Default for Mat4 {
+    fn default() -> Self {
+        Mat4::IDENTITY
+    }
+}
+
+impl Mat4 {
+    /// The identity.
+    pub const IDENTITY: Mat4 = Mat4 {
+        m: [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+    };
+
+    /// A translation by `t`.
+    pub fn translation(t: Vec3) -> Mat4 {
+        let mut r = Mat4::IDENTITY;
+        r.m[0][3] = t.x;
+        r.m[1][3] = t.y;
+        r.m[2][3] = t.z;
+        r
+    }
+
+    /// A scaling by `s` along each axis.
+    pub fn scaling(s: Vec3) -> Mat4 {
+        let mut r = Mat4::IDENTITY;
+        r.m[0][0] = s.x;
+        r.m[1][1] = s.y;
+        r.m[2][2] = s.z;
+        r
+    }
+
+    /// A right-handed rotation about +X by `angle` radians.
+    pub fn rotation_x(angle: f32) -> Mat4 {
+        let (s, c) = sin_cos(angle);
+        let mut r = Mat4::IDENTITY;
+        r.m[1][1] = c;
+        r.m[1][2] = -s;
+        r.m[2][1] = s;
+        r.m[2][2] = c;
+        r
+    }
+
+    /// A right-handed rotation about +Y by `angle` radians.
+    pub fn rotation_y(angle: f32) -> Mat4 {
+        let (s, c) = sin_cos(angle);
+        let mut r = Mat4::IDENTITY;
+        r.m[0][0] = c;
+        r.m[0][2] = s;
+        r.m[2][0] = -s;
+        r.m[2][2] = c;
+        r
+    }
+
+    /// A right-handed rotation about +Z by `angle` radians.
+    pub fn rotation_z(angle: f32) -> Mat4 {
+        let (s, c) = sin_cos(angle);
+        let mut r = Mat4::IDENTITY;
+        r.m[0][0] = c;
+        r.m[0][1] = -s;
+        r.m[1][0] = s;
+        r.m[1][1] = c;
+        r
+    }
+
+    /// A view matrix for an eye at `eye` looking at `target` with `up` roughly up
+    /// (gluLookAt): the camera looks down its −Z axis.
+    pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Mat4 {
+        let f = (target - eye).normalize();
+        let s = f.cross(up).normalize();
+        let u = s.cross(f);
+        Mat4 {
+            m: [
+                [s.x, s.y, s.z, -s.dot(eye)],
+                [u.x, u.y, u.z, -u.dot(eye)],
+                [-f.x, -f.y, -f.z, f.dot(eye)],
+                [0.0, 0.0, 0.0, 1.0],
+            ],
+        }
+    }
+
+    /// A perspective projection (gluPerspective): vertical field of view `fovy` in
+    /// radians, `aspect` = width / height, clip planes at distances `near` and `far`.
+    pub fn perspective(fovy: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
+        let (s, c) = sin_cos(fovy * 0.5);
+        let f = c / s;
+        let d = near - far;
+        Mat4 {
+            m: [
+                [f / aspect, 0.0, 0.0, 0.0],
+                [0.0, f, 0.0, 0.0],
+                [0.0, 0.0, (far + near) / d, 2.0 * far * near / d],
+                [0.0, 0.0, -1.0, 0.0],
+            ],
+        }
+    }
+
+    /// An orthographic projection (glOrtho).
+    pub fn orthographic(left: f32, right: f32, bottom: f32, top: f32, near: f32, far: f32) -> Mat4 {
+        let (w, h, d) = (right - left, top - bottom, far - near);
+        Mat4 {
+            m: [
+                [2.0 / w, 0.0, 0.0, -(right + left) / w],
+                [0.0, 2.0 / h, 0.0, -(top + bottom) / h],
+                [0.0, 0.0, -2.0 / d, -(far + near) / d],
+                [0.0, 0.0, 0.0, 1.0],
+            ],
+        }
+    }
+
+    /// Apply to the point `p` (w = 1), returning homogeneous (x, y, z, w).
+    pub fn transform_point(&self, p: Vec3) -> [f32; 4] {
+        let m = &self.m;
+        let row = |r: usize| m[r][0] * p.x + m[r][1] * p.y + m[r][2] * p.z + m[r][3];
+        [row(0), row(1), row(2), row(3)]
+    }
+
+    /// Apply the upper-left 3×3 part to the direction `d`.
+    pub fn transform_dir(&self, d: Vec3) -> Vec3 {
+        let m = &self.m;
+        Vec3::new(
+            m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z,
+            m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
+            m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z,
+        )
+    }
+
+    /// Apply the transpose of the upper-left 3×3 part to `d` (the inverse rotation, for
+    /// a rotation matrix).
+    pub fn transpose_dir(&self, d: Vec3) -> Vec3 {
+        let m = &self.m;
+        Vec3::new(
+            m[0][0] * d.x + m[1][0] * d.y + m[2][0] * d.z,
+            m[0][1] * d.x + m[1][1] * d.y + m[2][1] * d.z,
+            m[0][2] * d.x + m[1][2] * d.y + m[2][2] * d.z,
+        )
+    }
+
+    /// Are all elements finite?
+    pub fn is_finite(&self) -> bool {
+        self.m.iter().flatten().all(|v| v.is_finite())
+    }
+}
+
+impl Mul for Mat4 {
+    type Output = Mat4;
+    fn mul(self, o: Mat4) -> Mat4 {
+        let mut r = [[0.0f32; 4]; 4];
+        for (i, row) in r.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                *v = (0..4).map(|k| self.m[i][k] * o.m[k][j]).sum();
+            }
+        }
+        Mat4 { m: r }
+    }
+}
+
+/// Degrees to radians.
+pub fn radians(deg: f32) -> f32 {
+    deg * (core::f32::consts::PI / 180.0)
+}
+
+/// The square root, to within an ulp or two (micromath's estimate and three Newton steps).
+pub fn sqrt(v: f32) -> f32 {
+    if v <= 0.0 || !v.is_finite() {
+        return if v == 0.0 || v.is_infinite() { v } else { f32::NAN };
+    }
+    // micromath's estimate is within ~5%; each Newton step squares the relative error.
+    let mut r = F32Ext::sqrt(v);
+    for _ in 0..3 {
+        r = 0.5 * (r + v / r);
+    }
+    r
+}
+
+/// Sine and cosine of `x` radians, to about 1e-7 absolute error for |x| ≤ 10⁴.
+pub fn sin_cos(x: f32) -> (f32, f32) {
+    if !x.is_finite() {
+        return (f32::NAN, f32::NAN);
+    }
+    use core::f64::consts::FRAC_PI_2;
+    // Reduce in f64 to [-π/4, π/4] around the nearest multiple of π/2.
+    let xd = f64::from(x);
+    let kf = xd / FRAC_PI_2;
+    let k = if kf >= 0.0 { (kf + 0.5) as i64 } else { (kf - 0.5) as i64 };
+    let r = xd - k as f64 * FRAC_PI_2;
+    let r2 = r * r;
+    // Taylor series to r¹¹ / r¹²: error below 1e-12 on [-π/4, π/4].
+    let s = r * (1.0 - r2 / 6.0 * (1.0 - r2 / 20.0 * (1.0 - r2 / 42.0 * (1.0 - r2 / 72.0 * (1.0 - r2 / 110.0)))));
+    let c = 1.0 - r2 / 2.0 * (1.0 - r2 / 12.0 * (1.0 - r2 / 30.0 * (1.0 - r2 / 56.0 * (1.0 - r2 / 90.0 * (1.0 - r2 / 132.0)))));
+    let (s, c) = match k.rem_euclid(4) {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    };
+    (s as f32, c as f32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sin_cos_are_accurate() {
+        for i in -2000..2000 {
+            let x = i as f32 * 0.0123;
+            let (s, c) = sin_cos(x);
+            let (es, ec) = (libm_sin(f64::from(x)), libm_cos(f64::from(x)));
+            assert!((f64::from(s) - es).abs() < 2e-7, "sin {x}");
+            assert!((f64::from(c) - ec).abs() < 2e-7, "cos {x}");
+        }
+        assert_eq!(sin_cos(0.0), (0.0, 1.0));
+        assert!(sin_cos(f32::NAN).0.is_nan());
+    }
+
+    // Reference values from a plain series in f64 with many terms.
+    fn libm_sin(x: f64) -> f64 {
+        let x = x % (2.0 * core::f64::consts::PI);
+        let (mut term, mut sum) = (x, x);
+        for n in 1..40 {
+            term *= -x * x / ((2 * n) as f64 * (2 * n + 1) as f64);
+            sum += term;
+        }
+        sum
+    }
+
+    fn libm_cos(x: f64) -> f64 {
+        let x = x % (2.0 * core::f64::consts::PI);
+        let (mut term, mut sum) = (1.0, 1.0);
+        for n in 1..40 {
+            term *= -x * x / ((2 * n - 1) as f64 * (2 * n) as f64);
+            sum += term;
+        }
+        sum
+    }
+
+    #[test]
+    fn sqrt_is_accurate() {
+        for v in [2.0f32, 1e-6, 3.5e7, 0.25, 1.0] {
+            let (r, exact) = (f64::from(sqrt(v)), f64::from(v).sqrt());
+            assert!(((r - exact) / exact).abs() < 1.2e-7, "{v}: {r} vs {exact}");
+        }
+        assert_eq!(sqrt(0.0), 0.0);
+        assert!(sqrt(-1.0).is_nan());
+    }
+
+    #[test]
+    fn perspective_maps_near_and_far_to_minus_one_and_one() {
+        let p = Mat4::perspective(radians(60.0), 4.0 / 3.0, 0.1, 10.0);
+        let n = p.transform_point(Vec3::new(0.0, 0.0, -0.1));
+        let f = p.transform_point(Vec3::new(0.0, 0.0, -10.0));
+        assert!((n[2] / n[3] + 1.0).abs() < 1e-6);
+        assert!((f[2] / f[3] - 1.0).abs() < 1e-5);
+        let e = Mat4::look_at(Vec3::new(0.0, 0.0, 2.5), Vec3::default(), Vec3::new(0.0, 1.0, 0.0));
+        assert_eq!(e.transform_point(Vec3::default()), [0.0, 0.0, -2.5, 1.0]);
+        let r = Mat4::rotation_y(radians(90.0)).transform_dir(Vec3::new(0.0, 0.0, 1.0));
+        assert!((r.x - 1.0).abs() < 1e-6 && r.z.abs() < 1e-6);
+    }
+}

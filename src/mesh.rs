@@ -1,0 +1,325 @@
+//! Meshes: the seeds' vertex table and face table, in borrowed (flash-friendly) slices.
+
+use embedded_graphics::pixelcolor::Rgb888;
+
+use crate::math::Vec3;
+use crate::error::prefix_mut;
+use crate::Error;
+
+/// One polygon of the face table: three or more vertex indices and a material.
+///
+/// Vertices are listed counter-clockwise as seen from the front (as in OBJ files and
+/// OpenGL); polygons are drawn as a fan around their first vertex, so they should be
+/// convex and planar.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Face<'a, M> {
+    /// Indices into the vertex table.
+    pub vertices: &'a [u16],
+    /// The face's material (for `Rgb888`, its colour).
+    pub material: M,
+}
+
+/// How faces get their materials in a triangle list.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Materials<'a, M> {
+    /// Every face has this material.
+    Uniform(M),
+    /// One material per face.
+    PerFace(&'a [M]),
+}
+
+/// The face table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Faces<'a, M> {
+    /// Polygons of any size, each with its own material (the seeds' cube).
+    Polygons(&'a [Face<'a, M>]),
+    /// Triangles (compact: 6 bytes a face).
+    Triangles {
+        /// Three vertex indices per triangle, counter-clockwise from the front.
+        indices: &'a [[u16; 3]],
+        /// Their materials.
+        materials: Materials<'a, M>,
+    },
+}
+
+/// A mesh: a vertex table of quantised positions and a face table.
+///
+/// A model-space position is `positions[i] × scale`. Quantising to `i16` keeps a
+/// vertex in 6 bytes of flash with 1/65536 of the model's extent as the step. The
+/// optional normal tables hold unit vectors in Q14 (16384 = 1.0); without them the
+/// renderer computes face normals from the positions when lighting needs them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mesh<'a, M = Rgb888> {
+    /// The vertex table.
+    pub positions: &'a [[i16; 3]],
+    /// Model units per position step.
+    pub scale: f32,
+    /// The face table.
+    pub faces: Faces<'a, M>,
+    /// Optional unit face normals (Q14), one per face.
+    pub face_normals: Option<&'a [[i16; 3]]>,
+    /// Optional unit vertex normals (Q14), one per vertex, for Gouraud lighting.
+    pub vertex_normals: Option<&'a [[i16; 3]]>,
+}
+
+/// Q14 fixed point: 16384 = 1.0.
+pub const NORMAL_ONE: i32 = 1 << 14;
+
+impl<'a, M: Copy> Mesh<'a, M> {
+    /// A mesh of polygons, without normal tables.
+    pub const fn new(positions: &'a [[i16; 3]], scale: f32, faces: &'a [Face<'a, M>]) -> Self {
+        Mesh {
+            positions,
+            scale,
+            faces: Faces::Polygons(faces),
+            face_normals: None,
+            vertex_normals: None,
+        }
+    }
+
+    /// A mesh of triangles, all of one material, without normal tables.
+    pub const fn triangles(
+        positions: &'a [[i16; 3]],
+        scale: f32,
+        indices: &'a [[u16; 3]],
+        material: M,
+    ) -> Self {
+        Mesh {
+            positions,
+            scale,
+            faces: Faces::Triangles {
+                indices,
+                materials: Materials::Uniform(material),
+            },
+            face_normals: None,
+            vertex_normals: None,
+        }
+    }
+
+    /// The same mesh with face and/or vertex normal tables.
+    pub const fn with_normals(
+        mut self,
+        face_normals: Option<&'a [[i16; 3]]>,
+        vertex_normals: Option<&'a [[i16; 3]]>,
+    ) -> Self {
+        self.face_normals = face_normals;
+        self.vertex_normals = vertex_normals;
+        self
+    }
+
+    /// The number of faces.
+    pub fn face_count(&self) -> usize {
+        match self.faces {
+            Faces::Polygons(f) => f.len(),
+            Faces::Triangles { indices, .. } => indices.len(),
+        }
+    }
+
+    /// Face `i`: its vertex indices and material. `None` when there is no face `i`, or
+    /// (for `Materials::PerFace`) no material for it.
+    pub fn face(&self, i: usize) -> Option<(&'a [u16], M)> {
+        match self.faces {
+            Faces::Polygons(f) => f.get(i).map(|f| (f.vertices, f.material)),
+            Faces::Triangles { indices, materials } => {
+                let t = indices.get(i)?;
+                let m = match materials {
+                    Materials::Uniform(m) => m,
+                    Materials::PerFace(ms) => *ms.get(i)?,
+                };
+                Some((t.as_slice(), m))
+            }
+        }
+    }
+
+    /// The model-space position of vertex `i`.
+    pub fn position(&self, i: usize) -> Option<Vec3> {
+        let p = self.positions.get(i)?;
+        Some(Vec3::new(f32::from(p[0]), f32::from(p[1]), f32::from(p[2])) * self.scale)
+    }
+
+    /// Check every table: indices in range, polygons of three or more vertices, one
+    /// material and one normal per face, one normal per vertex, a finite positive scale.
+    ///
+    /// The renderer checks faces as it draws them too (and returns the same errors), so
+    /// calling this is optional; it reports a problem before anything is drawn.
+    pub fn validate(&self) -> Result<(), Error> {
+        if !(self.scale.is_finite() && self.scale > 0.0) {
+            return Err(Error::InvalidParameter("mesh scale must be finite and positive"));
+        }
+        let n = self.face_count();
+        for i in 0..n {
+            let (vs, _) = self.face(i).ok_or(Error::CapacityExceeded { capacity: i })?;
+            if vs.len() < 3 {
+                return Err(Error::DegenerateFace { face: i });
+            }
+            if let Some(&bad) = vs.iter().find(|&&v| usize::from(v) >= self.positions.len()) {
+                return Err(Error::IndexOutOfRange {
+                    face: i,
+                    index: usize::from(bad),
+                });
+            }
+        }
+        if self.face_normals.is_some_and(|f| f.len() < n) {
+            return Err(Error::InvalidParameter("fewer face normals than faces"));
+        }
+        if self.vertex_normals.is_some_and(|v| v.len() < self.positions.len()) {
+            return Err(Error::InvalidParameter("fewer vertex normals than vertices"));
+        }
+        Ok(())
+    }
+}
+
+/// The seeds' unit cube: positions are 0 or 16384 (scale 1/16384, so the cube spans
+/// 0..1), vertices a–h in the seeds' order.
+pub const CUBE_POSITIONS: [[i16; 3]; 8] = {
+    const S: i16 = 16384;
+    [
+        [0, 0, 0], // a
+        [S, 0, 0], // b
+        [S, 0, S], // c
+        [0, 0, S], // d
+        [0, S, 0], // e
+        [S, S, 0], // f
+        [S, S, S], // g
+        [0, S, S], // h
+    ]
+};
+
+/// The seeds' face table, as listed there: bottom, right, front, left, back, top.
+///
+/// Each face lists its vertices counter-clockwise as seen from outside the cube in a
+/// right-handed model space, which is the front-face convention of OBJ and OpenGL that
+/// the renderer uses.
+pub const CUBE_FACES: [Face<'static, Rgb888>; 6] = [
+    Face { vertices: &[0, 1, 2, 3], material: Rgb888::new(255, 0, 0) }, // bottom a b c d: red
+    Face { vertices: &[1, 5, 6, 2], material: Rgb888::new(0, 255, 0) }, // right b f g c: green
+    Face { vertices: &[2, 6, 7, 3], material: Rgb888::new(0, 0, 255) }, // front c g h d: blue
+    Face { vertices: &[3, 7, 4, 0], material: Rgb888::new(255, 255, 0) }, // left d h e a: yellow
+    Face { vertices: &[0, 4, 5, 1], material: Rgb888::new(128, 0, 128) }, // back a e f b: purple
+    Face { vertices: &[7, 6, 5, 4], material: Rgb888::new(0, 255, 255) }, // top h g f e: light blue
+];
+
+/// The seeds' cube as a ready mesh (spanning 0..1 on each axis).
+pub const CUBE: Mesh<'static, Rgb888> = Mesh::new(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_FACES);
+
+/// Compute unit face normals (Q14) of `mesh` into `out` (one per face), from the first
+/// three vertices of each face. Zero-area faces get a zero normal.
+pub fn compute_face_normals<M: Copy>(mesh: &Mesh<'_, M>, out: &mut [[i16; 3]]) -> Result<(), Error> {
+    mesh.validate()?;
+    let n = mesh.face_count();
+    let out = prefix_mut(out, n)?;
+    for (i, o) in out.iter_mut().enumerate() {
+        *o = quantize_normal(face_normal(mesh, i).unwrap_or_default());
+    }
+    Ok(())
+}
+
+/// Compute unit vertex normals (Q14) of `mesh` into `out` (one per vertex): the
+/// area-weighted average of the normals of the faces around each vertex. `scratch` needs
+/// one `Vec3` per vertex.
+pub fn compute_vertex_normals<M: Copy>(
+    mesh: &Mesh<'_, M>,
+    scratch: &mut [Vec3],
+    out: &mut [[i16; 3]],
+) -> Result<(), Error> {
+    mesh.validate()?;
+    let nv = mesh.positions.len();
+    let acc = prefix_mut(scratch, nv)?;
+    let out = prefix_mut(out, nv)?;
+    acc.fill(Vec3::default());
+    for f in 0..mesh.face_count() {
+        let Some((vs, _)) = mesh.face(f) else { continue };
+        // Unnormalised cross product: its length is twice the area (area weighting).
+        let n = face_normal_raw(mesh, vs).unwrap_or_default();
+        for &v in vs {
+            if let Some(a) = acc.get_mut(usize::from(v)) {
+                *a = *a + n;
+            }
+        }
+    }
+    for (o, a) in out.iter_mut().zip(acc.iter()) {
+        *o = quantize_normal(a.normalize());
+    }
+    Ok(())
+}
+
+/// The unit normal of face `i` in model space.
+pub(crate) fn face_normal<M: Copy>(mesh: &Mesh<'_, M>, i: usize) -> Option<Vec3> {
+    let (vs, _) = mesh.face(i)?;
+    Some(face_normal_raw(mesh, vs)?.normalize())
+}
+
+fn face_normal_raw<M: Copy>(mesh: &Mesh<'_, M>, vs: &[u16]) -> Option<Vec3> {
+    let p = |k: usize| mesh.position(usize::from(*vs.get(k)?));
+    let (a, b, c) = (p(0)?, p(1)?, p(2)?);
+    Some((b - a).cross(c - a))
+}
+
+/// A unit vector in Q14.
+pub(crate) fn quantize_normal(n: Vec3) -> [i16; 3] {
+    let q = |v: f32| crate::fixed::round_f32(v.clamp(-1.0, 1.0) * NORMAL_ONE as f32) as i16;
+    [q(n.x), q(n.y), q(n.z)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_seeds_cube_is_valid_and_closed() {
+        assert_eq!(CUBE.validate(), Ok(()));
+        assert_eq!(CUBE.face_count(), 6);
+        // Closed: each directed edge appears once, and its reverse once.
+        let mut edges = std::vec::Vec::new();
+        for f in 0..6 {
+            let (vs, _) = CUBE.face(f).unwrap();
+            for k in 0..vs.len() {
+                edges.push((vs[k], vs[(k + 1) % vs.len()]));
+            }
+        }
+        for &(a, b) in &edges {
+            assert_eq!(edges.iter().filter(|&&e| e == (a, b)).count(), 1);
+            assert_eq!(edges.iter().filter(|&&e| e == (b, a)).count(), 1);
+        }
+        // Outward normals, counter-clockwise from outside: bottom −Y, right +X, front +Z,
+        // left −X, back −Z, top +Y.
+        let want = [(0, -1, 0), (1, 0, 0), (0, 0, 1), (-1, 0, 0), (0, 0, -1), (0, 1, 0)];
+        for (f, w) in want.iter().enumerate() {
+            let n = face_normal(&CUBE, f).unwrap();
+            assert_eq!((n.x as i32, n.y as i32, n.z as i32), *w, "face {f}");
+        }
+    }
+
+    #[test]
+    fn bad_tables_are_errors() {
+        let pos = [[0i16; 3]; 3];
+        let tris = [[0u16, 1, 3]];
+        let m = Mesh::triangles(&pos, 1.0, &tris, Rgb888::new(1, 2, 3));
+        assert_eq!(m.validate(), Err(Error::IndexOutOfRange { face: 0, index: 3 }));
+        let faces = [Face { vertices: &[0u16, 1][..], material: Rgb888::new(0, 0, 0) }];
+        assert_eq!(Mesh::new(&pos, 1.0, &faces).validate(), Err(Error::DegenerateFace { face: 0 }));
+        let ok = [[0u16, 1, 2]];
+        let m = Mesh::triangles(&pos, f32::NAN, &ok, Rgb888::new(0, 0, 0));
+        assert!(matches!(m.validate(), Err(Error::InvalidParameter(_))));
+        let mats = [Rgb888::new(0, 0, 0); 0];
+        let m = Mesh {
+            faces: Faces::Triangles { indices: &ok, materials: Materials::PerFace(&mats) },
+            ..Mesh::triangles(&pos, 1.0, &ok, Rgb888::new(0, 0, 0))
+        };
+        assert_eq!(m.validate(), Err(Error::CapacityExceeded { capacity: 0 }));
+    }
+
+    #[test]
+    fn vertex_normals_of_the_cube_point_out_of_the_corners() {
+        let mut scratch = [Vec3::default(); 8];
+        let mut out = [[0i16; 3]; 8];
+        compute_vertex_normals(&CUBE, &mut scratch, &mut out).unwrap();
+        // Corner a (0,0,0): (−1,−1,−1)/√3 → −9459 in Q14.
+        assert_eq!(out[0], [-9459, -9459, -9459]);
+        assert_eq!(out[6], [9459, 9459, 9459]);
+        let mut fnorm = [[0i16; 3]; 6];
+        compute_face_normals(&CUBE, &mut fnorm).unwrap();
+        assert_eq!(fnorm[2], [0, 0, 16384]);
+        assert_eq!(compute_face_normals(&CUBE, &mut fnorm[..5]), Err(Error::BufferTooSmall { needed: 6, got: 5 }));
+    }
+}

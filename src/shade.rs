@@ -1,0 +1,178 @@
+//! Shading: light intensity per face or per vertex, and materials that turn an
+//! intensity into a display colour (with ordered dithering for monochrome displays).
+
+use embedded_graphics::pixelcolor::{BinaryColor, Gray8, Rgb565, Rgb888, RgbColor};
+
+use crate::math::Vec3;
+
+/// Light intensity in Q15: `ONE` (32768) is full brightness; values up to 65535
+/// (≈ 2.0) over-expose, saturating each channel.
+pub type Intensity = u16;
+
+/// Full intensity (1.0).
+pub const ONE: Intensity = 1 << 15;
+
+/// How faces are shaded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Shading {
+    /// Each face in its material at full intensity.
+    #[default]
+    Flat,
+    /// Flat Lambert: one intensity per face from its normal and the light (the seeds'
+    /// dot-product colour).
+    Lambert,
+    /// Gouraud: Lambert intensity at each vertex (from the mesh's vertex normals),
+    /// interpolated across the face.
+    Gouraud,
+}
+
+/// A directional light with an ambient term: `I = ambient + diffuse · max(0, N·L)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Light {
+    /// Direction *towards* the light, in world space (need not be normalised).
+    pub direction: Vec3,
+    /// The ambient term.
+    pub ambient: f32,
+    /// The diffuse weight.
+    pub diffuse: f32,
+}
+
+impl Default for Light {
+    /// Light from the upper left front, `normalize(−1, 1, 1)`, with `I = 0.2 + 0.8·N·L`.
+    fn default() -> Self {
+        Light {
+            direction: Vec3::new(-1.0, 1.0, 1.0),
+            ambient: 0.2,
+            diffuse: 0.8,
+        }
+    }
+}
+
+impl Light {
+    /// The intensity for a unit normal `n` and unit light direction `l`, in Q15.
+    pub fn intensity(&self, n_dot_l: f32) -> Intensity {
+        let i = self.ambient + self.diffuse * n_dot_l.max(0.0);
+        to_intensity(i)
+    }
+}
+
+/// An `f32` intensity (1.0 = full) to Q15, saturating; NaN gives 0.
+pub fn to_intensity(i: f32) -> Intensity {
+    let q = i * f32::from(ONE) + 0.5;
+    if q >= 65535.0 {
+        65535
+    } else if q > 0.0 {
+        q as u16
+    } else {
+        0
+    }
+}
+
+/// What a face is made of: how it looks at a given light intensity.
+///
+/// Implemented for `Rgb888` (a plain colour) into `Rgb565`, `Rgb888`, `Gray8` and, with
+/// 4×4 ordered dithering, `BinaryColor`. Implement it for your own type to use palettes
+/// or exact colour rules.
+pub trait Material<C>: Copy {
+    /// Whether [`shade`](Material::shade) depends on the pixel position (dithering).
+    /// When it does not, runs are filled with one colour (`fill_solid`).
+    const DITHERED: bool = false;
+
+    /// The colour at intensity `i` (Q15) at pixel (x, y).
+    fn shade(&self, i: Intensity, x: i32, y: i32) -> C;
+}
+
+/// `v · i / ONE · max / 255`, rounded and saturated to `max`: an 8-bit channel lit and
+/// requantised to `max` levels.
+#[inline]
+fn channel(v: u8, i: Intensity, max: u32) -> u8 {
+    let num = u64::from(v) * u64::from(i) * u64::from(max);
+    let den = 255 * u64::from(ONE);
+    ((num + den / 2) / den).min(u64::from(max)) as u8
+}
+
+impl Material<Rgb565> for Rgb888 {
+    fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
+        Rgb565::new(channel(self.r(), i, 31), channel(self.g(), i, 63), channel(self.b(), i, 31))
+    }
+}
+
+impl Material<Rgb888> for Rgb888 {
+    fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb888 {
+        Rgb888::new(channel(self.r(), i, 255), channel(self.g(), i, 255), channel(self.b(), i, 255))
+    }
+}
+
+impl Material<Gray8> for Rgb888 {
+    fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Gray8 {
+        Gray8::new(channel(luma(*self), i, 255))
+    }
+}
+
+impl Material<BinaryColor> for Rgb888 {
+    const DITHERED: bool = true;
+
+    fn shade(&self, i: Intensity, x: i32, y: i32) -> BinaryColor {
+        dither(channel(luma(*self), i, 255), x, y)
+    }
+}
+
+/// Rec. 601 luma of an 8-bit colour.
+pub fn luma(c: Rgb888) -> u8 {
+    ((77 * u32::from(c.r()) + 150 * u32::from(c.g()) + 29 * u32::from(c.b()) + 128) >> 8) as u8
+}
+
+/// The 4×4 Bayer matrix.
+const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+
+/// Ordered dithering of a grey level to on/off at pixel (x, y): over any aligned 4×4
+/// block, `round(level · 16 / 255)` pixels are on.
+pub fn dither(level: u8, x: i32, y: i32) -> BinaryColor {
+    let t = BAYER4[(y & 3) as usize][(x & 3) as usize];
+    // Levels 0..=255 map to 0..=16 pixels on; pixel on when its threshold is below.
+    let on = (u32::from(level) * 16 + 127) / 255;
+    if u32::from(t) < on {
+        BinaryColor::On
+    } else {
+        BinaryColor::Off
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn full_intensity_keeps_the_colour() {
+        let c = Rgb888::new(255, 128, 0);
+        let r: Rgb565 = c.shade(ONE, 0, 0);
+        assert_eq!(r, Rgb565::new(31, 32, 0));
+        let r: Rgb888 = c.shade(ONE, 0, 0);
+        assert_eq!(r, c);
+        let half: Rgb888 = c.shade(ONE / 2, 0, 0);
+        assert_eq!(half, Rgb888::new(128, 64, 0));
+        let over: Rgb888 = c.shade(u16::MAX, 0, 0);
+        assert_eq!(over, Rgb888::new(255, 255, 0));
+    }
+
+    #[test]
+    fn lambert_intensity() {
+        let l = Light::default();
+        assert_eq!(l.intensity(1.0), ONE);
+        assert_eq!(l.intensity(-0.5), to_intensity(0.2));
+        assert_eq!(l.intensity(0.5), to_intensity(0.6));
+        assert_eq!(to_intensity(f32::NAN), 0);
+        assert_eq!(to_intensity(3.0), u16::MAX);
+    }
+
+    #[test]
+    fn dithering_lights_the_right_share_of_each_block() {
+        for level in [0u8, 1, 17, 64, 128, 200, 254, 255] {
+            let on = (0..4)
+                .flat_map(|y| (0..4).map(move |x| (x, y)))
+                .filter(|&(x, y)| dither(level, x + 8, y + 4) == BinaryColor::On)
+                .count() as u32;
+            assert_eq!(on, (u32::from(level) * 16 + 127) / 255, "level {level}");
+        }
+    }
+}
