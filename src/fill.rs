@@ -13,6 +13,7 @@ use embedded_graphics::{
 };
 
 use crate::raster::{Clip, Plane, ScreenVertex, Setup};
+use crate::shade::{Intensity, Material};
 use crate::{DepthTest, ZBuffer};
 
 /// Counts from drawing one or more triangles.
@@ -82,8 +83,74 @@ pub fn fill_triangle<D: DrawTarget>(
     color: D::Color,
 ) -> Result<SpanStats, D::Error> {
     let clip = clip_of(target, zbuf);
-    depth_runs(zbuf, tri, &clip, |y, x0, x1| {
+    depth_runs(Some(zbuf), tri, &clip, |y, x0, x1| {
         target.fill_solid(&run_rect(y, x0, x1), color)
+    })
+}
+
+/// Fill a screen triangle with a material lit at each vertex (`intensity`, Q15, see
+/// [`shade`](crate::shade)), interpolated across the face: Gouraud shading. Runs go to
+/// the target with `fill_contiguous`; with equal intensities and an undithered material,
+/// with `fill_solid`.
+pub fn fill_triangle_shaded<D, M>(
+    target: &mut D,
+    zbuf: &mut ZBuffer<'_>,
+    tri: &[ScreenVertex; 3],
+    material: M,
+    intensity: [Intensity; 3],
+) -> Result<SpanStats, D::Error>
+where
+    D: DrawTarget,
+    M: Material<D::Color>,
+{
+    let clip = clip_of(target, zbuf);
+    shade_triangle(target, Some(zbuf), &clip, tri, material, intensity)
+}
+
+/// Draw a triangle in `material` with per-vertex intensities, choosing the cheapest
+/// way to emit its runs.
+pub(crate) fn shade_triangle<D, M>(
+    target: &mut D,
+    zbuf: Option<&mut ZBuffer<'_>>,
+    clip: &Clip,
+    tri: &[ScreenVertex; 3],
+    material: M,
+    intensity: [Intensity; 3],
+) -> Result<SpanStats, D::Error>
+where
+    D: DrawTarget,
+    M: Material<D::Color>,
+{
+    let uniform = intensity[0] == intensity[1] && intensity[1] == intensity[2];
+    if uniform && !M::DITHERED {
+        let color = material.shade(intensity[0], 0, 0);
+        return depth_runs(zbuf, tri, clip, |y, x0, x1| {
+            target.fill_solid(&run_rect(y, x0, x1), color)
+        });
+    }
+    if uniform {
+        let i = intensity[0];
+        return depth_runs(zbuf, tri, clip, |y, x0, x1| {
+            let colors = (x0..x1).map(|x| material.shade(i, x, y));
+            target.fill_contiguous(&run_rect(y, x0, x1), colors)
+        });
+    }
+    let Some(plane) = Plane::new(tri, intensity.map(|i| u32::from(i) << 16)) else {
+        return Ok(SpanStats::default());
+    };
+    let (lo, hi) = (
+        i64::from(*intensity.iter().min().unwrap_or(&0)) << 16,
+        i64::from(*intensity.iter().max().unwrap_or(&0)) << 16,
+    );
+    let step = plane.step_x();
+    depth_runs(zbuf, tri, clip, |y, x0, x1| {
+        let start = plane.at_pixel(x0, y).clamp(lo, hi) + (1 << 15);
+        let colors = (x0..x1).scan(start, |acc, x| {
+            let i = (*acc >> 16).clamp(0, 65535) as u16;
+            *acc += i64::from(step);
+            Some(material.shade(i, x, y))
+        });
+        target.fill_contiguous(&run_rect(y, x0, x1), colors)
     })
 }
 
@@ -93,10 +160,11 @@ pub(crate) fn run_rect(y: i32, x0: i32, x1: i32) -> Rectangle {
     Rectangle::new(Point::new(x0, y), Size::new((x1 - x0) as u32, 1))
 }
 
-/// Scan-convert `tri` inside `clip`, depth-test every covered pixel and call
-/// `run(y, x0, x1)` for each horizontal run of passing pixels.
+/// Scan-convert `tri` inside `clip`, depth-test every covered pixel against `zbuf`
+/// (every pixel passes without one) and call `run(y, x0, x1)` for each horizontal run
+/// of passing pixels.
 pub(crate) fn depth_runs<E>(
-    zbuf: &mut ZBuffer<'_>,
+    zbuf: Option<&mut ZBuffer<'_>>,
     tri: &[ScreenVertex; 3],
     clip: &Clip,
     mut run: impl FnMut(i32, i32, i32) -> Result<(), E>,
@@ -105,10 +173,20 @@ pub(crate) fn depth_runs<E>(
     if clip.is_empty() {
         return Ok(stats);
     }
-    let (Some(setup), Some(plane)) = (
-        Setup::new(tri),
-        Plane::new(tri, [tri[0].z(), tri[1].z(), tri[2].z()]),
-    ) else {
+    let Some(setup) = Setup::new(tri) else {
+        return Ok(stats);
+    };
+    let Some(zbuf) = zbuf else {
+        setup.for_each_span(clip, |y, x0, x1| {
+            let n = (x1 - x0) as u32;
+            stats.pixels_tested += n;
+            stats.pixels_written += n;
+            stats.runs += 1;
+            run(y, x0, x1)
+        })?;
+        return Ok(stats);
+    };
+    let Some(plane) = Plane::new(tri, [tri[0].z(), tri[1].z(), tri[2].z()]) else {
         return Ok(stats);
     };
     let zs = [tri[0].z(), tri[1].z(), tri[2].z()].map(i64::from);

@@ -58,7 +58,7 @@ mod target;
 mod zbuffer;
 
 pub use error::{DrawError, Error};
-pub use fill::{fill_triangle, SpanStats};
+pub use fill::{fill_triangle, fill_triangle_shaded, SpanStats};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex};
 pub use target::ColorBuffer;
 pub use zbuffer::{DepthTest, ZBuffer};
