@@ -105,5 +105,6 @@ impl<E: fmt::Debug> fmt::Display for DrawError<E> {
 /// The first `n` entries of a caller slice, or [`Error::BufferTooSmall`].
 pub(crate) fn prefix_mut<T>(s: &mut [T], n: usize) -> Result<&mut [T], Error> {
     let got = s.len();
-    s.get_mut(..n).ok_or(Error::BufferTooSmall { needed: n, got })
+    s.get_mut(..n)
+        .ok_or(Error::BufferTooSmall { needed: n, got })
 }

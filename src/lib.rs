@@ -36,8 +36,8 @@
 //! - Screen coordinates are 28.4 fixed point (see [`fixed`]); pixel (i, j) is sampled
 //!   at its centre (i + ½, j + ½); edges follow the top-left rule.
 //! - Depth is 16-bit, smaller is nearer, cleared to 65535 ([`ZBuffer::FAR`]).
-//! - Front faces have positive [`signed_area`] (clockwise on the y-down screen,
-//!   counter-clockwise in OpenGL's y-up NDC).
+//! - Front faces are counter-clockwise as seen with y up (OpenGL, OBJ, and the seeds'
+//!   `V1 × V2 > 0`); on the y-down screen their [`signed_area`] is negative.
 #![no_std]
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
@@ -47,12 +47,16 @@
 #[cfg(test)]
 extern crate std;
 
+pub mod camera;
+mod clip;
 mod error;
-pub mod math;
-pub mod mesh;
 mod fill;
 pub mod fixed;
+mod line;
+pub mod math;
+pub mod mesh;
 mod raster;
+mod render;
 pub mod shade;
 mod target;
 mod zbuffer;
@@ -60,6 +64,7 @@ mod zbuffer;
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded, SpanStats};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex};
+pub use render::{CachedVertex, Cull, DepthSort, FrameStats, RenderOptions, Renderer};
 pub use target::ColorBuffer;
 pub use zbuffer::{DepthTest, ZBuffer};
 

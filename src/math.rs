@@ -265,7 +265,11 @@ pub fn radians(deg: f32) -> f32 {
 /// The square root, to within an ulp or two (micromath's estimate and three Newton steps).
 pub fn sqrt(v: f32) -> f32 {
     if v <= 0.0 || !v.is_finite() {
-        return if v == 0.0 || v.is_infinite() { v } else { f32::NAN };
+        return if v == 0.0 || v.is_infinite() {
+            v
+        } else {
+            f32::NAN
+        };
     }
     // micromath's estimate is within ~5%; each Newton step squares the relative error.
     let mut r = F32Ext::sqrt(v);
@@ -284,12 +288,24 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     // Reduce in f64 to [-π/4, π/4] around the nearest multiple of π/2.
     let xd = f64::from(x);
     let kf = xd / FRAC_PI_2;
-    let k = if kf >= 0.0 { (kf + 0.5) as i64 } else { (kf - 0.5) as i64 };
+    let k = if kf >= 0.0 {
+        (kf + 0.5) as i64
+    } else {
+        (kf - 0.5) as i64
+    };
     let r = xd - k as f64 * FRAC_PI_2;
     let r2 = r * r;
     // Taylor series to r¹¹ / r¹²: error below 1e-12 on [-π/4, π/4].
-    let s = r * (1.0 - r2 / 6.0 * (1.0 - r2 / 20.0 * (1.0 - r2 / 42.0 * (1.0 - r2 / 72.0 * (1.0 - r2 / 110.0)))));
-    let c = 1.0 - r2 / 2.0 * (1.0 - r2 / 12.0 * (1.0 - r2 / 30.0 * (1.0 - r2 / 56.0 * (1.0 - r2 / 90.0 * (1.0 - r2 / 132.0)))));
+    let s = r
+        * (1.0
+            - r2 / 6.0
+                * (1.0 - r2 / 20.0 * (1.0 - r2 / 42.0 * (1.0 - r2 / 72.0 * (1.0 - r2 / 110.0)))));
+    let c = 1.0
+        - r2 / 2.0
+            * (1.0
+                - r2 / 12.0
+                    * (1.0
+                        - r2 / 30.0 * (1.0 - r2 / 56.0 * (1.0 - r2 / 90.0 * (1.0 - r2 / 132.0)))));
     let (s, c) = match k.rem_euclid(4) {
         0 => (s, c),
         1 => (c, -s),
@@ -354,7 +370,11 @@ mod tests {
         let f = p.transform_point(Vec3::new(0.0, 0.0, -10.0));
         assert!((n[2] / n[3] + 1.0).abs() < 1e-6);
         assert!((f[2] / f[3] - 1.0).abs() < 1e-5);
-        let e = Mat4::look_at(Vec3::new(0.0, 0.0, 2.5), Vec3::default(), Vec3::new(0.0, 1.0, 0.0));
+        let e = Mat4::look_at(
+            Vec3::new(0.0, 0.0, 2.5),
+            Vec3::default(),
+            Vec3::new(0.0, 1.0, 0.0),
+        );
         assert_eq!(e.transform_point(Vec3::default()), [0.0, 0.0, -2.5, 1.0]);
         let r = Mat4::rotation_y(radians(90.0)).transform_dir(Vec3::new(0.0, 0.0, 1.0));
         assert!((r.x - 1.0).abs() < 1e-6 && r.z.abs() < 1e-6);

@@ -2,8 +2,8 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 
-use crate::math::Vec3;
 use crate::error::prefix_mut;
+use crate::math::Vec3;
 use crate::Error;
 
 /// One polygon of the face table: three or more vertex indices and a material.
@@ -144,11 +144,15 @@ impl<'a, M: Copy> Mesh<'a, M> {
     /// calling this is optional; it reports a problem before anything is drawn.
     pub fn validate(&self) -> Result<(), Error> {
         if !(self.scale.is_finite() && self.scale > 0.0) {
-            return Err(Error::InvalidParameter("mesh scale must be finite and positive"));
+            return Err(Error::InvalidParameter(
+                "mesh scale must be finite and positive",
+            ));
         }
         let n = self.face_count();
         for i in 0..n {
-            let (vs, _) = self.face(i).ok_or(Error::CapacityExceeded { capacity: i })?;
+            let (vs, _) = self
+                .face(i)
+                .ok_or(Error::CapacityExceeded { capacity: i })?;
             if vs.len() < 3 {
                 return Err(Error::DegenerateFace { face: i });
             }
@@ -162,8 +166,13 @@ impl<'a, M: Copy> Mesh<'a, M> {
         if self.face_normals.is_some_and(|f| f.len() < n) {
             return Err(Error::InvalidParameter("fewer face normals than faces"));
         }
-        if self.vertex_normals.is_some_and(|v| v.len() < self.positions.len()) {
-            return Err(Error::InvalidParameter("fewer vertex normals than vertices"));
+        if self
+            .vertex_normals
+            .is_some_and(|v| v.len() < self.positions.len())
+        {
+            return Err(Error::InvalidParameter(
+                "fewer vertex normals than vertices",
+            ));
         }
         Ok(())
     }
@@ -191,12 +200,30 @@ pub const CUBE_POSITIONS: [[i16; 3]; 8] = {
 /// right-handed model space, which is the front-face convention of OBJ and OpenGL that
 /// the renderer uses.
 pub const CUBE_FACES: [Face<'static, Rgb888>; 6] = [
-    Face { vertices: &[0, 1, 2, 3], material: Rgb888::new(255, 0, 0) }, // bottom a b c d: red
-    Face { vertices: &[1, 5, 6, 2], material: Rgb888::new(0, 255, 0) }, // right b f g c: green
-    Face { vertices: &[2, 6, 7, 3], material: Rgb888::new(0, 0, 255) }, // front c g h d: blue
-    Face { vertices: &[3, 7, 4, 0], material: Rgb888::new(255, 255, 0) }, // left d h e a: yellow
-    Face { vertices: &[0, 4, 5, 1], material: Rgb888::new(128, 0, 128) }, // back a e f b: purple
-    Face { vertices: &[7, 6, 5, 4], material: Rgb888::new(0, 255, 255) }, // top h g f e: light blue
+    Face {
+        vertices: &[0, 1, 2, 3],
+        material: Rgb888::new(255, 0, 0),
+    }, // bottom a b c d: red
+    Face {
+        vertices: &[1, 5, 6, 2],
+        material: Rgb888::new(0, 255, 0),
+    }, // right b f g c: green
+    Face {
+        vertices: &[2, 6, 7, 3],
+        material: Rgb888::new(0, 0, 255),
+    }, // front c g h d: blue
+    Face {
+        vertices: &[3, 7, 4, 0],
+        material: Rgb888::new(255, 255, 0),
+    }, // left d h e a: yellow
+    Face {
+        vertices: &[0, 4, 5, 1],
+        material: Rgb888::new(128, 0, 128),
+    }, // back a e f b: purple
+    Face {
+        vertices: &[7, 6, 5, 4],
+        material: Rgb888::new(0, 255, 255),
+    }, // top h g f e: light blue
 ];
 
 /// The seeds' cube as a ready mesh (spanning 0..1 on each axis).
@@ -204,7 +231,10 @@ pub const CUBE: Mesh<'static, Rgb888> = Mesh::new(&CUBE_POSITIONS, 1.0 / 16384.0
 
 /// Compute unit face normals (Q14) of `mesh` into `out` (one per face), from the first
 /// three vertices of each face. Zero-area faces get a zero normal.
-pub fn compute_face_normals<M: Copy>(mesh: &Mesh<'_, M>, out: &mut [[i16; 3]]) -> Result<(), Error> {
+pub fn compute_face_normals<M: Copy>(
+    mesh: &Mesh<'_, M>,
+    out: &mut [[i16; 3]],
+) -> Result<(), Error> {
     mesh.validate()?;
     let n = mesh.face_count();
     let out = prefix_mut(out, n)?;
@@ -228,7 +258,9 @@ pub fn compute_vertex_normals<M: Copy>(
     let out = prefix_mut(out, nv)?;
     acc.fill(Vec3::default());
     for f in 0..mesh.face_count() {
-        let Some((vs, _)) = mesh.face(f) else { continue };
+        let Some((vs, _)) = mesh.face(f) else {
+            continue;
+        };
         // Unnormalised cross product: its length is twice the area (area weighting).
         let n = face_normal_raw(mesh, vs).unwrap_or_default();
         for &v in vs {
@@ -283,7 +315,14 @@ mod tests {
         }
         // Outward normals, counter-clockwise from outside: bottom −Y, right +X, front +Z,
         // left −X, back −Z, top +Y.
-        let want = [(0, -1, 0), (1, 0, 0), (0, 0, 1), (-1, 0, 0), (0, 0, -1), (0, 1, 0)];
+        let want = [
+            (0, -1, 0),
+            (1, 0, 0),
+            (0, 0, 1),
+            (-1, 0, 0),
+            (0, 0, -1),
+            (0, 1, 0),
+        ];
         for (f, w) in want.iter().enumerate() {
             let n = face_normal(&CUBE, f).unwrap();
             assert_eq!((n.x as i32, n.y as i32, n.z as i32), *w, "face {f}");
@@ -295,15 +334,27 @@ mod tests {
         let pos = [[0i16; 3]; 3];
         let tris = [[0u16, 1, 3]];
         let m = Mesh::triangles(&pos, 1.0, &tris, Rgb888::new(1, 2, 3));
-        assert_eq!(m.validate(), Err(Error::IndexOutOfRange { face: 0, index: 3 }));
-        let faces = [Face { vertices: &[0u16, 1][..], material: Rgb888::new(0, 0, 0) }];
-        assert_eq!(Mesh::new(&pos, 1.0, &faces).validate(), Err(Error::DegenerateFace { face: 0 }));
+        assert_eq!(
+            m.validate(),
+            Err(Error::IndexOutOfRange { face: 0, index: 3 })
+        );
+        let faces = [Face {
+            vertices: &[0u16, 1][..],
+            material: Rgb888::new(0, 0, 0),
+        }];
+        assert_eq!(
+            Mesh::new(&pos, 1.0, &faces).validate(),
+            Err(Error::DegenerateFace { face: 0 })
+        );
         let ok = [[0u16, 1, 2]];
         let m = Mesh::triangles(&pos, f32::NAN, &ok, Rgb888::new(0, 0, 0));
         assert!(matches!(m.validate(), Err(Error::InvalidParameter(_))));
-        let mats = [Rgb888::new(0, 0, 0); 0];
+        let mats: [Rgb888; 0] = [];
         let m = Mesh {
-            faces: Faces::Triangles { indices: &ok, materials: Materials::PerFace(&mats) },
+            faces: Faces::Triangles {
+                indices: &ok,
+                materials: Materials::PerFace(&mats),
+            },
             ..Mesh::triangles(&pos, 1.0, &ok, Rgb888::new(0, 0, 0))
         };
         assert_eq!(m.validate(), Err(Error::CapacityExceeded { capacity: 0 }));
@@ -320,6 +371,9 @@ mod tests {
         let mut fnorm = [[0i16; 3]; 6];
         compute_face_normals(&CUBE, &mut fnorm).unwrap();
         assert_eq!(fnorm[2], [0, 0, 16384]);
-        assert_eq!(compute_face_normals(&CUBE, &mut fnorm[..5]), Err(Error::BufferTooSmall { needed: 6, got: 5 }));
+        assert_eq!(
+            compute_face_normals(&CUBE, &mut fnorm[..5]),
+            Err(Error::BufferTooSmall { needed: 6, got: 5 })
+        );
     }
 }

@@ -25,6 +25,9 @@ pub struct ScreenVertex {
 }
 
 impl ScreenVertex {
+    /// The vertex at (0, 0) with depth 0.
+    pub const ORIGIN: ScreenVertex = ScreenVertex { x: 0, y: 0, z: 0 };
+
     /// A vertex from raw fixed-point values: `x`, `y` in 1/16 pixel, `z` in 16.16.
     pub const fn new(x: i32, y: i32, z: u32) -> Result<Self, Error> {
         if x < -GUARD_BAND || x > GUARD_BAND || y < -GUARD_BAND || y > GUARD_BAND || z > MAX_DEPTH {
@@ -79,13 +82,15 @@ impl ScreenVertex {
     }
 }
 
-/// Twice the signed area of a screen triangle: the z component of `V1 × V2` with
-/// `V1 = P1 − P0`, `V2 = P2 − P0`, i.e. `dx1·dy2 − dx2·dy1` (in the vertices' units).
+/// Twice the signed area of a triangle: the z component of `V1 × V2` with
+/// `V1 = P1 − P0`, `V2 = P2 − P0`, i.e. `dx1·dy2 − dx2·dy1` (in the points' units) —
+/// the seeds' back-face test. Exact for any inputs in the guard band (the products stay
+/// below 2⁵¹).
 ///
-/// With y pointing down the screen, a positive value means the vertices run clockwise
-/// as seen on the display, which is counter-clockwise in OpenGL's y-up NDC: the seeds'
-/// "> 0 is front-facing" and OpenGL's default front face agree. Exact for any inputs in
-/// the guard band (the products stay below 2⁵¹).
+/// The sign depends on which way y points. In the seeds' projected coordinates (y up)
+/// a positive value is a counter-clockwise, front-facing triangle. On the screen
+/// (y down, as [`ScreenVertex`] has it) the same triangle has a negative value: see
+/// [`Facing::of`].
 pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
     let (dx1, dy1) = (
         i64::from(p1.0) - i64::from(p0.0),
@@ -98,19 +103,24 @@ pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
     dx1 * dy2 - dx2 * dy1
 }
 
-/// Which way a screen triangle faces, by the sign of [`signed_area`].
+/// Which way a triangle faces.
+///
+/// Front faces run counter-clockwise as the viewer sees them with y up — OpenGL's
+/// default, and the seeds' "`V1 × V2 > 0` is front" in their left-handed projected
+/// coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Facing {
-    /// Positive area: front-facing.
+    /// Counter-clockwise as seen with y up.
     Front,
-    /// Negative area: back-facing.
+    /// Clockwise as seen with y up.
     Back,
     /// Zero area: a line or a point, never drawn.
     Degenerate,
 }
 
 impl Facing {
-    /// The facing of a triangle with twice-signed-area `area`.
+    /// The facing for twice-signed-area `area` computed in a y-up frame (the seeds'):
+    /// positive is front.
     pub fn of_area(area: i64) -> Facing {
         match area {
             a if a > 0 => Facing::Front,
@@ -119,10 +129,10 @@ impl Facing {
         }
     }
 
-    /// The facing of a screen triangle.
+    /// The facing of a screen triangle (y down, so the area's sign is flipped first).
     pub fn of(tri: &[ScreenVertex; 3]) -> Facing {
         let p = |v: &ScreenVertex| (v.x, v.y);
-        Facing::of_area(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2])))
+        Facing::of_area(-signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2])))
     }
 }
 
@@ -225,6 +235,19 @@ impl Plane {
             self.at_ref
                 + self.step_x * i64::from(px - self.ref_px)
                 + self.step_y * i64::from(py - self.ref_py)
+        }
+    }
+
+    /// Change per pixel along y, 16.16, saturated to `i32`.
+    #[inline]
+    pub(crate) fn step_y(&self) -> i32 {
+        if self.exact {
+            sat_i32(div_floor_wide(
+                i128::from(self.b) * i128::from(SUBPIXEL),
+                i128::from(self.area2),
+            ) as i64)
+        } else {
+            sat_i32(self.step_y)
         }
     }
 

@@ -93,13 +93,21 @@ fn channel(v: u8, i: Intensity, max: u32) -> u8 {
 
 impl Material<Rgb565> for Rgb888 {
     fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
-        Rgb565::new(channel(self.r(), i, 31), channel(self.g(), i, 63), channel(self.b(), i, 31))
+        Rgb565::new(
+            channel(self.r(), i, 31),
+            channel(self.g(), i, 63),
+            channel(self.b(), i, 31),
+        )
     }
 }
 
 impl Material<Rgb888> for Rgb888 {
     fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb888 {
-        Rgb888::new(channel(self.r(), i, 255), channel(self.g(), i, 255), channel(self.b(), i, 255))
+        Rgb888::new(
+            channel(self.r(), i, 255),
+            channel(self.g(), i, 255),
+            channel(self.b(), i, 255),
+        )
     }
 }
 

@@ -7,9 +7,9 @@ use embedded_graphics::{
     Pixel,
 };
 
+use crate::error::prefix_mut;
 use crate::raster::Clip;
 use crate::zbuffer::check_dims;
-use crate::error::prefix_mut;
 use crate::Error;
 
 /// A frame (or a band of one) of colours in a caller-provided slice.

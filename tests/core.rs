@@ -46,9 +46,11 @@ fn seeds_back_face_example() {
     assert_eq!(Facing::of_area(14), Facing::Front);
     assert_eq!(Facing::of_area(-20), Facing::Back);
     assert_eq!(Facing::of_area(0), Facing::Degenerate);
-    // Through screen vertices (28.4 scales the area by 256).
-    let front = [vpx(1, 3, 0), vpx(5, 5, 0), vpx(2, 7, 0)];
-    let back = [vpx(3, 2, 0), vpx(7, 6, 0), vpx(7, 1, 0)];
+    // The seeds' y axis points up; on the screen it points down, so the same faces have
+    // the y coordinates negated there, and keep their facing.
+    let front = [vpx(1, -3, 0), vpx(5, -5, 0), vpx(2, -7, 0)];
+    let back = [vpx(3, -2, 0), vpx(7, -6, 0), vpx(7, -1, 0)];
+    assert_eq!(signed_area((16, -48), (80, -80), (32, -112)), -14 * 256);
     assert_eq!(Facing::of(&front), Facing::Front);
     assert_eq!(Facing::of(&back), Facing::Back);
 }

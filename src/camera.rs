@@ -1,0 +1,354 @@
+//! From model space to the screen: the frame's transforms, the fixed-point per-vertex
+//! transform, and the projection to screen vertices.
+
+use crate::fixed::{round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
+use crate::math::{Mat4, Vec3};
+use crate::raster::ScreenVertex;
+use crate::{Error, MAX_DIMENSION};
+
+/// The screen rectangle that normalised device coordinates map to.
+///
+/// NDC x = −1 is the left edge, y = +1 the top edge (row 0); window depth
+/// `(z_ndc + 1) / 2` maps to 0..=65535. In banded rendering the viewport stays the
+/// whole screen while the targets cover one band.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Viewport {
+    x: i32,
+    y: i32,
+    width: u32,
+    height: u32,
+}
+
+impl Viewport {
+    /// A viewport of `width × height` pixels at (0, 0).
+    pub fn new(width: u32, height: u32) -> Result<Viewport, Error> {
+        Viewport::at(0, 0, width, height)
+    }
+
+    /// A viewport of `width × height` pixels with its top-left corner at (x, y).
+    /// Errors: zero or over [`MAX_DIMENSION`] sizes, corners beyond ±8192.
+    pub fn at(x: i32, y: i32, width: u32, height: u32) -> Result<Viewport, Error> {
+        if width == 0 || height == 0 {
+            return Err(Error::ZeroSize);
+        }
+        let lim = MAX_DIMENSION as i32;
+        if width > MAX_DIMENSION || height > MAX_DIMENSION || x.abs() > lim || y.abs() > lim {
+            return Err(Error::TooLarge);
+        }
+        Ok(Viewport {
+            x,
+            y,
+            width,
+            height,
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Width / height.
+    pub fn aspect(&self) -> f32 {
+        self.width as f32 / self.height as f32
+    }
+}
+
+/// Everything that places a mesh on the screen: model, view and projection matrices
+/// and the viewport.
+///
+/// The model matrix should be a rotation, translation and uniform scale (lighting
+/// turns the light into model space with its transpose); view and projection are any
+/// `gluLookAt`/`gluPerspective`/`glOrtho`-style matrices.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Transform {
+    /// Model to world.
+    pub model: Mat4,
+    /// World to eye (the camera looks down −Z).
+    pub view: Mat4,
+    /// Eye to clip space.
+    pub projection: Mat4,
+    /// Normalised device coordinates to screen pixels.
+    pub viewport: Viewport,
+}
+
+impl Transform {
+    /// A camera at `eye` looking at `target` (+Y up) with a `fovy_deg` degree vertical
+    /// field of view and clip planes at `near` and `far`, over `viewport`; the model
+    /// matrix is the identity.
+    ///
+    /// Errors: [`Error::InvalidParameter`] unless `0 < near < far` and `0 < fovy < 180`,
+    /// [`Error::NotFinite`] for NaN or infinite inputs.
+    pub fn perspective(
+        eye: Vec3,
+        target: Vec3,
+        fovy_deg: f32,
+        near: f32,
+        far: f32,
+        viewport: Viewport,
+    ) -> Result<Transform, Error> {
+        if !(eye.is_finite()
+            && target.is_finite()
+            && fovy_deg.is_finite()
+            && near.is_finite()
+            && far.is_finite())
+        {
+            return Err(Error::NotFinite);
+        }
+        if !(near > 0.0 && far > near) {
+            return Err(Error::InvalidParameter("need 0 < near < far"));
+        }
+        if !(fovy_deg > 0.0 && fovy_deg < 180.0) {
+            return Err(Error::InvalidParameter("need 0 < fov < 180 degrees"));
+        }
+        let projection =
+            Mat4::perspective(crate::math::radians(fovy_deg), viewport.aspect(), near, far);
+        let view = Mat4::look_at(eye, target, Vec3::new(0.0, 1.0, 0.0));
+        Ok(Transform {
+            model: Mat4::IDENTITY,
+            view,
+            projection,
+            viewport,
+        })
+    }
+
+    /// The same transform with another model matrix.
+    pub fn with_model(mut self, model: Mat4) -> Transform {
+        self.model = model;
+        self
+    }
+
+    /// Model to clip space.
+    pub fn model_view_projection(&self) -> Mat4 {
+        self.projection * self.view * self.model
+    }
+}
+
+/// Clip-space coordinates in fixed point (a common power-of-two scale that cancels in
+/// the perspective divide).
+pub(crate) type Clip4 = [i32; 4];
+
+/// The model-view-projection matrix with the mesh's position scale folded in, in
+/// fixed point: `clip = M·p + t` for `i16` positions `p`, with every `|M_ij| ≤ 16383`
+/// and every `|t_i| ≤ 2²⁹`, so a row `Σ M_ij·p_j + t_i` is at most
+/// 3·16383·32768 + 2²⁹ < 2³¹: three 16×16-bit multiplies and adds in `i32`, exact —
+/// the M0+'s single-cycle `MULS` suffices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct FixedTransform {
+    m: [[i32; 3]; 4],
+    t: [i32; 4],
+}
+
+impl FixedTransform {
+    pub(crate) fn new(mvp: &Mat4, scale: f32) -> Result<FixedTransform, Error> {
+        if !mvp.is_finite() || !scale.is_finite() {
+            return Err(Error::NotFinite);
+        }
+        let mut max_m = 0.0f32;
+        let mut max_t = 0.0f32;
+        for row in &mvp.m {
+            for v in &row[..3] {
+                max_m = max_m.max((v * scale).abs());
+            }
+            max_t = max_t.max(row[3].abs());
+        }
+        if !(max_m.is_finite() && max_t.is_finite()) || (max_m == 0.0 && max_t == 0.0) {
+            return Err(Error::InvalidParameter(
+                "degenerate or overflowing transform",
+            ));
+        }
+        // The largest power of two k with max_m·2^k ≤ 16383 and max_t·2^k ≤ 2²⁹.
+        let mut k = 0i32;
+        let limit = |k: i32| {
+            let f = pow2(k);
+            max_m * f <= 16383.0 && max_t * f <= (1u32 << 29) as f32
+        };
+        while k < 120 && limit(k + 1) {
+            k += 1;
+        }
+        while k > -120 && !limit(k) {
+            k -= 1;
+        }
+        let f = pow2(k);
+        let mut out = FixedTransform {
+            m: [[0; 3]; 4],
+            t: [0; 4],
+        };
+        for ((row, m), t) in mvp.m.iter().zip(&mut out.m).zip(&mut out.t) {
+            for (q, v) in m.iter_mut().zip(row) {
+                *q = round_f32(v * scale * f).clamp(-16383, 16383);
+            }
+            *t = round_f32(row[3] * f).clamp(-(1 << 29), 1 << 29);
+        }
+        Ok(out)
+    }
+
+    /// Transform one position to clip space.
+    #[inline]
+    pub(crate) fn apply(&self, p: &[i16; 3]) -> Clip4 {
+        let (x, y, z) = (i32::from(p[0]), i32::from(p[1]), i32::from(p[2]));
+        let row = |r: usize| self.m[r][0] * x + self.m[r][1] * y + self.m[r][2] * z + self.t[r];
+        [row(0), row(1), row(2), row(3)]
+    }
+}
+
+/// 2^k as `f32` for |k| ≤ 126.
+fn pow2(k: i32) -> f32 {
+    f32::from_bits(((k.clamp(-126, 127) + 127) as u32) << 23)
+}
+
+/// How far outside the screen (in screen widths) a vertex may project before the
+/// triangle is clipped: |x|, |y| ≤ GUARD·w. With viewports of at most 8192 pixels the
+/// projected coordinates stay within ±(GUARD + 1)·8192 pixels, inside the rasterizer's
+/// range of ±2²⁰ pixels.
+pub(crate) const GUARD: f32 = 64.0;
+
+/// Outcode bits: which clip planes a vertex is outside of.
+pub(crate) mod outcode {
+    pub const NEAR: u8 = 1;
+    pub const FAR: u8 = 2;
+    pub const LEFT: u8 = 4;
+    pub const RIGHT: u8 = 8;
+    pub const BOTTOM: u8 = 16;
+    pub const TOP: u8 = 32;
+    pub const W: u8 = 64;
+}
+
+/// The outcode of a clip-space point.
+#[inline]
+pub(crate) fn outcode_of(c: &[f32; 4]) -> u8 {
+    let [x, y, z, w] = *c;
+    let g = GUARD * w;
+    let mut o = 0;
+    if z < -w {
+        o |= outcode::NEAR;
+    }
+    if z > w {
+        o |= outcode::FAR;
+    }
+    if x < -g {
+        o |= outcode::LEFT;
+    }
+    if x > g {
+        o |= outcode::RIGHT;
+    }
+    if y < -g {
+        o |= outcode::BOTTOM;
+    }
+    if y > g {
+        o |= outcode::TOP;
+    }
+    if w < 1.0 || w.is_nan() {
+        o |= outcode::W;
+    }
+    o
+}
+
+/// Fixed clip coordinates as `f32` (exact to 24 bits).
+#[inline]
+pub(crate) fn to_f32(c: &Clip4) -> [f32; 4] {
+    [c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32]
+}
+
+/// Screen mapping of a viewport, precomputed.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ScreenMap {
+    sx: f32,
+    ox: f32,
+    sy: f32,
+    oy: f32,
+}
+
+/// 65535 · 65536 / 2: window depth (z_ndc + 1)/2 in 16.16 of 0..=65535.
+const DEPTH_HALF: f32 = 65535.0 * 32768.0;
+
+impl ScreenMap {
+    pub(crate) fn new(vp: &Viewport) -> ScreenMap {
+        let half_w = vp.width as f32 * (SUBPIXEL as f32 / 2.0);
+        let half_h = vp.height as f32 * (SUBPIXEL as f32 / 2.0);
+        ScreenMap {
+            sx: half_w,
+            ox: half_w + (vp.x * SUBPIXEL) as f32,
+            sy: -half_h,
+            oy: half_h + (vp.y * SUBPIXEL) as f32,
+        }
+    }
+
+    /// Project a clip-space point inside the guard band and depth range (outcode 0).
+    #[inline]
+    pub(crate) fn project(&self, c: &[f32; 4]) -> Option<ScreenVertex> {
+        let inv = 1.0 / c[3];
+        let lim = GUARD_BAND as f32;
+        let x = (c[0] * inv * self.sx + self.ox).clamp(-lim, lim);
+        let y = (c[1] * inv * self.sy + self.oy).clamp(-lim, lim);
+        let z = ((c[2] * inv + 1.0) * DEPTH_HALF).clamp(0.0, MAX_DEPTH as f32);
+        if !(x.is_finite() && y.is_finite() && z.is_finite()) {
+            return None;
+        }
+        ScreenVertex::new(round_f32(x), round_f32(y), (z + 0.5) as u32).ok()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::radians;
+
+    #[test]
+    fn the_fixed_transform_matches_the_float_one() {
+        let vp = Viewport::new(320, 240).unwrap();
+        let xf = Transform::perspective(
+            Vec3::new(0.0, 0.0, 2.5),
+            Vec3::default(),
+            60.0,
+            0.1,
+            10.0,
+            vp,
+        )
+        .unwrap()
+        .with_model(Mat4::rotation_x(radians(20.0)) * Mat4::rotation_y(radians(30.0)));
+        let mvp = xf.model_view_projection();
+        let scale = 1.0 / 32767.0;
+        let fx = FixedTransform::new(&mvp, scale).unwrap();
+        let map = ScreenMap::new(&vp);
+        for p in [[32767i16, -32768, 100], [0, 0, 0], [-20000, 12345, 32767]] {
+            let pf = Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32) * scale;
+            let c = mvp.transform_point(pf);
+            let sx = (c[0] / c[3] + 1.0) * 160.0 * 16.0;
+            let sy = (1.0 - c[1] / c[3]) * 120.0 * 16.0;
+            let v = map.project(&to_f32(&fx.apply(&p))).unwrap();
+            assert!((v.x() as f32 - sx).abs() <= 1.0, "{p:?}: {} vs {sx}", v.x());
+            assert!((v.y() as f32 - sy).abs() <= 1.0, "{p:?}: {} vs {sy}", v.y());
+            let zw = (c[2] / c[3] + 1.0) * 0.5 * 65535.0 * 65536.0;
+            let err = (v.z() as f32 - zw) / 65536.0;
+            assert!(err.abs() < 4.0, "{p:?}: depth");
+        }
+    }
+
+    #[test]
+    fn transform_rejects_bad_matrices() {
+        let mut m = Mat4::IDENTITY;
+        m.m[1][2] = f32::NAN;
+        assert_eq!(FixedTransform::new(&m, 1.0), Err(Error::NotFinite));
+        let z = Mat4 { m: [[0.0; 4]; 4] };
+        assert!(FixedTransform::new(&z, 1.0).is_err());
+        assert_eq!(
+            FixedTransform::new(&Mat4::IDENTITY, f32::INFINITY),
+            Err(Error::NotFinite)
+        );
+    }
+
+    #[test]
+    fn outcodes() {
+        assert_eq!(outcode_of(&[0.0, 0.0, 0.0, 10.0]), 0);
+        assert_eq!(outcode_of(&[0.0, 0.0, -11.0, 10.0]), outcode::NEAR);
+        assert_eq!(outcode_of(&[0.0, 0.0, 11.0, 10.0]), outcode::FAR);
+        assert_eq!(outcode_of(&[641.0, 0.0, 0.0, 10.0]), outcode::RIGHT);
+        assert_eq!(outcode_of(&[0.0, 0.0, 0.0, -1.0]) & outcode::W, outcode::W);
+    }
+}

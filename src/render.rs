@@ -1,0 +1,719 @@
+//! The renderers: from a mesh and a transform to pixels.
+//!
+//! One [`Renderer`] holds a frame's geometry state (the fixed-point transform, the
+//! light in model space and, optionally, a cache of transformed vertices) and draws it
+//! in any of four ways: with the Z-buffer ([`draw`](Renderer::draw)), by depth sorting
+//! ([`draw_depth_sorted`](Renderer::draw_depth_sorted)), as hidden-line
+//! ([`draw_hidden_line`](Renderer::draw_hidden_line)) or as wireframe
+//! ([`draw_wireframe`](Renderer::draw_wireframe)). Each call draws into one target,
+//! which may be the whole screen or one band of it.
+
+use embedded_graphics::prelude::DrawTarget;
+
+use crate::camera::{outcode_of, to_f32, FixedTransform, ScreenMap, Transform};
+use crate::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
+use crate::fill::{clip_of, depth_runs, shade_triangle, SpanStats};
+use crate::line::draw_line;
+use crate::math::Vec3;
+use crate::mesh::{face_normal, Mesh, NORMAL_ONE};
+use crate::raster::{signed_area, Clip, Plane, ScreenVertex};
+use crate::shade::{Intensity, Light, Material, Shading, ONE};
+use crate::{DrawError, Error, ZBuffer};
+
+/// Which faces are dropped before rasterization, by their winding on screen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum Cull {
+    /// Drop faces seen from behind (the default: closed solids).
+    #[default]
+    Back,
+    /// Drop faces seen from the front.
+    Front,
+    /// Draw both sides.
+    None,
+}
+
+impl Cull {
+    /// Is a triangle with twice-signed *screen* area `area` ([`signed_area`] of y-down
+    /// screen coordinates) dropped? Front faces have negative screen area (they are
+    /// counter-clockwise with y up). Zero area always is dropped.
+    #[inline]
+    pub fn drops(self, area: i64) -> bool {
+        match self {
+            Cull::Back => area >= 0,
+            Cull::Front => area <= 0,
+            Cull::None => area == 0,
+        }
+    }
+}
+
+/// How a mesh is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RenderOptions {
+    /// Face culling.
+    pub cull: Cull,
+    /// Shading model.
+    pub shading: Shading,
+    /// The light for [`Shading::Lambert`] and [`Shading::Gouraud`].
+    pub light: Light,
+}
+
+/// Counts for a frame.
+///
+/// Geometry counts (triangles in, culled, outside, clipped, drawn) are taken by the
+/// first draw call of a [`Renderer`]; pixel counts add up over every call, so a frame
+/// drawn band by band reports the same totals as one drawn whole.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct FrameStats {
+    /// Triangles after fan triangulation of the faces.
+    pub triangles_in: u32,
+    /// Triangles dropped by face culling (or with zero area).
+    pub culled: u32,
+    /// Triangles entirely outside the view volume.
+    pub outside: u32,
+    /// Triangles cut by a clip plane (near, far or guard band).
+    pub clipped: u32,
+    /// Triangles handed to the rasterizer (pieces of clipped ones included).
+    pub drawn: u32,
+    /// Pixels depth-tested.
+    pub pixels_tested: u32,
+    /// Pixels written.
+    pub pixels_written: u32,
+    /// Runs handed to the draw target.
+    pub runs: u32,
+}
+
+impl FrameStats {
+    fn add_pixels(&mut self, s: SpanStats) {
+        self.pixels_tested += s.pixels_tested;
+        self.pixels_written += s.pixels_written;
+        self.runs += s.runs;
+    }
+}
+
+/// A vertex transformed and projected once per frame (16 bytes), so that every band
+/// and every face sharing it reuses the work. See [`Renderer::with_cache`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CachedVertex {
+    x: i32,
+    y: i32,
+    z: u32,
+    code: u8,
+    light: Intensity,
+}
+
+impl CachedVertex {
+    /// An empty entry, to initialise cache arrays.
+    pub const EMPTY: CachedVertex = CachedVertex {
+        x: 0,
+        y: 0,
+        z: 0,
+        code: 0,
+        light: 0,
+    };
+
+    #[inline]
+    fn screen(&self) -> ScreenVertex {
+        // Entries with code 0 were made from a valid ScreenVertex.
+        ScreenVertex::new(self.x, self.y, self.z).unwrap_or(ScreenVertex::ORIGIN)
+    }
+}
+
+impl Default for CachedVertex {
+    fn default() -> Self {
+        CachedVertex::EMPTY
+    }
+}
+
+/// A capacity-bounded list for the depth-sort (painter's) renderer: one entry (8
+/// bytes) per face. More faces than `N` is [`Error::CapacityExceeded`].
+#[derive(Debug, Default)]
+pub struct DepthSort<const N: usize> {
+    items: heapless::Vec<(i32, u16), N>,
+}
+
+impl<const N: usize> DepthSort<N> {
+    /// An empty list.
+    pub const fn new() -> Self {
+        DepthSort {
+            items: heapless::Vec::new(),
+        }
+    }
+
+    /// The faces in drawing order (farthest first) after the last sort.
+    pub fn order(&self) -> impl Iterator<Item = usize> + '_ {
+        self.items.iter().map(|&(_, f)| usize::from(f))
+    }
+}
+
+/// Draws one mesh, placed by one transform, into targets with the methods below.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_graphics::prelude::*;
+/// use zraster::{math::{Mat4, Vec3}, mesh::CUBE, camera::{Transform, Viewport}};
+/// use zraster::{ColorBuffer, Renderer, RenderOptions, ZBuffer};
+///
+/// let vp = Viewport::new(64, 48)?;
+/// let xf = Transform::perspective(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, vp)?;
+/// let mut pixels = [Rgb565::BLACK; 64 * 48];
+/// let mut depth = [0u16; 64 * 48];
+/// let mut frame = ColorBuffer::new(&mut pixels, 64, 48)?;
+/// let mut zbuf = ZBuffer::new(&mut depth, 64, 48)?;
+/// zbuf.clear();
+/// let mut renderer = Renderer::new(&CUBE, &xf, RenderOptions::default())?;
+/// renderer.draw(&mut frame, &mut zbuf).unwrap();
+/// // Three faces of the cube face the camera.
+/// assert_eq!(renderer.stats().drawn, 6);
+/// assert_eq!(frame.pixel(32, 24), Some(Rgb565::new(0, 0, 31))); // the blue front face
+/// # Ok::<(), zraster::Error>(())
+/// ```
+pub struct Renderer<'m, 'c, M> {
+    mesh: Mesh<'m, M>,
+    fixed: FixedTransform,
+    map: ScreenMap,
+    options: RenderOptions,
+    /// Unit light direction in model space, for model-space normals.
+    light_model: Vec3,
+    cache: Option<&'c mut [CachedVertex]>,
+    stats: FrameStats,
+    counted: bool,
+}
+
+/// A fetched vertex: screen position if inside (code 0), and its light.
+#[derive(Clone, Copy)]
+struct Fetched {
+    index: u16,
+    code: u8,
+    screen: ScreenVertex,
+    light: Intensity,
+}
+
+impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+    /// A renderer that transforms vertices as faces need them (no cache memory; shared
+    /// vertices are transformed once per face that uses them, and again in every band).
+    ///
+    /// Errors: a NaN/∞ or degenerate transform, a mesh scale that is not finite.
+    pub fn new(mesh: &Mesh<'m, M>, xf: &Transform, options: RenderOptions) -> Result<Self, Error> {
+        let mvp = xf.model_view_projection();
+        let fixed = FixedTransform::new(&mvp, mesh.scale)?;
+        if !(options.light.direction.is_finite()
+            && options.light.ambient.is_finite()
+            && options.light.diffuse.is_finite())
+        {
+            return Err(Error::NotFinite);
+        }
+        let light_model = xf
+            .model
+            .transpose_dir(options.light.direction.normalize())
+            .normalize();
+        Ok(Renderer {
+            mesh: *mesh,
+            fixed,
+            map: ScreenMap::new(&xf.viewport),
+            options,
+            light_model,
+            cache: None,
+            stats: FrameStats::default(),
+            counted: false,
+        })
+    }
+
+    /// A renderer that transforms every vertex once, now, into `cache` (one
+    /// [`CachedVertex`] per mesh vertex, 16 bytes each).
+    ///
+    /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
+    pub fn with_cache(
+        mesh: &Mesh<'m, M>,
+        xf: &Transform,
+        options: RenderOptions,
+        cache: &'c mut [CachedVertex],
+    ) -> Result<Self, Error> {
+        let mut r = Self::new(mesh, xf, options)?;
+        let n = mesh.positions.len();
+        let cache = crate::error::prefix_mut(cache, n)?;
+        for (i, slot) in cache.iter_mut().enumerate() {
+            let f = r.transform(i as u16)?;
+            *slot = CachedVertex {
+                x: f.screen.x(),
+                y: f.screen.y(),
+                z: f.screen.z(),
+                code: f.code,
+                light: f.light,
+            };
+        }
+        r.cache = Some(cache);
+        Ok(r)
+    }
+
+    /// The counts so far (see [`FrameStats`]).
+    pub fn stats(&self) -> FrameStats {
+        self.stats
+    }
+
+    /// Transform, classify and project vertex `i`.
+    fn transform(&self, i: u16) -> Result<Fetched, Error> {
+        let p = self
+            .mesh
+            .positions
+            .get(usize::from(i))
+            .ok_or(Error::IndexOutOfRange {
+                face: usize::MAX,
+                index: usize::from(i),
+            })?;
+        let c = to_f32(&self.fixed.apply(p));
+        let mut code = outcode_of(&c);
+        let screen = if code == 0 {
+            match self.map.project(&c) {
+                Some(s) => s,
+                None => {
+                    code |= crate::camera::outcode::W;
+                    ScreenVertex::ORIGIN
+                }
+            }
+        } else {
+            ScreenVertex::ORIGIN
+        };
+        let light = if self.options.shading == Shading::Gouraud {
+            self.vertex_light(usize::from(i))
+        } else {
+            ONE
+        };
+        Ok(Fetched {
+            index: i,
+            code,
+            screen,
+            light,
+        })
+    }
+
+    #[inline]
+    fn fetch(&self, i: u16, face: usize) -> Result<Fetched, Error> {
+        let bad = Error::IndexOutOfRange {
+            face,
+            index: usize::from(i),
+        };
+        match &self.cache {
+            Some(cache) => {
+                let c = cache.get(usize::from(i)).ok_or(bad)?;
+                Ok(Fetched {
+                    index: i,
+                    code: c.code,
+                    screen: c.screen(),
+                    light: c.light,
+                })
+            }
+            None => self.transform(i).map_err(|_| bad),
+        }
+    }
+
+    /// Gouraud light of vertex `i` from the mesh's vertex normals (full light without).
+    fn vertex_light(&self, i: usize) -> Intensity {
+        match self.mesh.vertex_normals.and_then(|n| n.get(i)) {
+            Some(n) => self.options.light.intensity(self.dot_q14(n)),
+            None => ONE,
+        }
+    }
+
+    fn dot_q14(&self, n: &[i16; 3]) -> f32 {
+        let l = self.light_model;
+        (f32::from(n[0]) * l.x + f32::from(n[1]) * l.y + f32::from(n[2]) * l.z) / NORMAL_ONE as f32
+    }
+
+    /// Lambert light of face `f`.
+    fn face_light(&self, f: usize) -> Intensity {
+        let d = match self.mesh.face_normals.and_then(|n| n.get(f)) {
+            Some(n) => self.dot_q14(n),
+            None => face_normal(&self.mesh, f).map_or(0.0, |n| n.dot(self.light_model)),
+        };
+        self.options.light.intensity(d)
+    }
+
+    /// Face `f`'s vertex list, checked.
+    fn face(&self, f: usize) -> Result<(&'m [u16], M), Error> {
+        let (vs, m) = self
+            .mesh
+            .face(f)
+            .ok_or(Error::CapacityExceeded { capacity: f })?;
+        if vs.len() < 3 {
+            return Err(Error::DegenerateFace { face: f });
+        }
+        Ok((vs, m))
+    }
+
+    /// Walk every triangle (fan-triangulated faces) that survives clipping and culling,
+    /// calling `emit(face, screen triangle, vertex lights)`; returns the geometry counts.
+    fn for_each_triangle<E>(
+        &self,
+        clip: &Clip,
+        first: bool,
+        faces: impl Iterator<Item = usize>,
+        mut emit: impl FnMut(usize, M, &[ScreenVertex; 3], [Intensity; 3]) -> Result<(), DrawError<E>>,
+    ) -> Result<FrameStats, DrawError<E>> {
+        let mut st = FrameStats::default();
+        let cull = self.options.cull;
+        let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
+        for f in faces {
+            let (vs, mat) = self.face(f)?;
+            let v0 = self.fetch(vs[0], f)?;
+            for k in 1..vs.len() - 1 {
+                let v1 = self.fetch(vs[k], f)?;
+                let v2 = self.fetch(vs[k + 1], f)?;
+                st.triangles_in += 1;
+                if v0.code & v1.code & v2.code != 0 {
+                    st.outside += 1;
+                    continue;
+                }
+                if v0.code | v1.code | v2.code == 0 {
+                    let tri = [v0.screen, v1.screen, v2.screen];
+                    if !first {
+                        // Later bands: skip triangles above or below this band first.
+                        let ymin = tri[0].y().min(tri[1].y()).min(tri[2].y());
+                        let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
+                        if ymax + 8 < row0 || ymin + 8 > row1 {
+                            continue;
+                        }
+                    }
+                    let p = |v: &ScreenVertex| (v.x(), v.y());
+                    if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
+                        st.culled += 1;
+                        continue;
+                    }
+                    st.drawn += 1;
+                    emit(f, mat, &tri, [v0.light, v1.light, v2.light])?;
+                    continue;
+                }
+                st.clipped += 1;
+                let mut poly = ClipPolygon::new();
+                for v in [&v0, &v1, &v2] {
+                    let p = self.mesh.positions.get(usize::from(v.index)).ok_or(
+                        Error::IndexOutOfRange {
+                            face: f,
+                            index: usize::from(v.index),
+                        },
+                    )?;
+                    let light = if self.options.shading == Shading::Gouraud {
+                        f32::from(self.vertex_light(usize::from(v.index)))
+                    } else {
+                        f32::from(ONE)
+                    };
+                    let _ = poly.push(ClipVertex {
+                        c: to_f32(&self.fixed.apply(p)),
+                        light,
+                    });
+                }
+                clip_polygon(&mut poly, v0.code | v1.code | v2.code);
+                let mut out: heapless::Vec<
+                    (ScreenVertex, Intensity),
+                    { crate::clip::MAX_CLIPPED },
+                > = heapless::Vec::new();
+                for c in &poly {
+                    if let Some(s) = self.map.project(&c.c) {
+                        let _ = out.push((s, crate::shade::to_intensity(c.light / f32::from(ONE))));
+                    }
+                }
+                for j in 1..out.len().saturating_sub(1) {
+                    let (a, b, c) = (out[0], out[j], out[j + 1]);
+                    let tri = [a.0, b.0, c.0];
+                    let p = |v: &ScreenVertex| (v.x(), v.y());
+                    if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
+                        continue;
+                    }
+                    st.drawn += 1;
+                    emit(f, mat, &tri, [a.1, b.1, c.1])?;
+                }
+            }
+        }
+        Ok(st)
+    }
+
+    fn count(&mut self, geometry: FrameStats) {
+        if !self.counted {
+            let FrameStats {
+                pixels_tested,
+                pixels_written,
+                runs,
+                ..
+            } = self.stats;
+            self.stats = FrameStats {
+                pixels_tested,
+                pixels_written,
+                runs,
+                ..geometry
+            };
+            self.counted = true;
+        }
+    }
+
+    /// Draw with the Z-buffer: every visible triangle, depth-tested per pixel, in the
+    /// mesh's materials and the chosen shading.
+    ///
+    /// `target` and `zbuf` may cover the whole screen or one band of it (rows the
+    /// Z-buffer does not hold are not drawn). Clear both before the first call of a
+    /// frame (or band).
+    pub fn draw<D>(
+        &mut self,
+        target: &mut D,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), DrawError<D::Error>>
+    where
+        D: DrawTarget,
+        M: Material<D::Color>,
+    {
+        let clip = clip_of(target, zbuf);
+        let mut pixels = FrameStats::default();
+        let shading = self.options.shading;
+        let first = !self.counted;
+        let geometry = self.for_each_triangle(
+            &clip,
+            first,
+            0..self.mesh.face_count(),
+            |f, mat, tri, lights| {
+                let lights = match shading {
+                    Shading::Flat => [ONE; 3],
+                    Shading::Lambert => [self.face_light(f); 3],
+                    Shading::Gouraud => lights,
+                };
+                let s = shade_triangle(target, Some(&mut *zbuf), &clip, tri, mat, lights)
+                    .map_err(DrawError::Target)?;
+                pixels.add_pixels(s);
+                Ok(())
+            },
+        )?;
+        self.count(geometry);
+        self.stats.pixels_tested += pixels.pixels_tested;
+        self.stats.pixels_written += pixels.pixels_written;
+        self.stats.runs += pixels.runs;
+        Ok(())
+    }
+
+    /// Draw by depth sorting (the painter's algorithm of the seeds): faces sorted by the
+    /// depth of their centroid, drawn farthest first with no Z-buffer. Cheap in RAM,
+    /// and wrong exactly where the seeds say: cyclic overlap, interpenetration.
+    ///
+    /// Errors: [`Error::CapacityExceeded`] when the mesh has more than `N` faces.
+    pub fn draw_depth_sorted<D, const N: usize>(
+        &mut self,
+        target: &mut D,
+        sort: &mut DepthSort<N>,
+    ) -> Result<(), DrawError<D::Error>>
+    where
+        D: DrawTarget,
+        M: Material<D::Color>,
+    {
+        sort.items.clear();
+        let n = self.mesh.face_count();
+        if n > N || n > usize::from(u16::MAX) + 1 {
+            return Err(Error::CapacityExceeded { capacity: N }.into());
+        }
+        for f in 0..n {
+            let (vs, _) = self.face(f)?;
+            let mut sum = 0i64;
+            for &v in vs {
+                let p = self
+                    .mesh
+                    .positions
+                    .get(usize::from(v))
+                    .ok_or(Error::IndexOutOfRange {
+                        face: f,
+                        index: usize::from(v),
+                    })?;
+                // Clip-space z grows with distance from the eye (for both projections).
+                sum += i64::from(self.fixed.apply(p)[2]);
+            }
+            let key = (sum / vs.len() as i64) as i32;
+            let _ = sort.items.push((key, f as u16));
+        }
+        // Farthest (largest z) first; equal depths keep the face order.
+        sort.items
+            .sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+        let clip = Clip::from_rect(&target.bounding_box());
+        let mut pixels = FrameStats::default();
+        let shading = self.options.shading;
+        let first = !self.counted;
+        let order = sort.items.iter().map(|&(_, f)| usize::from(f));
+        let geometry = self.for_each_triangle(&clip, first, order, |f, mat, tri, lights| {
+            let lights = match shading {
+                Shading::Flat => [ONE; 3],
+                Shading::Lambert => [self.face_light(f); 3],
+                Shading::Gouraud => lights,
+            };
+            let s =
+                shade_triangle(target, None, &clip, tri, mat, lights).map_err(DrawError::Target)?;
+            pixels.add_pixels(s);
+            Ok(())
+        })?;
+        self.count(geometry);
+        self.stats.pixels_tested += pixels.pixels_tested;
+        self.stats.pixels_written += pixels.pixels_written;
+        self.stats.runs += pixels.runs;
+        Ok(())
+    }
+
+    /// Hidden-line removal: the edges of the faces that survive culling, drawn in
+    /// `color` only where no surface is in front of them.
+    ///
+    /// The surfaces go into `zbuf` first (depth only, nothing drawn); then each face's
+    /// polygon edges (not the fan's inner diagonals) are depth-tested against it with a
+    /// tolerance of the face's depth slope, so that an edge wins against its own faces.
+    pub fn draw_hidden_line<D: DrawTarget>(
+        &mut self,
+        target: &mut D,
+        zbuf: &mut ZBuffer<'_>,
+        color: D::Color,
+    ) -> Result<(), DrawError<D::Error>> {
+        let clip = clip_of(target, zbuf);
+        let first = !self.counted;
+        let mut pixels = FrameStats::default();
+        // Pass 1: depth only.
+        let geometry =
+            self.for_each_triangle(&clip, first, 0..self.mesh.face_count(), |_, _, tri, _| {
+                let s = depth_runs::<D::Error>(Some(&mut *zbuf), tri, &clip, |_, _, _| Ok(()))
+                    .map_err(DrawError::Target)?;
+                pixels.pixels_tested += s.pixels_tested;
+                Ok(())
+            })?;
+        self.count(geometry);
+        // Pass 2: the edges of faces that are not culled.
+        for f in 0..self.mesh.face_count() {
+            let (vs, _) = self.face(f)?;
+            let mut visible = false;
+            let mut bias = 1u16;
+            let v0 = self.fetch(vs[0], f)?;
+            for k in 1..vs.len() - 1 {
+                let (v1, v2) = (self.fetch(vs[k], f)?, self.fetch(vs[k + 1], f)?);
+                if v0.code | v1.code | v2.code != 0 {
+                    // Near the clip planes: decide by the clip-space winding instead.
+                    visible |= self.clipped_face_visible(&[v0.index, v1.index, v2.index]);
+                    continue;
+                }
+                let tri = [v0.screen, v1.screen, v2.screen];
+                let p = |v: &ScreenVertex| (v.x(), v.y());
+                if !self
+                    .options
+                    .cull
+                    .drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2])))
+                {
+                    visible = true;
+                    if let Some(pl) = Plane::new(&tri, [tri[0].z(), tri[1].z(), tri[2].z()]) {
+                        let slope = (pl.step_x().unsigned_abs() + pl.step_y().unsigned_abs()) >> 16;
+                        bias = bias.max(slope.saturating_add(1).min(u32::from(u16::MAX)) as u16);
+                    }
+                }
+            }
+            if !visible {
+                continue;
+            }
+            for k in 0..vs.len() {
+                let (a, b) = (vs[k], vs[(k + 1) % vs.len()]);
+                let s = self.edge(target, Some(&mut *zbuf), &clip, f, a, b, color, bias)?;
+                pixels.add_pixels(s);
+            }
+        }
+        self.stats.pixels_tested += pixels.pixels_tested;
+        self.stats.pixels_written += pixels.pixels_written;
+        self.stats.runs += pixels.runs;
+        Ok(())
+    }
+
+    /// Wireframe: every edge of every face, in `color`, with no hiding and no culling.
+    pub fn draw_wireframe<D: DrawTarget>(
+        &mut self,
+        target: &mut D,
+        color: D::Color,
+    ) -> Result<(), DrawError<D::Error>> {
+        let clip = Clip::from_rect(&target.bounding_box());
+        let mut pixels = FrameStats::default();
+        let mut geometry = FrameStats::default();
+        for f in 0..self.mesh.face_count() {
+            let (vs, _) = self.face(f)?;
+            geometry.triangles_in += vs.len() as u32 - 2;
+            for k in 0..vs.len() {
+                let (a, b) = (vs[k], vs[(k + 1) % vs.len()]);
+                let s = self.edge(target, None, &clip, f, a, b, color, 0)?;
+                pixels.add_pixels(s);
+            }
+        }
+        self.count(geometry);
+        self.stats.pixels_tested += pixels.pixels_tested;
+        self.stats.pixels_written += pixels.pixels_written;
+        self.stats.runs += pixels.runs;
+        Ok(())
+    }
+
+    /// Whether a triangle that needs clipping faces the camera, by clipping it and
+    /// testing the first non-degenerate piece.
+    fn clipped_face_visible(&self, idx: &[u16; 3]) -> bool {
+        let mut poly = ClipPolygon::new();
+        let mut code_or = 0;
+        let mut code_and = 0xff;
+        for &i in idx {
+            let Some(p) = self.mesh.positions.get(usize::from(i)) else {
+                return false;
+            };
+            let c = to_f32(&self.fixed.apply(p));
+            let code = outcode_of(&c);
+            code_or |= code;
+            code_and &= code;
+            let _ = poly.push(ClipVertex { c, light: 0.0 });
+        }
+        if code_and != 0 {
+            return false;
+        }
+        clip_polygon(&mut poly, code_or);
+        let pts: heapless::Vec<ScreenVertex, { crate::clip::MAX_CLIPPED }> =
+            poly.iter().filter_map(|c| self.map.project(&c.c)).collect();
+        let p = |v: &ScreenVertex| (v.x(), v.y());
+        (1..pts.len().saturating_sub(1)).any(|j| {
+            let area = signed_area(p(&pts[0]), p(&pts[j]), p(&pts[j + 1]));
+            area != 0 && !self.options.cull.drops(area)
+        })
+    }
+
+    /// Draw the edge between vertices `a` and `b` of face `f`, clipped in clip space.
+    #[allow(clippy::too_many_arguments)]
+    fn edge<D: DrawTarget>(
+        &self,
+        target: &mut D,
+        zbuf: Option<&mut ZBuffer<'_>>,
+        clip: &Clip,
+        f: usize,
+        a: u16,
+        b: u16,
+        color: D::Color,
+        bias: u16,
+    ) -> Result<SpanStats, DrawError<D::Error>> {
+        let (fa, fb) = (self.fetch(a, f)?, self.fetch(b, f)?);
+        if fa.code & fb.code != 0 {
+            return Ok(SpanStats::default());
+        }
+        let (sa, sb) = if fa.code | fb.code == 0 {
+            (fa.screen, fb.screen)
+        } else {
+            let pos = |i: u16| {
+                self.mesh
+                    .positions
+                    .get(usize::from(i))
+                    .ok_or(Error::IndexOutOfRange {
+                        face: f,
+                        index: usize::from(i),
+                    })
+            };
+            let ca = ClipVertex {
+                c: to_f32(&self.fixed.apply(pos(a)?)),
+                light: 0.0,
+            };
+            let cb = ClipVertex {
+                c: to_f32(&self.fixed.apply(pos(b)?)),
+                light: 0.0,
+            };
+            let Some((ca, cb)) = clip_segment(&ca, &cb, fa.code | fb.code) else {
+                return Ok(SpanStats::default());
+            };
+            match (self.map.project(&ca.c), self.map.project(&cb.c)) {
+                (Some(x), Some(y)) => (x, y),
+                _ => return Ok(SpanStats::default()),
+            }
+        };
+        draw_line(target, zbuf, clip, &sa, &sb, color, bias).map_err(DrawError::Target)
+    }
+}
