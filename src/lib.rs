@@ -47,6 +47,9 @@
 #[cfg(test)]
 extern crate std;
 
+#[cfg(feature = "obj")]
+extern crate alloc;
+
 pub mod camera;
 mod clip;
 mod error;
@@ -55,6 +58,8 @@ pub mod fixed;
 mod line;
 pub mod math;
 pub mod mesh;
+#[cfg(feature = "obj")]
+pub mod obj;
 mod raster;
 mod render;
 pub mod shade;

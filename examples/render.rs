@@ -1,0 +1,439 @@
+//! Render an OBJ model to a PNG: the command-line contract that outside checks drive.
+//!
+//! ```text
+//! cargo run --release --example render -- MODEL.obj [options]
+//! ```
+//! See `USAGE` below (or run with `--help`). Exit codes: 0 success, 2 bad options or
+//! bad input (with a message naming the problem, and the line for OBJ errors), 1 when
+//! an output file cannot be written.
+
+use std::io::Write;
+use std::path::Path;
+use std::process::exit;
+
+use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
+use zraster::{
+    camera::{Transform, Viewport},
+    math::{radians, Mat4, Vec3},
+    mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
+    obj::{parse_obj, quantize},
+    shade::{Intensity, Light, Material, Shading, ONE},
+    CachedVertex, ColorBuffer, Cull, DepthSort, FrameStats, RenderOptions, Renderer, ZBuffer,
+};
+
+const USAGE: &str = "\
+usage: render MODEL.obj [options]
+  --size WxH          output size in pixels (default 320x240)
+  --out FILE.png      colour output, exactly W x H pixels (default render.png)
+  --depth-out FILE    the Z-buffer as binary PGM (P5, maxval 65535, big-endian)
+  --no-fit            keep raw coordinates (default: centre the bounding box, largest extent 1)
+  --yaw DEG           rotation about +Y, applied first (default 0)
+  --pitch DEG         rotation about +X, applied second (default 0)
+  --distance D        camera at (0, 0, D) looking toward -Z (default 2.5)
+  --fov DEG           vertical field of view (default 60)
+  --near N --far F    clip planes (default 0.1, 10)
+  --cull back|front|none                        (default back)
+  --mode zbuffer|painter|hidden-line|wireframe  (default zbuffer)
+  --shade none|lambert|gouraud                  (default lambert)
+  --color R,G,B       colour of faces without a material, 0..1 (default 1,1,1)
+  --frames N          render N frames, write the last (default 1)
+  --spin DEG          yaw added per frame (default 0)
+  --band ROWS         render in bands of ROWS rows (output identical)
+  --stats             print the last frame's stats as one JSON line";
+
+/// Everything the command line says.
+struct Options {
+    model: String,
+    width: u32,
+    height: u32,
+    out: String,
+    depth_out: Option<String>,
+    fit: bool,
+    yaw: f32,
+    pitch: f32,
+    distance: f32,
+    fov: f32,
+    near: f32,
+    far: f32,
+    cull: Cull,
+    mode: Mode,
+    shade: Shade,
+    color: [f32; 3],
+    frames: u32,
+    spin: f32,
+    band: Option<u32>,
+    stats: bool,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Mode {
+    ZBuffer,
+    Painter,
+    HiddenLine,
+    Wireframe,
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Shade {
+    None,
+    Lambert,
+    Gouraud,
+}
+
+fn usage_error(msg: &str) -> ! {
+    eprintln!("render: {msg}\n{USAGE}");
+    exit(2)
+}
+
+fn input_error(msg: &str) -> ! {
+    eprintln!("render: {msg}");
+    exit(2)
+}
+
+fn parse_f32(name: &str, v: &str) -> f32 {
+    match v.parse::<f32>() {
+        Ok(x) if x.is_finite() => x,
+        _ => usage_error(&format!("{name} needs a finite number, got {v:?}")),
+    }
+}
+
+fn parse_args(args: &[String]) -> Options {
+    let mut o = Options {
+        model: String::new(),
+        width: 320,
+        height: 240,
+        out: "render.png".into(),
+        depth_out: None,
+        fit: true,
+        yaw: 0.0,
+        pitch: 0.0,
+        distance: 2.5,
+        fov: 60.0,
+        near: 0.1,
+        far: 10.0,
+        cull: Cull::Back,
+        mode: Mode::ZBuffer,
+        shade: Shade::Lambert,
+        color: [1.0; 3],
+        frames: 1,
+        spin: 0.0,
+        band: None,
+        stats: false,
+    };
+    let mut model = None;
+    let mut it = args.iter();
+    while let Some(a) = it.next() {
+        let mut value = |name: &str| -> String {
+            it.next()
+                .cloned()
+                .unwrap_or_else(|| usage_error(&format!("{name} needs a value")))
+        };
+        match a.as_str() {
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                exit(0)
+            }
+            "--size" => {
+                let v = value(a);
+                let parsed = v
+                    .split_once(['x', 'X'])
+                    .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)));
+                match parsed {
+                    Some((w, h))
+                        if w > 0
+                            && h > 0
+                            && w <= zraster::MAX_DIMENSION
+                            && h <= zraster::MAX_DIMENSION =>
+                    {
+                        (o.width, o.height) = (w, h)
+                    }
+                    Some(_) => usage_error(&format!(
+                        "--size {v}: width and height must be 1..={}",
+                        zraster::MAX_DIMENSION
+                    )),
+                    None => usage_error(&format!("--size needs WxH, got {v:?}")),
+                }
+            }
+            "--out" => o.out = value(a),
+            "--depth-out" => o.depth_out = Some(value(a)),
+            "--no-fit" => o.fit = false,
+            "--yaw" => o.yaw = parse_f32(a, &value(a)),
+            "--pitch" => o.pitch = parse_f32(a, &value(a)),
+            "--distance" => o.distance = parse_f32(a, &value(a)),
+            "--fov" => o.fov = parse_f32(a, &value(a)),
+            "--near" => o.near = parse_f32(a, &value(a)),
+            "--far" => o.far = parse_f32(a, &value(a)),
+            "--spin" => o.spin = parse_f32(a, &value(a)),
+            "--cull" => {
+                o.cull = match value(a).as_str() {
+                    "back" => Cull::Back,
+                    "front" => Cull::Front,
+                    "none" => Cull::None,
+                    v => usage_error(&format!("--cull must be back, front or none, got {v:?}")),
+                }
+            }
+            "--mode" => {
+                o.mode = match value(a).as_str() {
+                    "zbuffer" => Mode::ZBuffer,
+                    "painter" => Mode::Painter,
+                    "hidden-line" => Mode::HiddenLine,
+                    "wireframe" => Mode::Wireframe,
+                    v => usage_error(&format!("unknown --mode {v:?}")),
+                }
+            }
+            "--shade" => {
+                o.shade = match value(a).as_str() {
+                    "none" => Shade::None,
+                    "lambert" => Shade::Lambert,
+                    "gouraud" => Shade::Gouraud,
+                    v => usage_error(&format!(
+                        "--shade must be none, lambert or gouraud, got {v:?}"
+                    )),
+                }
+            }
+            "--color" => {
+                let v = value(a);
+                let parts: Vec<f32> = v
+                    .split(',')
+                    .filter_map(|p| p.trim().parse::<f32>().ok())
+                    .collect();
+                match parts.as_slice() {
+                    [r, g, b] if [r, g, b].iter().all(|c| (0.0..=1.0).contains(*c)) => {
+                        o.color = [*r, *g, *b]
+                    }
+                    _ => usage_error(&format!("--color needs R,G,B in 0..1, got {v:?}")),
+                }
+            }
+            "--frames" => {
+                let v = value(a);
+                o.frames = match v.parse::<u32>() {
+                    Ok(n) if n >= 1 => n,
+                    _ => usage_error(&format!("--frames needs a whole number ≥ 1, got {v:?}")),
+                }
+            }
+            "--band" => {
+                let v = value(a);
+                o.band = match v.parse::<u32>() {
+                    Ok(n) if n >= 1 && n <= zraster::MAX_DIMENSION => Some(n),
+                    _ => usage_error(&format!("--band needs a row count ≥ 1, got {v:?}")),
+                }
+            }
+            "--stats" => o.stats = true,
+            s if s.starts_with('-') && s.len() > 1 => usage_error(&format!("unknown option {s}")),
+            s => {
+                if model.replace(s.to_string()).is_some() {
+                    usage_error("only one MODEL.obj may be given")
+                }
+            }
+        }
+    }
+    o.model = model.unwrap_or_else(|| usage_error("no MODEL.obj given"));
+    if !(o.near > 0.0 && o.far > o.near) {
+        usage_error("need 0 < --near < --far");
+    }
+    if !(o.fov > 0.0 && o.fov < 180.0) {
+        usage_error("--fov must be between 0 and 180 degrees");
+    }
+    o.band = o.band.map(|b| b.min(o.height));
+    o
+}
+
+/// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly.
+#[derive(Clone, Copy)]
+struct Kd([f32; 3]);
+
+impl Material<Rgb565> for Kd {
+    fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
+        let i = f32::from(i) / f32::from(ONE);
+        let q = |c: f32, max: f32| ((c * i * max + 0.5) as u32).min(max as u32) as u8;
+        Rgb565::new(q(self.0[0], 31.0), q(self.0[1], 63.0), q(self.0[2], 31.0))
+    }
+}
+
+fn write_pgm(path: &str, w: u32, h: u32, depth: &[u16]) -> std::io::Result<()> {
+    let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+    write!(f, "P5\n{w} {h}\n65535\n")?;
+    for d in depth {
+        f.write_all(&d.to_be_bytes())?;
+    }
+    f.flush()
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let o = parse_args(&args);
+
+    // ---- The model.
+    let bytes =
+        std::fs::read(&o.model).unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
+    let text = String::from_utf8(bytes)
+        .unwrap_or_else(|_| input_error(&format!("{}: not a text file", o.model)));
+    let dir = Path::new(&o.model)
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let obj = parse_obj(&text, |name| std::fs::read_to_string(dir.join(name)).ok())
+        .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
+    for w in &obj.warnings {
+        eprintln!("render: warning: {}: {w}", o.model);
+    }
+    if obj.triangles.is_empty() {
+        input_error(&format!("{}: no faces", o.model));
+    }
+    let q = quantize(&obj.positions, true);
+    let indices: Vec<[u16; 3]> = obj
+        .triangles
+        .iter()
+        .map(|t| t.vertices.map(|v| v as u16))
+        .collect();
+    let materials: Vec<Kd> = obj
+        .triangles
+        .iter()
+        .map(|t| Kd(t.material.map_or(o.color, |m| obj.materials[m].kd)))
+        .collect();
+    let mut mesh = Mesh {
+        positions: &q.positions,
+        scale: q.scale,
+        faces: Faces::Triangles {
+            indices: &indices,
+            materials: Materials::PerFace(&materials),
+        },
+        face_normals: None,
+        vertex_normals: None,
+    };
+    let mut face_normals = vec![[0i16; 3]; indices.len()];
+    let mut vertex_normals = vec![[0i16; 3]; q.positions.len()];
+    let mut scratch = vec![Vec3::default(); q.positions.len()];
+    compute_face_normals(&mesh, &mut face_normals)
+        .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
+    if o.shade == Shade::Gouraud {
+        compute_vertex_normals(&mesh, &mut scratch, &mut vertex_normals)
+            .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
+    }
+    mesh = mesh.with_normals(Some(&face_normals), Some(&vertex_normals));
+
+    // Model space → fitted: centre the bounding box, largest extent 1 (positions are
+    // already stored around the bounding-box centre, q.offset).
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in &obj.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max);
+    let place = if o.fit {
+        Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * if extent > 0.0 { 1.0 / extent } else { 1.0 })
+    } else {
+        Mat4::translation(Vec3::new(q.offset[0], q.offset[1], q.offset[2]))
+    };
+
+    // ---- The frame.
+    let (w, h) = (o.width, o.height);
+    let viewport = Viewport::new(w, h).unwrap_or_else(|e| usage_error(&format!("--size: {e}")));
+    let camera = Transform::perspective(
+        Vec3::new(0.0, 0.0, o.distance),
+        Vec3::new(0.0, 0.0, o.distance - 1.0),
+        o.fov,
+        o.near,
+        o.far,
+        viewport,
+    )
+    .unwrap_or_else(|e| usage_error(&format!("camera: {e}")));
+    let options = RenderOptions {
+        cull: o.cull,
+        shading: match o.shade {
+            Shade::None => Shading::Flat,
+            Shade::Lambert => Shading::Lambert,
+            Shade::Gouraud => Shading::Gouraud,
+        },
+        light: Light::default(),
+    };
+    let rows = o.band.unwrap_or(h);
+    let line_color = Kd(o.color).shade(ONE, 0, 0);
+    let mut frame_pixels = vec![Rgb565::BLACK; (w * h) as usize];
+    let mut depth_full = vec![u16::MAX; (w * h) as usize];
+    let mut band_pixels = vec![Rgb565::BLACK; (w * rows) as usize];
+    let mut band_depth = vec![u16::MAX; (w * rows) as usize];
+    let mut cache = vec![CachedVertex::EMPTY; q.positions.len()];
+    let mut sort: Option<Box<DepthSort<65536>>> = None;
+    if o.mode == Mode::Painter {
+        if indices.len() > 65536 {
+            input_error(&format!(
+                "{}: painter mode handles at most 65536 faces",
+                o.model
+            ));
+        }
+        sort = Some(Box::default());
+    }
+    let mut stats = FrameStats::default();
+    for frame in 0..o.frames {
+        let yaw = o.yaw + o.spin * frame as f32;
+        let model = Mat4::rotation_x(radians(o.pitch)) * Mat4::rotation_y(radians(yaw)) * place;
+        let xf = camera.with_model(model);
+        let mut renderer = Renderer::with_cache(&mesh, &xf, options, &mut cache)
+            .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
+        let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
+            .unwrap_or_else(|e| input_error(&e.to_string()));
+        let mut y = 0;
+        while y < h {
+            let n = rows.min(h - y);
+            let mut color = ColorBuffer::new_band(&mut band_pixels, w, n, y as i32)
+                .unwrap_or_else(|e| input_error(&e.to_string()));
+            let mut zbuf = ZBuffer::new_band(&mut band_depth, w, n, y as i32)
+                .unwrap_or_else(|e| input_error(&e.to_string()));
+            color.clear(Rgb565::BLACK).ok();
+            zbuf.clear();
+            let result = match o.mode {
+                Mode::ZBuffer => renderer.draw(&mut color, &mut zbuf),
+                Mode::Painter => match sort.as_deref_mut() {
+                    Some(s) => renderer.draw_depth_sorted(&mut color, s),
+                    None => Ok(()),
+                },
+                Mode::HiddenLine => renderer.draw_hidden_line(&mut color, &mut zbuf, line_color),
+                Mode::Wireframe => renderer.draw_wireframe(&mut color, line_color),
+            };
+            if let Err(e) = result {
+                input_error(&format!("{}: {e}", o.model));
+            }
+            color.flush(&mut full).ok();
+            let start = (y * w) as usize;
+            depth_full[start..start + (n * w) as usize].copy_from_slice(zbuf.as_slice());
+            y += n;
+        }
+        stats = renderer.stats();
+    }
+
+    // ---- Output.
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(w, h));
+    let full =
+        ColorBuffer::new(&mut frame_pixels, w, h).unwrap_or_else(|e| input_error(&e.to_string()));
+    full.flush(&mut display).ok();
+    if let Err(e) = display
+        .to_rgb_output_image(&OutputSettings::default())
+        .save_png(&o.out)
+    {
+        eprintln!("render: cannot write {}: {e}", o.out);
+        exit(1);
+    }
+    if let Some(path) = &o.depth_out {
+        if let Err(e) = write_pgm(path, w, h, &depth_full) {
+            eprintln!("render: cannot write {path}: {e}");
+            exit(1);
+        }
+    }
+    if o.stats {
+        println!(
+            "{{\"triangles_in\":{},\"culled\":{},\"outside\":{},\"clipped\":{},\"drawn\":{},\"pixels_tested\":{},\"pixels_written\":{},\"runs\":{}}}",
+            stats.triangles_in,
+            stats.culled,
+            stats.outside,
+            stats.clipped,
+            stats.drawn,
+            stats.pixels_tested,
+            stats.pixels_written,
+            stats.runs
+        );
+    }
+}
