@@ -215,7 +215,7 @@ fn parse_args(args: &[String]) -> Options {
             "--band" => {
                 let v = value(a);
                 o.band = match v.parse::<u32>() {
-                    Ok(n) if n >= 1 && n <= zraster::MAX_DIMENSION => Some(n),
+                    Ok(n) if (1..=zraster::MAX_DIMENSION).contains(&n) => Some(n),
                     _ => usage_error(&format!("--band needs a row count ≥ 1, got {v:?}")),
                 }
             }
