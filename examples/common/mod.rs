@@ -5,6 +5,8 @@
 //! `libsdl2-dev` is needed to build that).
 #![allow(dead_code)]
 
+pub mod scenes;
+
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 

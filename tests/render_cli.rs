@@ -1,0 +1,273 @@
+//! The `render` example's command line: the contract outside checks drive.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::sync::Once;
+
+use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
+use embedded_graphics_simulator::SimulatorDisplay;
+
+const BUNNY: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/models/bunny.obj");
+/// The bunny-320 scene of the performance issue.
+const BUNNY_320: [&str; 7] = [
+    BUNNY,
+    "--yaw",
+    "30",
+    "--distance",
+    "1.6",
+    "--color",
+    "1,0.8,0.6",
+];
+
+/// The render example, built once (in the test profile, beside this test binary).
+fn render_bin() -> PathBuf {
+    static BUILD: Once = Once::new();
+    let exe = std::env::current_exe().unwrap();
+    let dir = exe.parent().unwrap().parent().unwrap();
+    let bin = dir
+        .join("examples")
+        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
+    BUILD.call_once(|| {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let status = Command::new(cargo)
+            .args(["build", "--quiet", "--example", "render"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .status()
+            .unwrap();
+        assert!(status.success());
+    });
+    bin
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("zraster-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn render(args: &[&str]) -> Output {
+    Command::new(render_bin()).args(args).output().unwrap()
+}
+
+fn run_ok(args: &[&str]) -> String {
+    let out = render(args);
+    assert!(
+        out.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn load(path: &Path) -> SimulatorDisplay<Rgb888> {
+    SimulatorDisplay::load_png(path).unwrap()
+}
+
+#[test]
+fn bunny_320_matches_its_golden_image_and_stats() {
+    let out = tmp("bunny320.png");
+    let stats = run_ok(&[&BUNNY_320[..], &["--out", out.to_str().unwrap(), "--stats"]].concat());
+    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/bunny-320.png");
+    if std::env::var_os("ZRASTER_BLESS").is_some() {
+        std::fs::copy(&out, &golden).unwrap();
+    }
+    let (got, want) = (load(&out), load(&golden));
+    assert_eq!(got.size(), Size::new(320, 240));
+    assert!(
+        want.diff(&got).is_none(),
+        "bunny-320 differs from {}",
+        golden.display()
+    );
+    // 3674 triangles, 1480 facing the camera, ~11,100 covered pixels.
+    assert!(stats.contains("\"triangles_in\":3674"), "{stats}");
+    assert!(stats.contains("\"drawn\":1480"), "{stats}");
+    assert!(stats.contains("\"culled\":2194"), "{stats}");
+}
+
+#[test]
+fn bands_give_identical_output_in_every_mode() {
+    for mode in ["zbuffer", "painter", "hidden-line", "wireframe"] {
+        let full_png = tmp(&format!("full-{mode}.png"));
+        let full_pgm = tmp(&format!("full-{mode}.pgm"));
+        let base = [&BUNNY_320[..], &["--size", "160x100", "--mode", mode]].concat();
+        run_ok(
+            &[
+                &base[..],
+                &[
+                    "--out",
+                    full_png.to_str().unwrap(),
+                    "--depth-out",
+                    full_pgm.to_str().unwrap(),
+                ],
+            ]
+            .concat(),
+        );
+        for band in ["1", "7", "16", "100"] {
+            let png = tmp(&format!("band{band}-{mode}.png"));
+            let pgm = tmp(&format!("band{band}-{mode}.pgm"));
+            run_ok(
+                &[
+                    &base[..],
+                    &[
+                        "--band",
+                        band,
+                        "--out",
+                        png.to_str().unwrap(),
+                        "--depth-out",
+                        pgm.to_str().unwrap(),
+                    ],
+                ]
+                .concat(),
+            );
+            assert_eq!(
+                std::fs::read(&png).unwrap(),
+                std::fs::read(&full_png).unwrap(),
+                "{mode} band {band} png"
+            );
+            assert_eq!(
+                std::fs::read(&pgm).unwrap(),
+                std::fs::read(&full_pgm).unwrap(),
+                "{mode} band {band} pgm"
+            );
+        }
+    }
+}
+
+#[test]
+fn depth_output_is_a_16_bit_pgm() {
+    let (png, pgm) = (tmp("d.png"), tmp("d.pgm"));
+    run_ok(&[
+        BUNNY,
+        "--size",
+        "64x48",
+        "--out",
+        png.to_str().unwrap(),
+        "--depth-out",
+        pgm.to_str().unwrap(),
+    ]);
+    let bytes = std::fs::read(&pgm).unwrap();
+    let header = b"P5\n64 48\n65535\n";
+    assert_eq!(&bytes[..header.len()], header);
+    let depth: Vec<u16> = bytes[header.len()..]
+        .chunks_exact(2)
+        .map(|b| u16::from_be_bytes([b[0], b[1]]))
+        .collect();
+    assert_eq!(depth.len(), 64 * 48);
+    assert_eq!(depth[0], 65535, "a corner is uncovered");
+    let img = load(&png);
+    for (i, &d) in depth.iter().enumerate() {
+        let p = Point::new(i as i32 % 64, i as i32 / 64);
+        assert_eq!(d == 65535, img.get_pixel(p) == Rgb888::BLACK, "pixel {p:?}");
+    }
+    // The bunny at distance 2.5 lies around window depth 0.95-0.97 with near 0.1, far 10.
+    let covered: Vec<u16> = depth.iter().copied().filter(|&d| d != 65535).collect();
+    assert!(
+        covered.iter().all(|&d| (61000..64000).contains(&d)),
+        "{:?}",
+        covered.iter().min()
+    );
+}
+
+fn write(name: &str, text: &[u8]) -> String {
+    let p = tmp(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+fn fails_with(args: &[&str], needle: &str) {
+    let out = render(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(
+        err.contains(needle),
+        "{args:?}: stderr {err:?} lacks {needle:?}"
+    );
+}
+
+#[test]
+fn bad_input_exits_2_with_a_message() {
+    let empty = write("empty.obj", b"");
+    fails_with(&[&empty], "no faces");
+    let garbage = write("garbage.obj", &[0xff, 0x00, 0x13, 0x80, 0xfe]);
+    fails_with(&[&garbage], "not a text file");
+    let range = write("range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 7\n");
+    fails_with(&[&range], "line 5");
+    let two = write("two.obj", b"v 0 0 0\nv 1 0 0\nf 1 2\n");
+    fails_with(&[&two], "line 3");
+    let one = write("one.obj", b"v 0 0 0\nf 1\n");
+    fails_with(&[&one], "line 2");
+    let bad_v = write("badv.obj", b"v 0 zero 0\n");
+    fails_with(&[&bad_v], "line 1");
+    fails_with(&["/nonexistent/model.obj"], "model.obj");
+}
+
+#[test]
+fn bad_options_exit_2_with_usage() {
+    fails_with(&[], "no MODEL.obj");
+    fails_with(&[BUNNY, "--size", "0x10"], "--size");
+    fails_with(&[BUNNY, "--size", "1000000x1000000"], "--size");
+    fails_with(&[BUNNY, "--size", "big"], "--size");
+    fails_with(&[BUNNY, "--mode", "ray"], "--mode");
+    fails_with(&[BUNNY, "--cull", "sideways"], "--cull");
+    fails_with(&[BUNNY, "--shade", "phong"], "--shade");
+    fails_with(&[BUNNY, "--yaw", "nan"], "--yaw");
+    fails_with(&[BUNNY, "--near", "1", "--far", "1"], "near");
+    fails_with(&[BUNNY, "--fov", "180"], "fov");
+    fails_with(&[BUNNY, "--fov", "0"], "fov");
+    fails_with(&[BUNNY, "--color", "1,2"], "--color");
+    fails_with(&[BUNNY, "--frames", "0"], "--frames");
+    fails_with(&[BUNNY, "--band", "0"], "--band");
+    fails_with(&[BUNNY, "--bogus"], "unknown option");
+    fails_with(&[BUNNY, "--out"], "needs a value");
+}
+
+#[test]
+fn frames_and_spin_render_the_last_frame() {
+    let (a, b) = (tmp("spin.png"), tmp("direct.png"));
+    run_ok(&[
+        BUNNY,
+        "--size",
+        "96x72",
+        "--frames",
+        "3",
+        "--spin",
+        "15",
+        "--out",
+        a.to_str().unwrap(),
+    ]);
+    run_ok(&[
+        BUNNY,
+        "--size",
+        "96x72",
+        "--yaw",
+        "30",
+        "--out",
+        b.to_str().unwrap(),
+    ]);
+    assert!(load(&a).diff(&load(&b)).is_none());
+}
+
+#[test]
+fn materials_are_used_exactly_without_lighting() {
+    let dir = tmp("mtl");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("m.mtl"), "newmtl c\nKd 0.5 0.25 1.0\n").unwrap();
+    std::fs::write(
+        dir.join("q.obj"),
+        "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl c\nf 1 2 3 4\n",
+    )
+    .unwrap();
+    let out = dir.join("q.png");
+    run_ok(&[
+        dir.join("q.obj").to_str().unwrap(),
+        "--shade",
+        "none",
+        "--size",
+        "32x32",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    // Kd (0.5, 0.25, 1.0) → RGB565 (16, 16, 31), as e-g converts it to 8 bits.
+    let want: Rgb888 = embedded_graphics::pixelcolor::Rgb565::new(16, 16, 31).into();
+    assert_eq!(load(&out).get_pixel(Point::new(16, 16)), want);
+}
