@@ -3,7 +3,6 @@
 //! After a deliberate change to a scene or to the renderer, regenerate them with
 //! `ZRASTER_BLESS=1 cargo test --test golden` and commit the new images with the change.
 
-#[allow(dead_code)]
 #[path = "../examples/common/scenes.rs"]
 mod scenes;
 
