@@ -165,78 +165,87 @@ pub fn interpenetrating() -> OwnedMesh {
     OwnedMesh::new(&pts, &[(&[0, 1, 2], RED), (&[3, 4, 5], GREEN)])
 }
 
-/// A concave solid: a U-shaped block (an extruded U), whose inner faces the centroid
-/// sort puts in the wrong order.
-pub fn concave_u() -> OwnedMesh {
-    // The U outline in x-y, counter-clockwise, extruded along z from -0.3 to 0.3.
-    let outline = [
-        (-0.9, -0.7),
-        (0.9, -0.7),
-        (0.9, 0.8),
-        (0.45, 0.8),
-        (0.45, -0.2),
-        (-0.45, -0.2),
-        (-0.45, 0.8),
-        (-0.9, 0.8),
-    ];
-    let n = outline.len() as u16;
-    let mut pts = Vec::new();
-    for &(x, y) in &outline {
-        pts.push([x, y, 0.3]);
+/// Append an axis-aligned box to `pts`/`faces`, faces counter-clockwise from outside
+/// (the seeds' cube face table), in `colors` (bottom, right, front, left, back, top).
+fn add_box(
+    pts: &mut Vec<[f32; 3]>,
+    faces: &mut Vec<(Vec<u16>, Rgb888)>,
+    lo: [f32; 3],
+    hi: [f32; 3],
+    colors: [Rgb888; 6],
+) {
+    let base = pts.len() as u16;
+    for c in zraster::mesh::CUBE_POSITIONS {
+        let pick = |k: usize| if c[k] == 0 { lo[k] } else { hi[k] };
+        pts.push([pick(0), pick(1), pick(2)]);
     }
-    for &(x, y) in &outline {
-        pts.push([x, y, -0.3]);
+    for (face, color) in zraster::mesh::CUBE_FACES.iter().zip(colors) {
+        faces.push((face.vertices.iter().map(|v| v + base).collect(), color));
     }
-    let mut faces: Vec<(Vec<u16>, Rgb888)> = Vec::new();
-    // Front and back caps as convex pieces: bottom bar, left arm, right arm.
-    for (quad, col) in [
-        ([0u16, 1, 4, 5], YELLOW),
-        ([7, 0, 5, 6], YELLOW),
-        ([1, 2, 3, 4], YELLOW),
-    ] {
-        faces.push((quad.to_vec(), col));
-        faces.push((quad.iter().rev().map(|v| v + n).collect(), YELLOW));
-    }
-    // Sides.
-    let side_colors = [RED, GREEN, BLUE, RED, GREEN, BLUE, RED, GREEN];
-    for i in 0..n {
-        let j = (i + 1) % n;
-        faces.push((vec![i, i + n, j + n, j], side_colors[i as usize]));
-    }
+}
+
+/// A concave object: a long plate with a fin standing on its far half (a hair above
+/// it, so no two faces touch and the Z-buffer has no ties to break). Seen from the
+/// front, the plate's centroid is nearer than the fin's, so the painter draws the
+/// plate last, over the fin that stands in front of the plate's far end.
+pub fn concave_plate() -> OwnedMesh {
+    let (mut pts, mut faces) = (Vec::new(), Vec::new());
+    let grey = Rgb888::new(90, 90, 90);
+    add_box(
+        &mut pts,
+        &mut faces,
+        [-1.0, -0.15, -2.0],
+        [1.0, 0.0, 1.0],
+        [grey, BLUE, GREEN, BLUE, grey, YELLOW],
+    );
+    add_box(
+        &mut pts,
+        &mut faces,
+        [-0.6, 0.01, -1.1],
+        [0.6, 0.9, -0.9],
+        [grey, GREEN, RED, GREEN, RED, BLUE],
+    );
     let faces: Vec<(&[u16], Rgb888)> = faces.iter().map(|(v, c)| (v.as_slice(), *c)).collect();
     OwnedMesh::new(&pts, &faces)
+}
+
+/// Where the scenes of [`painter_vs_zbuffer`] are seen from: (mesh, eye, target, culling).
+pub fn failure_cases() -> [(OwnedMesh, Vec3, Vec3, Cull, &'static str); 3] {
+    [
+        (
+            cyclic_sticks(),
+            Vec3::new(0.0, 0.0, 3.0),
+            Vec3::default(),
+            Cull::None,
+            "cyclic overlap",
+        ),
+        (
+            interpenetrating(),
+            Vec3::new(0.0, 0.0, 3.0),
+            Vec3::default(),
+            Cull::None,
+            "interpenetration",
+        ),
+        (
+            concave_plate(),
+            Vec3::new(0.3, 1.6, 3.2),
+            Vec3::new(0.0, 0.0, -0.5),
+            Cull::Back,
+            "concave object",
+        ),
+    ]
 }
 
 /// Painter's algorithm (left) against the Z-buffer (right) on the seeds' three failure
 /// cases, one per row: cyclic overlap, interpenetration, a concave object.
 pub fn painter_vs_zbuffer() -> SimulatorDisplay<Rgb565> {
     let (w, h) = (140, 110);
-    let scenes: [(OwnedMesh, Vec3, Mat4, Cull); 3] = [
-        (
-            cyclic_sticks(),
-            Vec3::new(0.0, 0.0, 3.0),
-            Mat4::IDENTITY,
-            Cull::None,
-        ),
-        (
-            interpenetrating(),
-            Vec3::new(0.0, 0.0, 3.0),
-            Mat4::IDENTITY,
-            Cull::None,
-        ),
-        (
-            concave_u(),
-            Vec3::new(0.0, 0.0, 3.2),
-            Mat4::rotation_x(radians(-35.0)) * Mat4::rotation_y(radians(35.0)),
-            Cull::Back,
-        ),
-    ];
     let mut display = SimulatorDisplay::new(Size::new(2 * w + 8, 3 * h + 16));
-    for (row, (mesh, eye, model, cull)) in scenes.iter().enumerate() {
-        let xf = camera(*eye, Vec3::default(), 45.0, w, h);
+    for (row, (mesh, eye, target, cull, _)) in failure_cases().iter().enumerate() {
+        let xf = camera(*eye, *target, 45.0, w, h);
         let y = row as i32 * (h as i32 + 8);
         mesh.with(|m, place| {
-            let xf = xf.with_model(*model * place);
+            let xf = xf.with_model(place);
             let opts = RenderOptions {
                 cull: *cull,
                 shading: Shading::Flat,
