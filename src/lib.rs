@@ -77,3 +77,8 @@ pub use zbuffer::{DepthTest, ZBuffer};
 ///
 /// It bounds the depth accumulator's drift along a row (see [`fixed`]).
 pub const MAX_DIMENSION: u32 = 8192;
+
+/// The README's code blocks, compiled as doctests so they stay true.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
