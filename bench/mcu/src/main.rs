@@ -1,0 +1,207 @@
+//! zraster on Cortex-M under QEMU: instructions per frame, static RAM, stack.
+//!
+//! Run with `bench/mcu.sh` (both instruction sets). QEMU's `-icount shift=0` makes the
+//! CMSDK timer count exactly one tick per 40 executed instructions, so the figures are
+//! the same from run to run. The `bench_start`/`bench_stop` markers let the region-count
+//! plugin attribute exact counts to each region too.
+#![no_std]
+#![no_main]
+
+mod bunny;
+
+use core::ptr::{addr_of, addr_of_mut, read_volatile, write_volatile};
+
+use cortex_m_rt::entry;
+use cortex_m_semihosting::{debug, hprintln};
+use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+use panic_semihosting as _;
+use zraster::{
+    camera::{Transform, Viewport},
+    math::{radians, Mat4, Vec3},
+    mesh::{Mesh, CUBE},
+    shade::Shading,
+    CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
+};
+
+const W: u32 = 320;
+const H: u32 = 240;
+const BAND: u32 = 16;
+const N: usize = (W * H) as usize;
+
+static mut PIXELS: [Rgb565; N] = [Rgb565::BLACK; N];
+static mut DEPTH: [u16; N] = [0; N];
+static mut CACHE: [CachedVertex; bunny::BUNNY_POSITIONS.len()] = [CachedVertex::EMPTY; bunny::BUNNY_POSITIONS.len()];
+
+// Region markers for the QEMU region-count plugin: empty, never inlined.
+core::arch::global_asm!(
+    ".global bench_start", ".type bench_start,%function", ".thumb_func", "bench_start:", "bx lr",
+    ".global bench_stop", ".type bench_stop,%function", ".thumb_func", "bench_stop:", "bx lr",
+);
+extern "C" {
+    fn bench_start();
+    fn bench_stop();
+    static mut __sheap: u32;
+    static __ebss: u32;
+    static __sdata: u32;
+    static _stack_start: u32;
+}
+
+const TIMER_CTRL: *mut u32 = 0x4000_0000 as *mut u32;
+const TIMER_VALUE: *mut u32 = 0x4000_0004 as *mut u32;
+const TIMER_RELOAD: *mut u32 = 0x4000_0008 as *mut u32;
+
+fn timer_start() {
+    // SAFETY: CMSDK TIMER0 registers of the mps2-an386 board.
+    unsafe {
+        write_volatile(TIMER_CTRL, 0);
+        write_volatile(TIMER_RELOAD, u32::MAX);
+        write_volatile(TIMER_VALUE, u32::MAX);
+        write_volatile(TIMER_CTRL, 1);
+    }
+}
+
+fn ticks() -> u32 {
+    // SAFETY: as above.
+    unsafe { read_volatile(TIMER_VALUE) }
+}
+
+/// Instructions spent in `f` (±40), via the timer; also marked for the plugin.
+fn measure<R>(f: impl FnOnce() -> R) -> (R, u32) {
+    let t0 = ticks();
+    // SAFETY: empty assembly functions.
+    unsafe { bench_start() };
+    let r = f();
+    unsafe { bench_stop() };
+    let t1 = ticks();
+    (r, t0.wrapping_sub(t1) * 40)
+}
+
+const PAINT: u32 = 0x5A5A_A5A5;
+
+/// Fill the unused stack (from the heap start up to just below the current stack
+/// pointer) with a pattern.
+fn paint_stack() {
+    let sp = cortex_m::register::msp::read() as usize;
+    // SAFETY: the words between the end of static data and the live stack are unused.
+    unsafe {
+        let mut p = addr_of_mut!(__sheap) as usize;
+        while p + 64 < sp {
+            write_volatile(p as *mut u32, PAINT);
+            p += 4;
+        }
+    }
+}
+
+/// The deepest the stack has reached since `paint_stack`, in bytes.
+fn stack_high_water() -> usize {
+    // SAFETY: reading the painted region.
+    unsafe {
+        let top = addr_of!(_stack_start) as usize;
+        let mut p = addr_of!(__sheap) as usize;
+        while p < top && read_volatile(p as *const u32) == PAINT {
+            p += 4;
+        }
+        top - p
+    }
+}
+
+fn bunny_xf() -> Transform {
+    let vp = Viewport::new(W, H).unwrap();
+    let cam = Transform::perspective(Vec3::new(0.0, 0.0, 1.6), Vec3::new(0.0, 0.0, 0.6), 60.0, 0.1, 10.0, vp).unwrap();
+    let fit = bunny::BUNNY_FIT;
+    cam.with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)))
+}
+
+fn bunny_mesh() -> Mesh<'static, embedded_graphics::pixelcolor::Rgb888> {
+    let mut m = bunny::BUNNY_MESH;
+    // --color 1,0.8,0.6
+    m.faces = zraster::mesh::Faces::Triangles {
+        indices: &bunny::BUNNY_INDICES,
+        materials: zraster::mesh::Materials::Uniform(embedded_graphics::pixelcolor::Rgb888::new(255, 204, 153)),
+    };
+    m
+}
+
+/// A checksum of the frame, to show every build draws the same picture.
+fn checksum(pixels: &[Rgb565]) -> u32 {
+    pixels.iter().fold(0x811c_9dc5u32, |h, p| (h ^ u32::from(p.into_storage())).wrapping_mul(0x0100_0193))
+}
+
+#[entry]
+fn main() -> ! {
+    paint_stack();
+    timer_start();
+    // SAFETY: single-threaded; each static is borrowed once at a time.
+    let (pixels, depth, cache) = unsafe { (&mut *addr_of_mut!(PIXELS), &mut *addr_of_mut!(DEPTH), &mut *addr_of_mut!(CACHE)) };
+    let opts = RenderOptions { shading: Shading::Lambert, ..Default::default() };
+    let mesh = bunny_mesh();
+    let xf = bunny_xf();
+
+    // ---- bunny-320, full frame.
+    let (_, clear) = measure(|| {
+        pixels.fill(Rgb565::BLACK);
+        depth.fill(u16::MAX);
+    });
+    let (renderer, transform) = measure(|| Renderer::with_cache(&mesh, &xf, opts, cache).unwrap());
+    let mut renderer = renderer;
+    let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
+    let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
+    let (_, draw) = measure(|| renderer.draw(&mut frame, &mut zbuf).unwrap());
+    drop(zbuf);
+    let stats = renderer.stats();
+    let sum = checksum(frame.as_slice());
+    // Culling and triangle setup alone: the same draw into a one-row band that no
+    // triangle reaches (the first draw of a renderer culls before it looks at rows).
+    let (mut setup_only, _) = measure(|| Renderer::with_cache(&mesh, &xf, opts, cache).unwrap());
+    let mut row = [0u16; W as usize];
+    let mut zrow = ZBuffer::new_band(&mut row, W, 1, -1000).unwrap();
+    let (_, setup) = measure(|| setup_only.draw(&mut frame, &mut zrow).unwrap());
+    hprintln!("bunny-320 full: clear {} transform {} cull+setup {} raster+output {} total {}",
+        clear, transform, setup, draw - setup, clear + transform + draw);
+    hprintln!("bunny-320 stats: drawn {} written {} runs {} checksum {:08x}", stats.drawn, stats.pixels_written, stats.runs, sum);
+
+    // ---- bunny-320, banded (16 rows): colour and depth band, flushed to the frame.
+    let (band_pixels, _) = pixels_band();
+    let (_, banded) = measure(|| {
+        let mut renderer = Renderer::with_cache(&mesh, &xf, opts, cache).unwrap();
+        let mut y = 0;
+        while y < H {
+            let n = BAND.min(H - y);
+            let mut band = ColorBuffer::new_band(&mut band_pixels[..], W, n, y as i32).unwrap();
+            let mut bz = ZBuffer::new_band(&mut depth[..(W * n) as usize], W, n, y as i32).unwrap();
+            band.clear(Rgb565::BLACK).unwrap();
+            bz.clear();
+            renderer.draw(&mut band, &mut bz).unwrap();
+            band.flush(&mut frame).unwrap();
+            y += n;
+        }
+    });
+    let banded_sum = checksum(frame.as_slice());
+    hprintln!("bunny-320 banded-16: total {} checksum {:08x} (same picture: {})", banded, banded_sum, banded_sum == sum);
+
+    // ---- Fill-bound: the seeds' cube close up, covering the whole screen.
+    frame.clear(Rgb565::BLACK).unwrap();
+    let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
+    zbuf.clear();
+    let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
+    let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
+    let (_, fill) = measure(|| r.draw(&mut frame, &mut zbuf).unwrap());
+    let s = r.stats();
+    hprintln!("fill-bound cube: {} instructions, {} pixels written, {}.{:02} per pixel",
+        fill, s.pixels_written, fill / s.pixels_written.max(1), (fill % s.pixels_written.max(1)) * 100 / s.pixels_written.max(1));
+
+    // ---- Memory.
+    // SAFETY: linker symbols.
+    let (sdata, ebss) = (addr_of!(__sdata) as usize, addr_of!(__ebss) as usize);
+    hprintln!("static RAM {} bytes (frame {} + depth {} + vertex cache {}); stack high-water {} bytes",
+        ebss - sdata, N * 2, N * 2, core::mem::size_of::<CachedVertex>() * bunny::BUNNY_POSITIONS.len(), stack_high_water());
+    debug::exit(debug::EXIT_SUCCESS);
+    loop {}
+}
+
+static mut BAND_PIXELS: [Rgb565; (W * BAND) as usize] = [Rgb565::BLACK; (W * BAND) as usize];
+
+fn pixels_band() -> (&'static mut [Rgb565], ()) {
+    // SAFETY: borrowed once.
+    (unsafe { &mut *addr_of_mut!(BAND_PIXELS) }, ())
+}
