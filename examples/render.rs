@@ -354,8 +354,13 @@ fn main() {
     let line_color = Kd(o.color).shade(ONE, 0, 0);
     let mut frame_pixels = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth_full = vec![u16::MAX; (w * h) as usize];
-    let mut band_pixels = vec![Rgb565::BLACK; (w * rows) as usize];
-    let mut band_depth = vec![u16::MAX; (w * rows) as usize];
+    let band_len = if o.band.is_some() {
+        (w * rows) as usize
+    } else {
+        0
+    };
+    let mut band_pixels = vec![Rgb565::BLACK; band_len];
+    let mut band_depth = vec![u16::MAX; band_len];
     let mut cache = vec![CachedVertex::EMPTY; q.positions.len()];
     let mut sort: Option<Box<DepthSort<65536>>> = None;
     if o.mode == Mode::Painter {
@@ -376,6 +381,27 @@ fn main() {
             .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
         let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
             .unwrap_or_else(|e| input_error(&e.to_string()));
+        if o.band.is_none() {
+            // The whole frame at once, straight into the frame buffer.
+            let mut zbuf =
+                ZBuffer::new(&mut depth_full, w, h).unwrap_or_else(|e| input_error(&e.to_string()));
+            full.clear(Rgb565::BLACK).ok();
+            zbuf.clear();
+            let result = match o.mode {
+                Mode::ZBuffer => renderer.draw(&mut full, &mut zbuf),
+                Mode::Painter => match sort.as_deref_mut() {
+                    Some(s) => renderer.draw_depth_sorted(&mut full, s),
+                    None => Ok(()),
+                },
+                Mode::HiddenLine => renderer.draw_hidden_line(&mut full, &mut zbuf, line_color),
+                Mode::Wireframe => renderer.draw_wireframe(&mut full, line_color),
+            };
+            if let Err(e) = result {
+                input_error(&format!("{}: {e}", o.model));
+            }
+            stats = renderer.stats();
+            continue;
+        }
         let mut y = 0;
         while y < h {
             let n = rows.min(h - y);

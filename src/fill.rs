@@ -232,23 +232,30 @@ fn scan<E>(
     pass: impl Fn(u16, u16) -> bool,
     emit: &mut impl FnMut(usize, usize) -> Result<(), E>,
 ) -> Result<(), E> {
-    let mut open: Option<usize> = None;
-    for (i, stored) in row.iter_mut().enumerate() {
-        let z = (acc >> 16) as u16;
-        acc = acc.wrapping_add(dz);
-        if pass(z, *stored) {
+    let n = row.len();
+    let mut i = 0;
+    while i < n {
+        // Skip pixels that fail.
+        while i < n && !pass((acc >> 16) as u16, row[i]) {
+            acc = acc.wrapping_add(dz);
+            i += 1;
+        }
+        let start = i;
+        // Take pixels that pass.
+        while i < n {
+            let z = (acc >> 16) as u16;
+            if !pass(z, row[i]) {
+                break;
+            }
             if write {
-                *stored = z;
+                row[i] = z;
             }
-            if open.is_none() {
-                open = Some(i);
-            }
-        } else if let Some(s) = open.take() {
-            emit(s, i)?;
+            acc = acc.wrapping_add(dz);
+            i += 1;
+        }
+        if i > start {
+            emit(start, i)?;
         }
     }
-    match open {
-        Some(s) => emit(s, row.len()),
-        None => Ok(()),
-    }
+    Ok(())
 }

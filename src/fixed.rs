@@ -29,15 +29,34 @@ pub const GUARD_BAND: i32 = 1 << 24;
 /// The largest vertex depth, 65535.0 in 16.16.
 pub const MAX_DEPTH: u32 = 65535 << 16;
 
-/// ⌊n / d⌋ for `d ≠ 0`, with a 32-bit division when both fit (one `SDIV` on a
-/// Cortex-M3/M4, a short library call on an M0+, instead of a 64-bit library call).
+/// ⌊n / d⌋ for `d ≠ 0`, exact, avoiding 64-bit division where it can: with 32-bit
+/// divisions (one `UDIV` each on a Cortex-M3/M4, a short library call on an M0+)
+/// when both fit in 32 bits, or when `|d| < 2¹⁶` and `|n| < 2⁴⁸` (two 16-bit "digits"
+/// of long division). Small triangles, the common case, always take those paths.
 #[inline]
 pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
-    match (i32::try_from(n), i32::try_from(d)) {
-        (Ok(n), Ok(d)) => i64::from(n.div_euclid(d)),
-        _ => n.div_euclid(d),
+    if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
+        return i64::from(n.div_euclid(d));
     }
+    let m = n.unsigned_abs();
+    if d < 1 << 16 && m < 1 << 48 {
+        let d32 = d as u32;
+        let hi = (m >> 16) as u32; // < 2³²
+        let (q1, r1) = (hi / d32, hi % d32);
+        let lo = (r1 << 16) | (m as u32 & 0xffff); // r1 < d < 2¹⁶: fits
+        let (q0, r0) = (lo / d32, lo % d32);
+        let q = (u64::from(q1) << 16 | u64::from(q0)) as i64;
+        // Truncated |n| / d; floor for negative n rounds away from zero when inexact.
+        return if n >= 0 {
+            q
+        } else if r0 == 0 {
+            -q
+        } else {
+            -q - 1
+        };
+    }
+    n.div_euclid(d)
 }
 
 /// ⌈n / d⌉ for `d > 0`.
@@ -82,8 +101,23 @@ mod tests {
         assert_eq!(div_ceil(7, 2), 4);
         assert_eq!(div_ceil(-7, 2), -3);
         assert_eq!(div_ceil(8, 2), 4);
-        // The 64-bit path agrees with the 32-bit one.
+        // The 64-bit and two-digit paths agree with plain division.
         assert_eq!(div_floor(-(1 << 40) - 1, 1 << 20), -(1 << 20) - 1);
+        let mut x = 0x1234_5678_9abc_u64;
+        for _ in 0..20_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let n = ((x >> 14) as i64) - (1 << 49);
+            let d = ((x >> 3) % 70_000) as i64 - 35_000;
+            if d != 0 {
+                assert_eq!(
+                    div_floor(n, d),
+                    n.div_euclid(d) - i64::from(d < 0 && n.rem_euclid(d) != 0),
+                    "{n} / {d}"
+                );
+            }
+        }
         assert_eq!(div_floor_wide(-7, 2), -4);
     }
 

@@ -148,11 +148,8 @@ pub struct Plane {
     a: i64,
     b: i64,
     area2: i64,
-    // Fast form, per pixel: value at the centre of pixel (px, py) ≈
-    // at_ref + step_x·(px − ref_px) + step_y·(py − ref_py).
-    ref_px: i32,
-    ref_py: i32,
-    at_ref: i64,
+    // Fast form: value at (X, Y) ≈ v0 + (step_x·(X − x0) + step_y·(Y − y0)) / 16, with
+    // the slopes per pixel rounded down to 16.16: one division each, no division later.
     step_x: i64,
     step_y: i64,
     /// The triangle is too large for the fast form's error bound: evaluate exactly.
@@ -182,37 +179,34 @@ impl Plane {
         let (dv1, dv2) = (v1 - v0, v2 - v0);
         let a = dv1 * dy2 - dv2 * dy1;
         let b = dx1 * dv2 - dx2 * dv1;
-        let extent = [dx1, dy1, dx2, dy2, dx1 - dx2, dy1 - dy2]
-            .iter()
-            .map(|d| d.abs())
-            .max()
-            .unwrap_or(0);
-        let ref_px = p0.x >> SUBPIXEL_BITS;
-        let ref_py = p0.y >> SUBPIXEL_BITS;
-        let mut plane = Plane {
+        let extent = dx1
+            .abs()
+            .max(dy1.abs())
+            .max(dx2.abs())
+            .max(dy2.abs())
+            .max((dx1 - dx2).abs())
+            .max((dy1 - dy2).abs());
+        let exact = extent > FAST_EXTENT;
+        let (step_x, step_y) = if exact {
+            (0, 0)
+        } else {
+            // |a|, |b| < 2⁴⁹ here, so 16a and 16b are far inside i64.
+            (
+                div_floor(a * i64::from(SUBPIXEL), area2),
+                div_floor(b * i64::from(SUBPIXEL), area2),
+            )
+        };
+        Some(Plane {
             x0: p0.x,
             y0: p0.y,
             v0,
             a,
             b,
             area2,
-            ref_px,
-            ref_py,
-            at_ref: 0,
-            step_x: 0,
-            step_y: 0,
-            exact: extent > FAST_EXTENT,
-        };
-        if !plane.exact {
-            // |a|, |b| < 2⁴⁹ here and the offsets to the reference centre are at most 8,
-            // so every product below stays under 2⁵⁴.
-            let cx = i64::from(ref_px * SUBPIXEL + SUBPIXEL / 2 - p0.x);
-            let cy = i64::from(ref_py * SUBPIXEL + SUBPIXEL / 2 - p0.y);
-            plane.at_ref = v0 + div_floor(a * cx + b * cy, area2);
-            plane.step_x = div_floor(a * i64::from(SUBPIXEL), area2);
-            plane.step_y = div_floor(b * i64::from(SUBPIXEL), area2);
-        }
-        Some(plane)
+            step_x,
+            step_y,
+            exact,
+        })
     }
 
     /// The plane's exact value (16.16, rounded down) at the point (x, y) in 1/16 pixel.
@@ -226,15 +220,15 @@ impl Plane {
     }
 
     /// The value at the centre of pixel (px, py): exact for large triangles, within
-    /// (|Δpx| + |Δpy|)/65536 of a unit of exact otherwise.
+    /// (|Δpx| + |Δpy| + 1)/65536 of a unit of exact otherwise (Δ from the first vertex).
     #[inline]
     pub(crate) fn at_pixel(&self, px: i32, py: i32) -> i64 {
+        let (cx, cy) = (px * SUBPIXEL + SUBPIXEL / 2, py * SUBPIXEL + SUBPIXEL / 2);
         if self.exact {
-            self.value_at(px * SUBPIXEL + SUBPIXEL / 2, py * SUBPIXEL + SUBPIXEL / 2)
+            self.value_at(cx, cy)
         } else {
-            self.at_ref
-                + self.step_x * i64::from(px - self.ref_px)
-                + self.step_y * i64::from(py - self.ref_py)
+            let d = self.step_x * i64::from(cx - self.x0) + self.step_y * i64::from(cy - self.y0);
+            self.v0 + (d >> SUBPIXEL_BITS)
         }
     }
 
@@ -493,7 +487,7 @@ mod tests {
         for (px, py) in [(2, 3), (20, 20), (39, 9), (11, 49)] {
             let exact = p.value_at(px * 16 + 8, py * 16 + 8);
             let fast = p.at_pixel(px, py);
-            let dist = i64::from((px - p.ref_px).abs() + (py - p.ref_py).abs());
+            let dist = i64::from((px - 2).abs() + (py - 3).abs());
             assert!(
                 (exact - fast).abs() <= dist + 1,
                 "({px},{py}): {exact} vs {fast}"

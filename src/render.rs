@@ -94,9 +94,7 @@ impl FrameStats {
 /// and every face sharing it reuses the work. See [`Renderer::with_cache`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CachedVertex {
-    x: i32,
-    y: i32,
-    z: u32,
+    screen: ScreenVertex,
     code: u8,
     light: Intensity,
 }
@@ -104,18 +102,10 @@ pub struct CachedVertex {
 impl CachedVertex {
     /// An empty entry, to initialise cache arrays.
     pub const EMPTY: CachedVertex = CachedVertex {
-        x: 0,
-        y: 0,
-        z: 0,
+        screen: ScreenVertex::ORIGIN,
         code: 0,
         light: 0,
     };
-
-    #[inline]
-    fn screen(&self) -> ScreenVertex {
-        // Entries with code 0 were made from a valid ScreenVertex.
-        ScreenVertex::new(self.x, self.y, self.z).unwrap_or(ScreenVertex::ORIGIN)
-    }
 }
 
 impl Default for CachedVertex {
@@ -234,9 +224,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         for (i, slot) in cache.iter_mut().enumerate() {
             let f = r.transform(i as u16)?;
             *slot = CachedVertex {
-                x: f.screen.x(),
-                y: f.screen.y(),
-                z: f.screen.z(),
+                screen: f.screen,
                 code: f.code,
                 light: f.light,
             };
@@ -298,7 +286,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 Ok(Fetched {
                     index: i,
                     code: c.code,
-                    screen: c.screen(),
+                    screen: c.screen,
                     light: c.light,
                 })
             }

@@ -86,9 +86,10 @@ pub trait Material<C>: Copy {
 /// requantised to `max` levels.
 #[inline]
 fn channel(v: u8, i: Intensity, max: u32) -> u8 {
-    let num = u64::from(v) * u64::from(i) * u64::from(max);
-    let den = 255 * u64::from(ONE);
-    ((num + den / 2) / den).min(u64::from(max)) as u8
+    // ≤ 255 · 65535 · 255 < 2³², and the divisor is a constant (a multiply, not a division).
+    let num = u32::from(v) * u32::from(i) * max;
+    const DEN: u32 = 255 * ONE as u32;
+    ((num + DEN / 2) / DEN).min(max) as u8
 }
 
 impl Material<Rgb565> for Rgb888 {

@@ -177,6 +177,18 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Self::Error> {
+        // Runs from the rasterizer: one row, already inside. Fill the slice directly.
+        if area.size.height == 1 {
+            let (x, y) = (area.top_left.x, area.top_left.y);
+            if let (Some(i), Ok(w)) = (self.index(x, y), usize::try_from(area.size.width)) {
+                if x as usize + w <= usize::from(self.width) {
+                    if let Some(run) = self.data.get_mut(i..i + w) {
+                        run.fill(color);
+                        return Ok(());
+                    }
+                }
+            }
+        }
         let c = self.clip(area);
         if !c.is_empty() {
             self.rows_of(c).for_each(|row| row.fill(color));
