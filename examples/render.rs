@@ -19,7 +19,7 @@ use zraster::{
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
     obj::{parse_obj, quantize},
     shade::{Intensity, Light, Material, Shading, ONE},
-    CachedVertex, ColorBuffer, Cull, DepthSort, FrameStats, RenderOptions, Renderer, ZBuffer,
+    CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions, Renderer, ZBuffer,
 };
 
 const USAGE: &str = "\
@@ -388,7 +388,7 @@ fn main() {
             full.clear(Rgb565::BLACK).ok();
             zbuf.clear();
             let result = match o.mode {
-                Mode::ZBuffer => renderer.draw(&mut full, &mut zbuf),
+                Mode::ZBuffer => renderer.draw_buffer(&mut full, &mut zbuf).map_err(DrawError::Input),
                 Mode::Painter => match sort.as_deref_mut() {
                     Some(s) => renderer.draw_depth_sorted(&mut full, s),
                     None => Ok(()),
@@ -412,7 +412,7 @@ fn main() {
             color.clear(Rgb565::BLACK).ok();
             zbuf.clear();
             let result = match o.mode {
-                Mode::ZBuffer => renderer.draw(&mut color, &mut zbuf),
+                Mode::ZBuffer => renderer.draw_buffer(&mut color, &mut zbuf).map_err(DrawError::Input),
                 Mode::Painter => match sort.as_deref_mut() {
                     Some(s) => renderer.draw_depth_sorted(&mut color, s),
                     None => Ok(()),

@@ -8,13 +8,14 @@
 use core::ops::AddAssign;
 
 use embedded_graphics::{
+    pixelcolor::PixelColor,
     prelude::{DrawTarget, Point, Size},
     primitives::Rectangle,
 };
 
-use crate::raster::{Clip, Plane, ScreenVertex, Setup};
+use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup};
 use crate::shade::{Intensity, Material};
-use crate::{DepthTest, ZBuffer};
+use crate::{ColorBuffer, DepthTest, ZBuffer};
 
 /// Counts from drawing one or more triangles.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
@@ -35,9 +36,6 @@ impl AddAssign for SpanStats {
     }
 }
 
-/// The depth accumulator's bias: half a unit, so `acc >> 16` rounds to nearest (see
-/// [`crate::fixed`] for why the accumulator never wraps).
-const DEPTH_BIAS: i64 = 1 << 15;
 
 /// The pixels both the target and the Z-buffer hold.
 pub(crate) fn clip_of<D: DrawTarget>(target: &D, zbuf: &ZBuffer<'_>) -> Clip {
@@ -154,6 +152,73 @@ where
     })
 }
 
+/// Fill a flat-coloured triangle into a colour buffer and a Z-buffer together: the
+/// depth test and the colour write share one loop, with no runs to emit. Gives the same
+/// pixels as [`depth_runs`] with `fill_solid` runs.
+pub(crate) fn fill_flat_buffered<C: PixelColor>(
+    frame: &mut ColorBuffer<'_, C>,
+    zbuf: &mut ZBuffer<'_>,
+    clip: &Clip,
+    tri: &[ScreenVertex; 3],
+    color: C,
+) -> SpanStats {
+    let stats = SpanStats::default();
+    if clip.is_empty() {
+        return stats;
+    }
+    let Some(setup) = Setup::new(tri) else {
+        return stats;
+    };
+    let Some((rows, dz)) = DepthRows::new(tri, &setup) else {
+        return stats;
+    };
+    let write = zbuf.write_enabled();
+    let rows = (&setup, &rows, dz, clip);
+    match zbuf.test() {
+        DepthTest::Less => flat_rows(frame, zbuf, rows, write, color, |f, s| f < s),
+        DepthTest::LessEqual => flat_rows(frame, zbuf, rows, write, color, |f, s| f <= s),
+        DepthTest::Greater => flat_rows(frame, zbuf, rows, write, color, |f, s| f > s),
+        DepthTest::Equal => flat_rows(frame, zbuf, rows, write, color, |f, s| f == s),
+        DepthTest::Always => flat_rows(frame, zbuf, rows, write, color, |_, _| true),
+        DepthTest::Never => stats,
+    }
+}
+
+/// The row loop of [`fill_flat_buffered`] for one depth test.
+#[inline(always)]
+fn flat_rows<C: PixelColor>(
+    frame: &mut ColorBuffer<'_, C>,
+    zbuf: &mut ZBuffer<'_>,
+    (setup, rows, dz, clip): (&Setup, &DepthRows, u32, &Clip),
+    write: bool,
+    color: C,
+    pass: impl Fn(u16, u16) -> bool,
+) -> SpanStats {
+    let mut stats = SpanStats::default();
+    let mut spans = setup.spans(clip);
+    while let Some((y, x0, x1)) = spans.next_span() {
+        let mut acc = rows.at(x0, y);
+        let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1)) else {
+            continue;
+        };
+        let mut written = 0;
+        for (d, c) in zrow.iter_mut().zip(crow.iter_mut()) {
+            let z = (acc >> 16) as u16;
+            acc = acc.wrapping_add(dz);
+            if pass(z, *d) {
+                if write {
+                    *d = z;
+                }
+                *c = color;
+                written += 1;
+            }
+        }
+        stats.pixels_tested += (x1 - x0) as u32;
+        stats.pixels_written += written;
+    }
+    stats
+}
+
 /// The 1-pixel-high rectangle of a run.
 #[inline]
 pub(crate) fn run_rect(y: i32, x0: i32, x1: i32) -> Rectangle {
@@ -177,31 +242,49 @@ pub(crate) fn depth_runs<E>(
         return Ok(stats);
     };
     let Some(zbuf) = zbuf else {
-        setup.for_each_span(clip, |y, x0, x1| {
+        let mut spans = setup.spans(clip);
+        while let Some((y, x0, x1)) = spans.next_span() {
             let n = (x1 - x0) as u32;
             stats.pixels_tested += n;
             stats.pixels_written += n;
             stats.runs += 1;
-            run(y, x0, x1)
-        })?;
+            run(y, x0, x1)?;
+        }
         return Ok(stats);
     };
-    let Some(plane) = Plane::new(tri, [tri[0].z(), tri[1].z(), tri[2].z()]) else {
+    let Some((rows, dz)) = DepthRows::new(tri, &setup) else {
         return Ok(stats);
     };
-    let zs = [tri[0].z(), tri[1].z(), tri[2].z()].map(i64::from);
-    let (zlo, zhi) = (
-        zs.iter().copied().min().unwrap_or(0),
-        zs.iter().copied().max().unwrap_or(0),
-    );
-    let dz = plane.step_x() as u32;
-    let (test, write) = (zbuf.test(), zbuf.write_enabled());
-    setup.for_each_span(clip, |y, x0, x1| {
-        // Clamping the row start to the vertices' range keeps the accumulator inside
-        // [2¹⁵ − drift, 65535·2¹⁶ + 2¹⁵ + drift] ⊂ u32 whatever the rounding.
-        let acc = (plane.at_pixel(x0, y).clamp(zlo, zhi) + DEPTH_BIAS) as u32;
+    let write = zbuf.write_enabled();
+    match zbuf.test() {
+        DepthTest::Less => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f < s, run),
+        DepthTest::LessEqual => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f <= s, run),
+        DepthTest::Greater => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f > s, run),
+        DepthTest::Equal => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f == s, run),
+        DepthTest::Always => depth_rows(zbuf, &setup, &rows, dz, clip, write, |_, _| true, run),
+        DepthTest::Never => Ok(stats),
+    }
+}
+
+/// The row loop of [`depth_runs`] for one depth test.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn depth_rows<E>(
+    zbuf: &mut ZBuffer<'_>,
+    setup: &Setup,
+    rows: &DepthRows,
+    dz: u32,
+    clip: &Clip,
+    write: bool,
+    pass: impl Fn(u16, u16) -> bool + Copy,
+    mut run: impl FnMut(i32, i32, i32) -> Result<(), E>,
+) -> Result<SpanStats, E> {
+    let mut stats = SpanStats::default();
+    let mut spans = setup.spans(clip);
+    while let Some((y, x0, x1)) = spans.next_span() {
+        let acc = rows.at(x0, y);
         let Some(row) = zbuf.span_mut(y, x0, x1) else {
-            return Ok(());
+            continue;
         };
         stats.pixels_tested += (x1 - x0) as u32;
         let mut emit = |a: usize, b: usize| {
@@ -209,15 +292,8 @@ pub(crate) fn depth_runs<E>(
             stats.pixels_written += (b - a) as u32;
             run(y, x0 + a as i32, x0 + b as i32)
         };
-        match test {
-            DepthTest::Less => scan(row, acc, dz, write, |f, s| f < s, &mut emit),
-            DepthTest::LessEqual => scan(row, acc, dz, write, |f, s| f <= s, &mut emit),
-            DepthTest::Greater => scan(row, acc, dz, write, |f, s| f > s, &mut emit),
-            DepthTest::Equal => scan(row, acc, dz, write, |f, s| f == s, &mut emit),
-            DepthTest::Always => scan(row, acc, dz, write, |_, _| true, &mut emit),
-            DepthTest::Never => Ok(()),
-        }
-    })?;
+        scan(row, acc, dz, write, pass, &mut emit)?;
+    }
     Ok(stats)
 }
 

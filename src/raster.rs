@@ -259,6 +259,90 @@ impl Plane {
     }
 }
 
+/// The depth accumulator's bias: half a unit, so `acc >> 16` rounds to nearest (see
+/// [`crate::fixed`] for why the accumulator never wraps).
+pub(crate) const DEPTH_BIAS: u32 = 1 << 15;
+
+/// Depth at the start of each row of a triangle, in the pixel loop's biased form.
+///
+/// For the usual triangle (extent within 4096 pixels, slopes within `i32`) this is the
+/// fast plane form rewritten as `z00 + px·sx + py·sy` in wrapping `u32` arithmetic —
+/// equal to it modulo 2³², and the true value lies in `u32`, so it is the same number:
+/// two multiplies a row, no 64-bit arithmetic. Larger triangles use the exact form.
+pub(crate) enum DepthRows {
+    Fast { z00: u32, sx: u32, sy: u32, lo: u32, hi: u32 },
+    Exact { plane: Plane, lo: i64, hi: i64 },
+}
+
+impl DepthRows {
+    #[inline(always)]
+    pub(crate) fn new(tri: &[ScreenVertex; 3], setup: &Setup) -> Option<(DepthRows, u32)> {
+        let zs = [tri[0].z, tri[1].z, tri[2].z];
+        let (lo, hi) = (zs[0].min(zs[1]).min(zs[2]), zs[0].max(zs[1]).max(zs[2]));
+        if setup.small {
+            // Extents below 2¹³: the area and the position products fit i32, the plane
+            // numerators (|Δz| < 2³², |Δy| < 2¹³) fit i64, and divisions by a small
+            // area take the two-digit path.
+            let [p0, p1, p2] = tri;
+            let (dx1, dy1) = (p1.x - p0.x, p1.y - p0.y);
+            let (dx2, dy2) = (p2.x - p0.x, p2.y - p0.y);
+            let area = i64::from(dx1 * dy2 - dx2 * dy1);
+            if area == 0 {
+                return None;
+            }
+            let (dz1, dz2) = (i64::from(p1.z) - i64::from(p0.z), i64::from(p2.z) - i64::from(p0.z));
+            let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
+            let b = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
+            let sx = div_floor(a * i64::from(SUBPIXEL), area);
+            let sy = div_floor(b * i64::from(SUBPIXEL), area);
+            if let (Ok(sx32), Ok(sy32)) = (i32::try_from(sx), i32::try_from(sy)) {
+                let half = i64::from(SUBPIXEL / 2);
+                let off = sx * (half - i64::from(p0.x)) + sy * (half - i64::from(p0.y));
+                let z00 = i64::from(p0.z) + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
+                let rows = DepthRows::Fast {
+                    z00: z00 as u32, // modulo 2³², on purpose
+                    sx: sx32 as u32,
+                    sy: sy32 as u32,
+                    lo: lo + DEPTH_BIAS,
+                    hi: hi + DEPTH_BIAS,
+                };
+                return Some((rows, sx32 as u32));
+            }
+        }
+        let plane = Plane::new(tri, zs)?;
+        let dz = plane.step_x() as u32;
+        if let (false, Ok(sx), Ok(sy)) = (plane.exact, i32::try_from(plane.step_x), i32::try_from(plane.step_y)) {
+            let half = i64::from(SUBPIXEL / 2);
+            let off = plane.step_x * (half - i64::from(plane.x0)) + plane.step_y * (half - i64::from(plane.y0));
+            let z00 = plane.v0 + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
+            let rows = DepthRows::Fast {
+                z00: z00 as u32, // modulo 2³², on purpose
+                sx: sx as u32,
+                sy: sy as u32,
+                lo: lo + DEPTH_BIAS,
+                hi: hi + DEPTH_BIAS,
+            };
+            return Some((rows, dz));
+        }
+        Some((DepthRows::Exact { plane, lo: i64::from(lo), hi: i64::from(hi) }, dz))
+    }
+
+    /// The biased accumulator at the centre of pixel (x, y), clamped to the vertices'
+    /// depth range (which keeps it within `u32` whatever the rounding).
+    #[inline(always)]
+    pub(crate) fn at(&self, x: i32, y: i32) -> u32 {
+        match *self {
+            DepthRows::Fast { z00, sx, sy, lo, hi } => {
+                let s = z00.wrapping_add((x as u32).wrapping_mul(sx)).wrapping_add((y as u32).wrapping_mul(sy));
+                // The true value is within 2¹⁴ of [lo, hi] ⊂ [2¹⁵, 2³² − 2¹⁵], so the
+                // wrapping sum is that value itself, and a plain clamp applies.
+                s.clamp(lo, hi)
+            }
+            DepthRows::Exact { ref plane, lo, hi } => (plane.at_pixel(x, y).clamp(lo, hi) + i64::from(DEPTH_BIAS)) as u32,
+        }
+    }
+}
+
 /// The depth of a triangle's plane at a point: the seeds' "depth from the plane equation".
 ///
 /// `x`, `y` are in 1/16 pixel; the result is depth in 16.16 (rounded down), `None` for a
@@ -321,6 +405,8 @@ struct EdgeWalk {
 }
 
 impl EdgeWalk {
+    const EMPTY: EdgeWalk = EdgeWalk { x: 0, err: 0, denom: 1, step: 0, rem: 0 };
+
     /// The edge from `a` to `b` (`a.1 < b.1`), positioned at pixel row `py`.
     ///
     /// Pixel `px` on row `py` is on or right of the edge when
@@ -348,6 +434,25 @@ impl EdgeWalk {
         }
     }
 
+    /// [`EdgeWalk::new`] for an edge whose coordinates are relative to a local origin
+    /// and below 2¹⁴ in magnitude (extents below 2¹³): every product fits `i32`.
+    #[inline(always)]
+    fn new_small(a: (i32, i32), b: (i32, i32), py: i32) -> EdgeWalk {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1); // |dx| < 2¹⁴, 0 < dy < 2¹⁴
+        let denom = dy * SUBPIXEL;
+        let yc = py * SUBPIXEL + SUBPIXEL / 2;
+        let t = (yc - a.1) * dx + (a.0 - SUBPIXEL / 2) * dy; // < 2²⁹
+        let x = -(-t).div_euclid(denom); // ⌈t / denom⌉
+        let step = dx.div_euclid(dy);
+        EdgeWalk {
+            x,
+            err: x * denom - t,
+            denom,
+            step,
+            rem: (dx - step * dy) * SUBPIXEL,
+        }
+    }
+
     #[inline(always)]
     fn advance(&mut self) {
         self.x += self.step;
@@ -359,21 +464,23 @@ impl EdgeWalk {
     }
 }
 
+/// Extents (in 1/16 pixel) below which a triangle takes the all-`i32` setup: 512 pixels.
+const SMALL: i32 = 1 << 13;
+
 /// A triangle prepared for scan conversion: vertices sorted top to bottom.
 pub(crate) struct Setup {
     v: [(i32, i32); 3],
     /// The middle vertex lies right of the long edge v0→v2.
     mid_right: bool,
+    /// Extents below [`SMALL`]: edges are set up in `i32` around a local origin.
+    pub(crate) small: bool,
 }
 
 impl Setup {
     /// `None` for a zero-area triangle.
+    #[inline(always)]
     pub(crate) fn new(tri: &[ScreenVertex; 3]) -> Option<Setup> {
-        let mut v = [
-            (tri[0].x, tri[0].y),
-            (tri[1].x, tri[1].y),
-            (tri[2].x, tri[2].y),
-        ];
+        let mut v = [(tri[0].x, tri[0].y), (tri[1].x, tri[1].y), (tri[2].x, tri[2].y)];
         if v[1].1 < v[0].1 {
             v.swap(0, 1);
         }
@@ -383,66 +490,119 @@ impl Setup {
         if v[1].1 < v[0].1 {
             v.swap(0, 1);
         }
-        let area = signed_area(v[0], v[1], v[2]);
+        let xmin = v[0].0.min(v[1].0).min(v[2].0);
+        let xmax = v[0].0.max(v[1].0).max(v[2].0);
+        let small = xmax - xmin < SMALL && v[2].1 - v[0].1 < SMALL;
+        let area = if small {
+            let (dx1, dy1) = (v[1].0 - v[0].0, v[1].1 - v[0].1);
+            let (dx2, dy2) = (v[2].0 - v[0].0, v[2].1 - v[0].1);
+            i64::from(dx1 * dy2 - dx2 * dy1)
+        } else {
+            signed_area(v[0], v[1], v[2])
+        };
         if area == 0 {
             return None;
         }
         // With y down, area > 0 means v0→v1→v2 turns clockwise on screen: v1 is right of v0→v2.
-        Some(Setup {
-            v,
-            mid_right: area > 0,
-        })
+        Some(Setup { v, mid_right: area > 0, small })
     }
 
-    /// Call `span(y, x0, x1)` for each row's covered pixels inside `clip`, top to bottom.
-    #[inline]
-    pub(crate) fn for_each_span<E>(
-        &self,
-        clip: &Clip,
-        mut span: impl FnMut(i32, i32, i32) -> Result<(), E>,
-    ) -> Result<(), E> {
+    /// The rows of covered pixels inside `clip`, top to bottom.
+    #[inline(always)]
+    pub(crate) fn spans(&self, clip: &Clip) -> Spans {
         let [v0, v1, v2] = self.v;
         // First row whose centre 16py + 8 is ≥ y: ⌈(y − 8)/16⌉ = (y + 7) >> 4.
         let row = |y: i32| (y + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS;
         let (top, mid, bottom) = (row(v0.1), row(v1.1), row(v2.1));
         let start = top.max(clip.y0);
-        let end = bottom.min(clip.y1);
-        if start >= end || clip.x0 >= clip.x1 {
-            return Ok(());
-        }
-        let mut long = EdgeWalk::new(v0, v2, start);
-        let mut emit = |py: i32, long: &EdgeWalk, short: &EdgeWalk| {
-            let (l, r) = if self.mid_right {
-                (long.x, short.x)
-            } else {
-                (short.x, long.x)
-            };
-            let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
-            if x0 < x1 {
-                span(py, x0, x1)
-            } else {
-                Ok(())
-            }
+        let end = if clip.x0 < clip.x1 { bottom.min(clip.y1) } else { start };
+        // Small triangles: edges in i32 around the pixel corner (ox, oy) at or above-left
+        // of every vertex; pixel columns come back shifted by ox / 16.
+        let origin = if self.small {
+            (v0.0.min(v1.0).min(v2.0) & !(SUBPIXEL - 1), v0.1 & !(SUBPIXEL - 1))
+        } else {
+            (0, 0)
         };
-        let upper_end = mid.min(end);
-        if start < upper_end {
-            let mut short = EdgeWalk::new(v0, v1, start);
-            for py in start..upper_end {
-                emit(py, &long, &short)?;
-                long.advance();
-                short.advance();
+        let mut spans = Spans {
+            long: EdgeWalk::EMPTY,
+            short: EdgeWalk::EMPTY,
+            py: start,
+            mid,
+            end,
+            lower: (v1, v2),
+            on_lower: false,
+            mid_right: self.mid_right,
+            small: self.small,
+            origin,
+            x0: clip.x0,
+            x1: clip.x1,
+        };
+        if start < end {
+            spans.long = spans.edge(v0, v2, start);
+            if start < mid {
+                spans.short = spans.edge(v0, v1, start);
+            } else {
+                spans.short = spans.edge(v1, v2, start);
+                spans.on_lower = true;
             }
         }
-        let lower_start = mid.max(start);
-        if lower_start < end {
-            let mut short = EdgeWalk::new(v1, v2, lower_start);
-            for py in lower_start..end {
-                emit(py, &long, &short)?;
-                long.advance();
-                short.advance();
+        spans
+    }
+}
+
+/// The rows of a triangle: an iterator of `(y, x0, x1)`, pixel columns `x0..x1`.
+pub(crate) struct Spans {
+    long: EdgeWalk,
+    short: EdgeWalk,
+    py: i32,
+    mid: i32,
+    end: i32,
+    lower: ((i32, i32), (i32, i32)),
+    on_lower: bool,
+    mid_right: bool,
+    small: bool,
+    origin: (i32, i32),
+    x0: i32,
+    x1: i32,
+}
+
+impl Spans {
+    #[inline(always)]
+    fn edge(&self, a: (i32, i32), b: (i32, i32), py: i32) -> EdgeWalk {
+        if self.small {
+            let (ox, oy) = self.origin;
+            let mut e = EdgeWalk::new_small((a.0 - ox, a.1 - oy), (b.0 - ox, b.1 - oy), py - (oy >> SUBPIXEL_BITS));
+            e.x += ox >> SUBPIXEL_BITS;
+            e
+        } else {
+            EdgeWalk::new(a, b, py)
+        }
+    }
+
+    /// The next row with covered pixels inside the clip area.
+    #[inline(always)]
+    pub(crate) fn next_span(&mut self) -> Option<(i32, i32, i32)> {
+        while self.py < self.end {
+            let py = self.py;
+            if py == self.mid && !self.on_lower {
+                let (a, b) = self.lower;
+                self.short = self.edge(a, b, py);
+                self.on_lower = true;
+            }
+            let (l, r) = if self.mid_right {
+                (self.long.x, self.short.x)
+            } else {
+                (self.short.x, self.long.x)
+            };
+            self.long.advance();
+            self.short.advance();
+            self.py += 1;
+            let (x0, x1) = (l.max(self.x0), r.min(self.x1));
+            if x0 < x1 {
+                return Some((py, x0, x1));
             }
         }
-        Ok(())
+        None
     }
 }
 
@@ -475,6 +635,22 @@ mod tests {
                     "edge {a:?}→{b:?} row {py}"
                 );
                 w.advance();
+            }
+        }
+    }
+
+    #[test]
+    fn small_edge_walk_matches_the_general_one() {
+        let cases = [((3, 5), (40, 77)), ((100, 0), (-33, 250)), ((7, 1), (8, 2)), ((8000, 3), (0, 8100))];
+        for (a, b) in cases {
+            let (ox, oy) = (a.0.min(b.0) & !15, a.1 & !15);
+            let first = (a.1 + 7) >> 4;
+            let mut g = EdgeWalk::new(a, b, first);
+            let mut s = EdgeWalk::new_small((a.0 - ox, a.1 - oy), (b.0 - ox, b.1 - oy), first - (oy >> 4));
+            for _ in first..(b.1 + 7) >> 4 {
+                assert_eq!((g.x, g.err), (s.x + (ox >> 4), s.err), "edge {a:?}→{b:?}");
+                g.advance();
+                s.advance();
             }
         }
     }

@@ -124,6 +124,18 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
         )
     }
 
+    /// The part of screen row `y` from column `x0` to `x1` (exclusive); `None` when any
+    /// of it lies outside the buffer.
+    #[inline]
+    pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [C]> {
+        let r = y.wrapping_sub(self.first_row) as u32;
+        if r >= u32::from(self.rows) || x0 < 0 || x1 > i32::from(self.width) || x0 > x1 {
+            return None;
+        }
+        let start = r as usize * usize::from(self.width) + x0 as usize;
+        self.data.get_mut(start..start + (x1 - x0) as usize)
+    }
+
     fn index(&self, x: i32, y: i32) -> Option<usize> {
         let x = usize::try_from(x).ok()?;
         let r = usize::try_from(y.checked_sub(self.first_row)?).ok()?;

@@ -173,13 +173,14 @@ impl<'a> ZBuffer<'a> {
 
     /// The part of screen row `y` from column `x0` to `x1` (exclusive); `None` when any of
     /// it lies outside the buffer.
+    #[inline]
     pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [u16]> {
-        let start = self.index(x0, y)?;
-        let len = usize::try_from(x1.checked_sub(x0)?).ok()?;
-        if usize::try_from(x0).ok()? + len > usize::from(self.width) {
+        let r = y.wrapping_sub(self.first_row) as u32;
+        if r >= u32::from(self.rows) || x0 < 0 || x1 > i32::from(self.width) || x0 > x1 {
             return None;
         }
-        self.data.get_mut(start..start + len)
+        let start = r as usize * usize::from(self.width) + x0 as usize;
+        self.data.get_mut(start..start + (x1 - x0) as usize)
     }
 
     /// Screen rows covered, as a half-open range.

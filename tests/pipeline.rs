@@ -421,3 +421,44 @@ fn per_face_materials_and_lambert() {
     );
     assert_eq!(px(&dim, 45, 30), Rgb565::new(8, 0, 0)); // 31 · 0.25 = 7.75 → 8
 }
+
+#[test]
+fn draw_buffer_gives_the_same_pixels_as_draw() {
+    let bunny = scenes::Bunny::load();
+    let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
+    for (yaw, shading, test) in [
+        (30.0, Shading::Lambert, zraster::DepthTest::Less),
+        (100.0, Shading::Flat, zraster::DepthTest::LessEqual),
+        (200.0, Shading::Gouraud, zraster::DepthTest::Less),
+        (300.0, Shading::Lambert, zraster::DepthTest::Greater),
+    ] {
+        let xf = camera(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), 60.0)
+            .with_model(Mat4::rotation_y(radians(yaw)) * bunny.fit);
+        let opts = RenderOptions { shading, ..Default::default() };
+        let run = |buffered: bool| {
+            let mut pixels = vec![Rgb565::BLACK; (W * H) as usize];
+            let mut depth = vec![0u16; (W * H) as usize];
+            let stats;
+            {
+                let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+                let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
+                zbuf.fill(if test == zraster::DepthTest::Greater { 0 } else { u16::MAX });
+                zbuf.set_test(test);
+                let mut r = Renderer::new(&mesh, &xf, opts).unwrap();
+                if buffered {
+                    r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+                } else {
+                    r.draw(&mut frame, &mut zbuf).unwrap();
+                }
+                stats = r.stats();
+            }
+            (pixels, depth, stats)
+        };
+        let (p1, d1, s1) = run(false);
+        let (p2, d2, s2) = run(true);
+        assert_same(&p1, &p2, &format!("yaw {yaw}"));
+        assert!(d1 == d2, "yaw {yaw}: depth differs");
+        assert_eq!((s1.pixels_written, s1.drawn), (s2.pixels_written, s2.drawn));
+        assert!(s1.pixels_written > 500);
+    }
+}

@@ -146,16 +146,20 @@ fn main() -> ! {
     let mut renderer = renderer;
     let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
     let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
-    let (_, draw) = measure(|| renderer.draw(&mut frame, &mut zbuf).unwrap());
+    let (_, draw) = measure(|| renderer.draw_buffer(&mut frame, &mut zbuf).unwrap());
     drop(zbuf);
     let stats = renderer.stats();
+    if cfg!(feature = "only-full") {
+        // For profiling the full-frame path alone (see bench/README.md).
+        debug::exit(debug::EXIT_SUCCESS);
+    }
     let sum = checksum(frame.as_slice());
     // Culling and triangle setup alone: the same draw into a one-row band that no
     // triangle reaches (the first draw of a renderer culls before it looks at rows).
     let (mut setup_only, _) = measure(|| Renderer::with_cache(&mesh, &xf, opts, cache).unwrap());
     let mut row = [0u16; W as usize];
     let mut zrow = ZBuffer::new_band(&mut row, W, 1, -1000).unwrap();
-    let (_, setup) = measure(|| setup_only.draw(&mut frame, &mut zrow).unwrap());
+    let (_, setup) = measure(|| setup_only.draw_buffer(&mut frame, &mut zrow).unwrap());
     hprintln!("bunny-320 full: clear {} transform {} cull+setup {} raster+output {} total {}",
         clear, transform, setup, draw - setup, clear + transform + draw);
     hprintln!("bunny-320 stats: drawn {} written {} runs {} checksum {:08x}", stats.drawn, stats.pixels_written, stats.runs, sum);
@@ -171,7 +175,7 @@ fn main() -> ! {
             let mut bz = ZBuffer::new_band(&mut depth[..(W * n) as usize], W, n, y as i32).unwrap();
             band.clear(Rgb565::BLACK).unwrap();
             bz.clear();
-            renderer.draw(&mut band, &mut bz).unwrap();
+            renderer.draw_buffer(&mut band, &mut bz).unwrap();
             band.flush(&mut frame).unwrap();
             y += n;
         }
@@ -185,7 +189,7 @@ fn main() -> ! {
     zbuf.clear();
     let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
     let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
-    let (_, fill) = measure(|| r.draw(&mut frame, &mut zbuf).unwrap());
+    let (_, fill) = measure(|| r.draw_buffer(&mut frame, &mut zbuf).unwrap());
     let s = r.stats();
     hprintln!("fill-bound cube: {} instructions, {} pixels written, {}.{:02} per pixel",
         fill, s.pixels_written, fill / s.pixels_written.max(1), (fill % s.pixels_written.max(1)) * 100 / s.pixels_written.max(1));
