@@ -14,6 +14,7 @@ use embedded_graphics::{
 };
 
 use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup};
+use crate::small::{fill_small, Buffers};
 use crate::shade::{Intensity, Material};
 use crate::{ColorBuffer, DepthTest, ZBuffer};
 
@@ -166,6 +167,29 @@ pub(crate) fn fill_flat_buffered<C: PixelColor>(
     if clip.is_empty() {
         return stats;
     }
+    if zbuf.geometry() == frame.geometry() {
+        let (w, _, first_row) = zbuf.geometry();
+        let write = zbuf.write_enabled();
+        let test = zbuf.test();
+        let mut b = Buffers {
+            zdata: zbuf.data_mut(),
+            cdata: frame.data_mut(),
+            width: usize::from(w),
+            first_row,
+            clip: *clip,
+        };
+        let done = match test {
+            DepthTest::Less => fill_small(&mut b, tri, color, write, |f, s| f < s),
+            DepthTest::LessEqual => fill_small(&mut b, tri, color, write, |f, s| f <= s),
+            DepthTest::Greater => fill_small(&mut b, tri, color, write, |f, s| f > s),
+            DepthTest::Equal => fill_small(&mut b, tri, color, write, |f, s| f == s),
+            DepthTest::Always => fill_small(&mut b, tri, color, write, |_, _| true),
+            DepthTest::Never => Some((0, 0)),
+        };
+        if let Some((tested, written)) = done {
+            return SpanStats { pixels_tested: tested, pixels_written: written, runs: 0 };
+        }
+    }
     let Some(setup) = Setup::new(tri) else {
         return stats;
     };
@@ -196,27 +220,63 @@ fn flat_rows<C: PixelColor>(
 ) -> SpanStats {
     let mut stats = SpanStats::default();
     let mut spans = setup.spans(clip);
+    let (zgeom, cgeom) = (zbuf.geometry(), frame.geometry());
+    if zgeom == cgeom {
+        // The usual case: both buffers cover the same rows, so one index serves both.
+        let (w, first_row) = (zgeom.0 as usize, zgeom.2);
+        let (zdata, cdata) = (zbuf.data_mut(), frame.data_mut());
+        while let Some((y, x0, x1)) = spans.next_span() {
+            let acc = rows.at(x0, y);
+            let start = (y - first_row) as usize * w + x0 as usize;
+            let end = start + (x1 - x0) as usize;
+            let (Some(zrow), Some(crow)) = (zdata.get_mut(start..end), cdata.get_mut(start..end)) else {
+                continue;
+            };
+            let failed = flat_span(zrow, crow, acc, dz, color, write, &pass);
+            stats.pixels_tested += (x1 - x0) as u32;
+            stats.pixels_written += (x1 - x0) as u32 - failed;
+        }
+        return stats;
+    }
     while let Some((y, x0, x1)) = spans.next_span() {
-        let mut acc = rows.at(x0, y);
+        let acc = rows.at(x0, y);
         let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1)) else {
             continue;
         };
-        let mut written = 0;
-        for (d, c) in zrow.iter_mut().zip(crow.iter_mut()) {
-            let z = (acc >> 16) as u16;
-            acc = acc.wrapping_add(dz);
-            if pass(z, *d) {
-                if write {
-                    *d = z;
-                }
-                *c = color;
-                written += 1;
-            }
-        }
+        let failed = flat_span(zrow, crow, acc, dz, color, write, &pass);
         stats.pixels_tested += (x1 - x0) as u32;
-        stats.pixels_written += written;
+        stats.pixels_written += (x1 - x0) as u32 - failed;
     }
     stats
+}
+
+/// The pixel loop of [`fill_flat_buffered`]: depth test, depth write, colour write.
+/// Out of line, so that the loop has every register to itself. Returns the number of
+/// pixels that failed the test.
+#[inline(always)]
+pub(crate) fn flat_span<C: Copy>(
+    zrow: &mut [u16],
+    crow: &mut [C],
+    mut acc: u32,
+    dz: u32,
+    color: C,
+    write: bool,
+    pass: &impl Fn(u16, u16) -> bool,
+) -> u32 {
+    let mut failed = 0;
+    for (d, c) in zrow.iter_mut().zip(crow.iter_mut()) {
+        let z = (acc >> 16) as u16;
+        acc = acc.wrapping_add(dz);
+        if pass(z, *d) {
+            if write {
+                *d = z;
+            }
+            *c = color;
+        } else {
+            failed += 1;
+        }
+    }
+    failed
 }
 
 /// The 1-pixel-high rectangle of a run.

@@ -37,7 +37,7 @@ pub const MAX_DEPTH: u32 = 65535 << 16;
 pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
     if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
-        return i64::from(n.div_euclid(d));
+        return i64::from(floor_div32(n, d));
     }
     let m = n.unsigned_abs();
     if d < 1 << 16 && m < 1 << 48 {
@@ -57,6 +57,18 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
         };
     }
     n.div_euclid(d)
+}
+
+/// ⌊n / d⌋ in 32 bits for `d > 0` (one division and a correction, inlined: the
+/// standard library's `div_euclid` is an out-of-line call on Thumb).
+#[inline(always)]
+pub(crate) fn floor_div32(n: i32, d: i32) -> i32 {
+    let q = n / d;
+    if n % d < 0 {
+        q - 1
+    } else {
+        q
+    }
 }
 
 /// ⌈n / d⌉ for `d > 0`.
@@ -101,6 +113,9 @@ mod tests {
         assert_eq!(div_ceil(7, 2), 4);
         assert_eq!(div_ceil(-7, 2), -3);
         assert_eq!(div_ceil(8, 2), 4);
+        for (n, d) in [(7, 2), (-7, 2), (-8, 2), (0, 5), (i32::MIN, 3), (i32::MAX, 7)] {
+            assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+        }
         // The 64-bit and two-digit paths agree with plain division.
         assert_eq!(div_floor(-(1 << 40) - 1, 1 << 20), -(1 << 20) - 1);
         let mut x = 0x1234_5678_9abc_u64;

@@ -62,6 +62,7 @@ pub mod mesh;
 pub mod obj;
 mod raster;
 mod render;
+mod small;
 pub mod shade;
 mod target;
 mod zbuffer;

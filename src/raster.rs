@@ -8,7 +8,7 @@
 //! share an edge cover each pixel along it exactly once.
 
 use crate::fixed::{
-    div_ceil, div_floor, div_floor_wide, round_f32, sat_i32, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
+    div_ceil, div_floor, floor_div32, div_floor_wide, round_f32, sat_i32, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
     SUBPIXEL_BITS,
 };
 use crate::Error;
@@ -396,8 +396,8 @@ impl Clip {
 
 /// One edge walked downward: at each row, `x` is the first pixel whose centre lies on
 /// or to the right of the edge.
-struct EdgeWalk {
-    x: i32,
+pub(crate) struct EdgeWalk {
+    pub(crate) x: i32,
     err: i32,
     denom: i32,
     step: i32,
@@ -437,13 +437,13 @@ impl EdgeWalk {
     /// [`EdgeWalk::new`] for an edge whose coordinates are relative to a local origin
     /// and below 2¹⁴ in magnitude (extents below 2¹³): every product fits `i32`.
     #[inline(always)]
-    fn new_small(a: (i32, i32), b: (i32, i32), py: i32) -> EdgeWalk {
+    pub(crate) fn new_small(a: (i32, i32), b: (i32, i32), py: i32) -> EdgeWalk {
         let (dx, dy) = (b.0 - a.0, b.1 - a.1); // |dx| < 2¹⁴, 0 < dy < 2¹⁴
         let denom = dy * SUBPIXEL;
         let yc = py * SUBPIXEL + SUBPIXEL / 2;
         let t = (yc - a.1) * dx + (a.0 - SUBPIXEL / 2) * dy; // < 2²⁹
-        let x = -(-t).div_euclid(denom); // ⌈t / denom⌉
-        let step = dx.div_euclid(dy);
+        let x = -floor_div32(-t, denom); // ⌈t / denom⌉
+        let step = floor_div32(dx, dy);
         EdgeWalk {
             x,
             err: x * denom - t,
@@ -454,7 +454,7 @@ impl EdgeWalk {
     }
 
     #[inline(always)]
-    fn advance(&mut self) {
+    pub(crate) fn advance(&mut self) {
         self.x += self.step;
         self.err -= self.rem;
         if self.err < 0 {
@@ -465,7 +465,7 @@ impl EdgeWalk {
 }
 
 /// Extents (in 1/16 pixel) below which a triangle takes the all-`i32` setup: 512 pixels.
-const SMALL: i32 = 1 << 13;
+pub(crate) const SMALL: i32 = 1 << 13;
 
 /// A triangle prepared for scan conversion: vertices sorted top to bottom.
 pub(crate) struct Setup {

@@ -15,7 +15,7 @@ use crate::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
 use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, SpanStats};
 use crate::line::draw_line;
 use crate::math::Vec3;
-use crate::mesh::{face_normal, Mesh, NORMAL_ONE};
+use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
 use crate::raster::{signed_area, Clip, Plane, ScreenVertex};
 use crate::shade::{Intensity, Light, Material, Shading, ONE};
 use crate::{ColorBuffer, DrawError, Error, ZBuffer};
@@ -164,6 +164,8 @@ pub struct Renderer<'m, 'c, M> {
     options: RenderOptions,
     /// Unit light direction in model space, for model-space normals.
     light_model: Vec3,
+    /// The light for Q14 normals: `L` in Q15, and the ambient and diffuse weights in Q15.
+    light_q: ([i32; 3], i64, i64),
     cache: Option<&'c mut [CachedVertex]>,
     stats: FrameStats,
     counted: bool,
@@ -202,6 +204,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             map: ScreenMap::new(&xf.viewport),
             options,
             light_model,
+            light_q: (
+                [light_model.x, light_model.y, light_model.z].map(|c| crate::fixed::round_f32(c * 32768.0)),
+                i64::from(crate::fixed::round_f32(options.light.ambient.clamp(-2.0, 2.0) * 32768.0)),
+                i64::from(crate::fixed::round_f32(options.light.diffuse.clamp(-2.0, 2.0) * 32768.0)),
+            ),
             cache: None,
             stats: FrameStats::default(),
             counted: false,
@@ -308,12 +315,25 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 
     /// Lambert light of face `f`.
+    #[inline]
     fn face_light(&self, f: usize) -> Intensity {
-        let d = match self.mesh.face_normals.and_then(|n| n.get(f)) {
-            Some(n) => self.dot_q14(n),
-            None => face_normal(&self.mesh, f).map_or(0.0, |n| n.dot(self.light_model)),
-        };
-        self.options.light.intensity(d)
+        match self.mesh.face_normals.and_then(|n| n.get(f)) {
+            Some(n) => self.lambert_q14(n),
+            None => self
+                .options
+                .light
+                .intensity(face_normal(&self.mesh, f).map_or(0.0, |n| n.dot(self.light_model))),
+        }
+    }
+
+    /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29
+    /// and at most 2²⁹ in magnitude (two unit vectors), so it fits `i32`.
+    #[inline]
+    fn lambert_q14(&self, n: &[i16; 3]) -> Intensity {
+        let ([lx, ly, lz], amb, diff) = self.light_q;
+        let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
+        let i = amb + ((diff * i64::from(dot.max(0)) + (1 << 28)) >> 29);
+        i.clamp(0, i64::from(u16::MAX)) as u16
     }
 
     /// Face `f`'s vertex list, checked.
@@ -484,6 +504,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         C: PixelColor,
         M: Material<C>,
     {
+        let fast = !M::DITHERED && matches!(self.options.shading, Shading::Flat | Shading::Lambert);
+        if let (true, Some(_), Faces::Triangles { indices, materials }) = (fast, &self.cache, self.mesh.faces) {
+            return self.draw_buffer_triangles(frame, zbuf, indices, materials);
+        }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
         let shading = self.options.shading;
@@ -519,6 +543,92 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.stats.pixels_tested += pixels.pixels_tested;
         self.stats.pixels_written += pixels.pixels_written;
         self.stats.runs += pixels.runs;
+        Ok(())
+    }
+
+    /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
+    /// one tight loop over the triangles. Faces near the clip planes go through the
+    /// general path.
+    fn draw_buffer_triangles<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        indices: &'m [[u16; 3]],
+        materials: crate::mesh::Materials<'m, M>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let clip = clip_of(frame, zbuf);
+        let first = !self.counted;
+        let cull = self.options.cull;
+        let lambert = self.options.shading == Shading::Lambert;
+        let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
+        let mut st = FrameStats::default();
+        let mut px = SpanStats::default();
+        let flat = match materials {
+            crate::mesh::Materials::Uniform(m) if !lambert => Some(m.shade(ONE, 0, 0)),
+            _ => None,
+        };
+        let Some(cache) = self.cache.as_deref() else {
+            return Ok(());
+        };
+        for (f, t) in indices.iter().enumerate() {
+            let get = |i: u16| cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange { face: f, index: usize::from(i) });
+            let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
+            if a.code | b.code | c.code != 0 {
+                // Outside or across a clip plane: the general path (rare).
+                let mut more = SpanStats::default();
+                let g = self
+                    .for_each_triangle::<core::convert::Infallible>(&clip, first, core::iter::once(f), |f, mat, tri, _| {
+                        let i = if lambert { self.face_light(f) } else { ONE };
+                        more += fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(i, 0, 0));
+                        Ok(())
+                    })
+                    .map_err(|e| match e {
+                        DrawError::Input(e) => e,
+                        DrawError::Target(never) => match never {},
+                    })?;
+                st.triangles_in += g.triangles_in;
+                st.outside += g.outside;
+                st.clipped += g.clipped;
+                st.culled += g.culled;
+                st.drawn += g.drawn;
+                px += more;
+                continue;
+            }
+            st.triangles_in += 1;
+            let tri = [a.screen, b.screen, c.screen];
+            if !first {
+                let ymin = tri[0].y().min(tri[1].y()).min(tri[2].y());
+                let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
+                if ymax + 8 < row0 || ymin + 8 > row1 {
+                    continue;
+                }
+            }
+            let p = |v: &ScreenVertex| (v.x(), v.y());
+            if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
+                st.culled += 1;
+                continue;
+            }
+            st.drawn += 1;
+            let color = match flat {
+                Some(c) => c,
+                None => {
+                    let m = match materials {
+                        crate::mesh::Materials::Uniform(m) => m,
+                        crate::mesh::Materials::PerFace(ms) => *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?,
+                    };
+                    m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0)
+                }
+            };
+            px += fill_flat_buffered(frame, zbuf, &clip, &tri, color);
+        }
+        self.count(st);
+        self.stats.pixels_tested += px.pixels_tested;
+        self.stats.pixels_written += px.pixels_written;
+        self.stats.runs += px.runs;
         Ok(())
     }
 

@@ -51,7 +51,7 @@ impl Default for Light {
 impl Light {
     /// The intensity for a unit normal `n` and unit light direction `l`, in Q15.
     pub fn intensity(&self, n_dot_l: f32) -> Intensity {
-        let i = self.ambient + self.diffuse * n_dot_l.max(0.0);
+        let i = self.ambient + self.diffuse * if n_dot_l > 0.0 { n_dot_l } else { 0.0 };
         to_intensity(i)
     }
 }

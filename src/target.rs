@@ -136,6 +136,18 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
         self.data.get_mut(start..start + (x1 - x0) as usize)
     }
 
+    /// (width, rows, first row), as [`ZBuffer`](crate::ZBuffer) reports it.
+    #[inline]
+    pub(crate) fn geometry(&self) -> (u16, u16, i32) {
+        (self.width, self.rows, self.first_row)
+    }
+
+    /// The pixels, mutable.
+    #[inline]
+    pub(crate) fn data_mut(&mut self) -> &mut [C] {
+        self.data
+    }
+
     fn index(&self, x: i32, y: i32) -> Option<usize> {
         let x = usize::try_from(x).ok()?;
         let r = usize::try_from(y.checked_sub(self.first_row)?).ok()?;

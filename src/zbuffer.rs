@@ -183,6 +183,18 @@ impl<'a> ZBuffer<'a> {
         self.data.get_mut(start..start + (x1 - x0) as usize)
     }
 
+    /// (width, rows, first row): two buffers with the same geometry share indices.
+    #[inline]
+    pub(crate) fn geometry(&self) -> (u16, u16, i32) {
+        (self.width, self.rows, self.first_row)
+    }
+
+    /// The entries, mutable.
+    #[inline]
+    pub(crate) fn data_mut(&mut self) -> &mut [u16] {
+        self.data
+    }
+
     /// Screen rows covered, as a half-open range.
     pub(crate) fn row_range(&self) -> (i32, i32) {
         (

@@ -133,6 +133,16 @@ fn main() -> ! {
     timer_start();
     // SAFETY: single-threaded; each static is borrowed once at a time.
     let (pixels, depth, cache) = unsafe { (&mut *addr_of_mut!(PIXELS), &mut *addr_of_mut!(DEPTH), &mut *addr_of_mut!(CACHE)) };
+    if cfg!(feature = "only-fill") {
+        // The fill-bound cube alone (to profile the pixel loop).
+        let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
+        let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
+        zbuf.clear();
+        let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
+        let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
+        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        debug::exit(debug::EXIT_SUCCESS);
+    }
     let opts = RenderOptions { shading: Shading::Lambert, ..Default::default() };
     let mesh = bunny_mesh();
     let xf = bunny_xf();
@@ -184,6 +194,7 @@ fn main() -> ! {
     hprintln!("bunny-320 banded-16: total {} checksum {:08x} (same picture: {})", banded, banded_sum, banded_sum == sum);
 
     // ---- Fill-bound: the seeds' cube close up, covering the whole screen.
+
     frame.clear(Rgb565::BLACK).unwrap();
     let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
     zbuf.clear();

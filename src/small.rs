@@ -1,0 +1,153 @@
+//! The fast path of the common case: a small triangle in one flat colour, drawn into a
+//! colour buffer and a Z-buffer of the same geometry.
+//!
+//! It computes exactly what the general path computes (the same spans, the same depth
+//! at every pixel: a test checks this on many random triangles), with everything in
+//! local variables: edges set up in `i32` around a local origin, the depth plane's row
+//! start stepped with one add a row, one index into both buffers, and the two halves of
+//! the triangle walked by two plain loops.
+
+use crate::fixed::{div_floor, SUBPIXEL, SUBPIXEL_BITS};
+use crate::raster::{Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
+
+/// Colour and depth rows of the same geometry, and the pixels drawing may touch.
+pub(crate) struct Buffers<'z, 'c, C> {
+    pub zdata: &'z mut [u16],
+    pub cdata: &'c mut [C],
+    pub width: usize,
+    pub first_row: i32,
+    pub clip: Clip,
+}
+
+/// The depth plane stepped per pixel and per row (wrapping `u32`, biased), with the
+/// vertices' range to clamp each row start to: as [`crate::raster::DepthRows`] has it.
+#[derive(Clone, Copy)]
+struct Depth {
+    z00: u32,
+    sx: u32,
+    sy: u32,
+    lo: u32,
+    hi: u32,
+}
+
+/// Fill `tri` if it is small (extents below 512 pixels) and its depth slopes fit
+/// `i32`; `None` means "not for this path", and nothing was drawn. Otherwise returns
+/// (pixels tested, pixels written).
+#[inline(always)]
+pub(crate) fn fill_small<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    tri: &[ScreenVertex; 3],
+    color: C,
+    write: bool,
+    pass: impl Fn(u16, u16) -> bool + Copy,
+) -> Option<(u32, u32)> {
+    let [p0, p1, p2] = tri;
+    let (xmin, xmax) = (p0.x().min(p1.x()).min(p2.x()), p0.x().max(p1.x()).max(p2.x()));
+    let (ymin, ymax) = (p0.y().min(p1.y()).min(p2.y()), p0.y().max(p1.y()).max(p2.y()));
+    if xmax - xmin >= SMALL || ymax - ymin >= SMALL {
+        return None;
+    }
+    // The depth plane, from the first vertex as the general path has it.
+    let (dx1, dy1) = (p1.x() - p0.x(), p1.y() - p0.y());
+    let (dx2, dy2) = (p2.x() - p0.x(), p2.y() - p0.y());
+    let area = dx1 * dy2 - dx2 * dy1; // < 2²⁷
+    if area == 0 {
+        return Some((0, 0));
+    }
+    let (dz1, dz2) = (i64::from(p1.z()) - i64::from(p0.z()), i64::from(p2.z()) - i64::from(p0.z()));
+    let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
+    let bb = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
+    let sx = i32::try_from(div_floor(a * i64::from(SUBPIXEL), i64::from(area))).ok()?;
+    let sy = i32::try_from(div_floor(bb * i64::from(SUBPIXEL), i64::from(area))).ok()?;
+    let half = i64::from(SUBPIXEL / 2);
+    let off = i64::from(sx) * (half - i64::from(p0.x())) + i64::from(sy) * (half - i64::from(p0.y()));
+    let z00 = i64::from(p0.z()) + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
+    let (zlo, zhi) = (p0.z().min(p1.z()).min(p2.z()), p0.z().max(p1.z()).max(p2.z()));
+    let depth = Depth {
+        z00: z00 as u32, // modulo 2³², on purpose
+        sx: sx as u32,
+        sy: sy as u32,
+        lo: zlo + DEPTH_BIAS,
+        hi: zhi + DEPTH_BIAS,
+    };
+
+    // Vertices top to bottom, around the local origin (ox, oy).
+    let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
+    let mut v = [(p0.x() - ox, p0.y() - oy), (p1.x() - ox, p1.y() - oy), (p2.x() - ox, p2.y() - oy)];
+    if v[1].1 < v[0].1 {
+        v.swap(0, 1);
+    }
+    if v[2].1 < v[1].1 {
+        v.swap(1, 2);
+    }
+    if v[1].1 < v[0].1 {
+        v.swap(0, 1);
+    }
+    let [v0, v1, v2] = v;
+    let mid_right = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1) > 0;
+    let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
+    let row = |y: i32| ((y + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS) + py0;
+    let (top, mid, bottom) = (row(v0.1), row(v1.1), row(v2.1));
+    let start = top.max(b.clip.y0);
+    let end = bottom.min(b.clip.y1);
+    if start >= end || b.clip.x0 >= b.clip.x1 {
+        return Some((0, 0));
+    }
+    let edge = |a: (i32, i32), c: (i32, i32), py: i32| {
+        let mut e = EdgeWalk::new_small(a, c, py - py0);
+        e.x += px0;
+        e
+    };
+    let mut long = edge(v0, v2, start);
+    let mut counts = (0, 0);
+    let upper_end = mid.min(end);
+    if start < upper_end {
+        let mut short = edge(v0, v1, start);
+        let (l, r) = if mid_right { (&mut long, &mut short) } else { (&mut short, &mut long) };
+        rows(b, l, r, start, upper_end, depth, color, write, pass, &mut counts);
+    }
+    let lower_start = mid.max(start);
+    if lower_start < end {
+        let mut short = edge(v1, v2, lower_start);
+        let (l, r) = if mid_right { (&mut long, &mut short) } else { (&mut short, &mut long) };
+        rows(b, l, r, lower_start, end, depth, color, write, pass, &mut counts);
+    }
+    Some(counts)
+}
+
+/// Rows `from..to` between the `left` and `right` edges.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rows<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    left: &mut EdgeWalk,
+    right: &mut EdgeWalk,
+    from: i32,
+    to: i32,
+    d: Depth,
+    color: C,
+    write: bool,
+    pass: impl Fn(u16, u16) -> bool,
+    (tested, written): &mut (u32, u32),
+) {
+    let (cx0, cx1) = (b.clip.x0, b.clip.x1);
+    let mut row_z = d.z00.wrapping_add((from as u32).wrapping_mul(d.sy));
+    let mut base = (from - b.first_row) as usize * b.width;
+    for _ in from..to {
+        let (xa, xb) = (left.x.max(cx0), right.x.min(cx1));
+        left.advance();
+        right.advance();
+        if xa < xb {
+            let acc = row_z.wrapping_add((xa as u32).wrapping_mul(d.sx)).clamp(d.lo, d.hi);
+            let (s, e) = (base + xa as usize, base + xb as usize);
+            if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
+                let n = (xb - xa) as u32;
+                let failed = crate::fill::flat_span(zr, cr, acc, d.sx, color, write, &pass);
+                *tested += n;
+                *written += n - failed;
+            }
+        }
+        row_z = row_z.wrapping_add(d.sy);
+        base += b.width;
+    }
+}
