@@ -279,6 +279,48 @@ impl ScreenMap {
         }
     }
 
+    /// Classify and project a fixed-point clip-space point: its outcode, and its screen
+    /// vertex when the outcode is 0. The planes are tested in integers (64-bit where a
+    /// sum could overflow); only points inside are divided by w.
+    #[inline]
+    pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
+        let [x, y, z, w] = *c;
+        if w < 1 {
+            return (outcode::W, ScreenVertex::ORIGIN);
+        }
+        // w ≥ 1, so −w cannot overflow; x >> 6 compares x with 64·w without forming it
+        // (x slightly past 64·w may pass: the guard band has room for that).
+        let mut code = 0;
+        if z < -w {
+            code |= outcode::NEAR;
+        }
+        if z > w {
+            code |= outcode::FAR;
+        }
+        if (x >> 6) < -w {
+            code |= outcode::LEFT;
+        }
+        if (x >> 6) > w {
+            code |= outcode::RIGHT;
+        }
+        if (y >> 6) < -w {
+            code |= outcode::BOTTOM;
+        }
+        if (y >> 6) > w {
+            code |= outcode::TOP;
+        }
+        if code != 0 {
+            return (code, ScreenVertex::ORIGIN);
+        }
+        // Inside: |x|, |y| < 65·w and |z| ≤ w, so x and y land within ±65·8192·8 < 2²³
+        // (no clamp needed) and only z needs clamping against rounding.
+        let inv = 1.0 / w as f32;
+        let sx = x as f32 * inv * self.sx + self.ox;
+        let sy = y as f32 * inv * self.sy + self.oy;
+        let sz = (z as f32 * inv + 1.0) * DEPTH_HALF + 0.5;
+        (0, ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)))
+    }
+
     /// Project a clip-space point inside the guard band and depth range (outcode 0).
     #[inline]
     pub(crate) fn project(&self, c: &[f32; 4]) -> Option<ScreenVertex> {

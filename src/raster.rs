@@ -36,6 +36,13 @@ impl ScreenVertex {
         Ok(ScreenVertex { x, y, z })
     }
 
+    /// A vertex from values already known to be in range (the projection clamps them).
+    #[inline]
+    pub(crate) const fn from_raw(x: i32, y: i32, z: u32) -> Self {
+        debug_assert!(x >= -GUARD_BAND && x <= GUARD_BAND && y >= -GUARD_BAND && y <= GUARD_BAND && z <= MAX_DEPTH);
+        ScreenVertex { x, y, z }
+    }
+
     /// A vertex at whole-pixel coordinates (the corner of pixel (x, y)) and integer depth.
     pub const fn from_pixels(x: i32, y: i32, depth: u16) -> Result<Self, Error> {
         if x < -(GUARD_BAND >> SUBPIXEL_BITS)

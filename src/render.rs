@@ -228,13 +228,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut r = Self::new(mesh, xf, options)?;
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
-        for (i, slot) in cache.iter_mut().enumerate() {
-            let f = r.transform(i as u16)?;
-            *slot = CachedVertex {
-                screen: f.screen,
-                code: f.code,
-                light: f.light,
-            };
+        let gouraud = options.shading == Shading::Gouraud;
+        for (i, (p, slot)) in mesh.positions.iter().zip(cache.iter_mut()).enumerate() {
+            let (code, screen) = r.map.project_fixed(&r.fixed.apply(p));
+            let light = if gouraud { r.vertex_light(i) } else { ONE };
+            *slot = CachedVertex { screen, code, light };
         }
         r.cache = Some(cache);
         Ok(r)
@@ -255,19 +253,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 face: usize::MAX,
                 index: usize::from(i),
             })?;
-        let c = to_f32(&self.fixed.apply(p));
-        let mut code = outcode_of(&c);
-        let screen = if code == 0 {
-            match self.map.project(&c) {
-                Some(s) => s,
-                None => {
-                    code |= crate::camera::outcode::W;
-                    ScreenVertex::ORIGIN
-                }
-            }
-        } else {
-            ScreenVertex::ORIGIN
-        };
+        let (code, screen) = self.map.project_fixed(&self.fixed.apply(p));
         let light = if self.options.shading == Shading::Gouraud {
             self.vertex_light(usize::from(i))
         } else {
