@@ -19,7 +19,8 @@ use zraster::{
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
     obj::{parse_obj, quantize},
     shade::{Intensity, Light, Material, Shading, ONE},
-    CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions, Renderer, ZBuffer,
+    BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions,
+    Renderer, ZBuffer,
 };
 
 const USAGE: &str = "\
@@ -361,6 +362,11 @@ fn main() {
     };
     let mut band_pixels = vec![Rgb565::BLACK; band_len];
     let mut band_depth = vec![u16::MAX; band_len];
+    let bins_len = match o.band {
+        Some(_) => BandBuffers::<Rgb565>::bins_needed(indices.len(), h, rows),
+        None => 0,
+    };
+    let mut bins = vec![0u16; bins_len];
     let mut cache = vec![CachedVertex::EMPTY; q.positions.len()];
     let mut sort: Option<Box<DepthSort<65536>>> = None;
     if o.mode == Mode::Painter {
@@ -388,7 +394,9 @@ fn main() {
             full.clear(Rgb565::BLACK).ok();
             zbuf.clear();
             let result = match o.mode {
-                Mode::ZBuffer => renderer.draw_buffer(&mut full, &mut zbuf).map_err(DrawError::Input),
+                Mode::ZBuffer => renderer
+                    .draw_buffer(&mut full, &mut zbuf)
+                    .map_err(DrawError::Input),
                 Mode::Painter => match sort.as_deref_mut() {
                     Some(s) => renderer.draw_depth_sorted(&mut full, s),
                     None => Ok(()),
@@ -398,6 +406,27 @@ fn main() {
             };
             if let Err(e) = result {
                 input_error(&format!("{}: {e}", o.model));
+            }
+            stats = renderer.stats();
+            continue;
+        }
+        if o.mode == Mode::ZBuffer {
+            // Band by band, triangles binned once per frame.
+            let mut bands =
+                BandBuffers::new(&mut band_pixels, &mut band_depth, w, rows, h, &mut bins)
+                    .unwrap_or_else(|e| input_error(&e.to_string()));
+            let keep_depth = o.depth_out.is_some();
+            let result =
+                renderer.draw_banded_with(&mut full, &mut bands, Rgb565::BLACK, |_, zbuf| {
+                    // The Z-buffer as a whole frame, for --depth-out.
+                    if keep_depth {
+                        let start = (zbuf.first_row() as u32 * w) as usize;
+                        let band = zbuf.as_slice();
+                        depth_full[start..start + band.len()].copy_from_slice(band);
+                    }
+                });
+            if let Err(e) = result {
+                input_error(&format!("{}: {e:?}", o.model));
             }
             stats = renderer.stats();
             continue;
@@ -412,7 +441,9 @@ fn main() {
             color.clear(Rgb565::BLACK).ok();
             zbuf.clear();
             let result = match o.mode {
-                Mode::ZBuffer => renderer.draw_buffer(&mut color, &mut zbuf).map_err(DrawError::Input),
+                Mode::ZBuffer => renderer
+                    .draw_buffer(&mut color, &mut zbuf)
+                    .map_err(DrawError::Input),
                 Mode::Painter => match sort.as_deref_mut() {
                     Some(s) => renderer.draw_depth_sorted(&mut color, s),
                     None => Ok(()),

@@ -318,7 +318,10 @@ impl ScreenMap {
         let sx = x as f32 * inv * self.sx + self.ox;
         let sy = y as f32 * inv * self.sy + self.oy;
         let sz = (z as f32 * inv + 1.0) * DEPTH_HALF + 0.5;
-        (0, ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)))
+        (
+            0,
+            ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)),
+        )
     }
 
     /// Project a clip-space point inside the guard band and depth range (outcode 0).

@@ -14,8 +14,8 @@ use embedded_graphics::{
 };
 
 use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup};
-use crate::small::{fill_small, Buffers};
 use crate::shade::{Intensity, Material};
+use crate::small::{fill_small, Buffers};
 use crate::{ColorBuffer, DepthTest, ZBuffer};
 
 /// Counts from drawing one or more triangles.
@@ -36,7 +36,6 @@ impl AddAssign for SpanStats {
         self.runs += o.runs;
     }
 }
-
 
 /// The pixels both the target and the Z-buffer hold.
 pub(crate) fn clip_of<D: DrawTarget>(target: &D, zbuf: &ZBuffer<'_>) -> Clip {
@@ -187,7 +186,11 @@ pub(crate) fn fill_flat_buffered<C: PixelColor>(
             DepthTest::Never => Some((0, 0)),
         };
         if let Some((tested, written)) = done {
-            return SpanStats { pixels_tested: tested, pixels_written: written, runs: 0 };
+            return SpanStats {
+                pixels_tested: tested,
+                pixels_written: written,
+                runs: 0,
+            };
         }
     }
     let Some(setup) = Setup::new(tri) else {
@@ -229,7 +232,8 @@ fn flat_rows<C: PixelColor>(
             let acc = rows.at(x0, y);
             let start = (y - first_row) as usize * w + x0 as usize;
             let end = start + (x1 - x0) as usize;
-            let (Some(zrow), Some(crow)) = (zdata.get_mut(start..end), cdata.get_mut(start..end)) else {
+            let (Some(zrow), Some(crow)) = (zdata.get_mut(start..end), cdata.get_mut(start..end))
+            else {
                 continue;
             };
             let failed = flat_span(zrow, crow, acc, dz, color, write, &pass);
@@ -318,7 +322,9 @@ pub(crate) fn depth_runs<E>(
     let write = zbuf.write_enabled();
     match zbuf.test() {
         DepthTest::Less => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f < s, run),
-        DepthTest::LessEqual => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f <= s, run),
+        DepthTest::LessEqual => {
+            depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f <= s, run)
+        }
         DepthTest::Greater => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f > s, run),
         DepthTest::Equal => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f == s, run),
         DepthTest::Always => depth_rows(zbuf, &setup, &rows, dz, clip, write, |_, _| true, run),

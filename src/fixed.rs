@@ -113,7 +113,14 @@ mod tests {
         assert_eq!(div_ceil(7, 2), 4);
         assert_eq!(div_ceil(-7, 2), -3);
         assert_eq!(div_ceil(8, 2), 4);
-        for (n, d) in [(7, 2), (-7, 2), (-8, 2), (0, 5), (i32::MIN, 3), (i32::MAX, 7)] {
+        for (n, d) in [
+            (7, 2),
+            (-7, 2),
+            (-8, 2),
+            (0, 5),
+            (i32::MIN, 3),
+            (i32::MAX, 7),
+        ] {
             assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
         }
         // The 64-bit and two-digit paths agree with plain division.

@@ -50,6 +50,7 @@ extern crate std;
 #[cfg(feature = "obj")]
 extern crate alloc;
 
+mod band;
 pub mod camera;
 mod clip;
 mod error;
@@ -62,11 +63,12 @@ pub mod mesh;
 pub mod obj;
 mod raster;
 mod render;
-mod small;
 pub mod shade;
+mod small;
 mod target;
 mod zbuffer;
 
+pub use band::BandBuffers;
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded, SpanStats};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex};

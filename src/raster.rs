@@ -8,8 +8,8 @@
 //! share an edge cover each pixel along it exactly once.
 
 use crate::fixed::{
-    div_ceil, div_floor, floor_div32, div_floor_wide, round_f32, sat_i32, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
-    SUBPIXEL_BITS,
+    div_ceil, div_floor, div_floor_wide, floor_div32, round_f32, sat_i32, GUARD_BAND, MAX_DEPTH,
+    SUBPIXEL, SUBPIXEL_BITS,
 };
 use crate::Error;
 
@@ -39,7 +39,13 @@ impl ScreenVertex {
     /// A vertex from values already known to be in range (the projection clamps them).
     #[inline]
     pub(crate) const fn from_raw(x: i32, y: i32, z: u32) -> Self {
-        debug_assert!(x >= -GUARD_BAND && x <= GUARD_BAND && y >= -GUARD_BAND && y <= GUARD_BAND && z <= MAX_DEPTH);
+        debug_assert!(
+            x >= -GUARD_BAND
+                && x <= GUARD_BAND
+                && y >= -GUARD_BAND
+                && y <= GUARD_BAND
+                && z <= MAX_DEPTH
+        );
         ScreenVertex { x, y, z }
     }
 
@@ -277,8 +283,18 @@ pub(crate) const DEPTH_BIAS: u32 = 1 << 15;
 /// equal to it modulo 2³², and the true value lies in `u32`, so it is the same number:
 /// two multiplies a row, no 64-bit arithmetic. Larger triangles use the exact form.
 pub(crate) enum DepthRows {
-    Fast { z00: u32, sx: u32, sy: u32, lo: u32, hi: u32 },
-    Exact { plane: Plane, lo: i64, hi: i64 },
+    Fast {
+        z00: u32,
+        sx: u32,
+        sy: u32,
+        lo: u32,
+        hi: u32,
+    },
+    Exact {
+        plane: Plane,
+        lo: i64,
+        hi: i64,
+    },
 }
 
 impl DepthRows {
@@ -297,7 +313,10 @@ impl DepthRows {
             if area == 0 {
                 return None;
             }
-            let (dz1, dz2) = (i64::from(p1.z) - i64::from(p0.z), i64::from(p2.z) - i64::from(p0.z));
+            let (dz1, dz2) = (
+                i64::from(p1.z) - i64::from(p0.z),
+                i64::from(p2.z) - i64::from(p0.z),
+            );
             let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
             let b = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
             let sx = div_floor(a * i64::from(SUBPIXEL), area);
@@ -318,9 +337,14 @@ impl DepthRows {
         }
         let plane = Plane::new(tri, zs)?;
         let dz = plane.step_x() as u32;
-        if let (false, Ok(sx), Ok(sy)) = (plane.exact, i32::try_from(plane.step_x), i32::try_from(plane.step_y)) {
+        if let (false, Ok(sx), Ok(sy)) = (
+            plane.exact,
+            i32::try_from(plane.step_x),
+            i32::try_from(plane.step_y),
+        ) {
             let half = i64::from(SUBPIXEL / 2);
-            let off = plane.step_x * (half - i64::from(plane.x0)) + plane.step_y * (half - i64::from(plane.y0));
+            let off = plane.step_x * (half - i64::from(plane.x0))
+                + plane.step_y * (half - i64::from(plane.y0));
             let z00 = plane.v0 + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
             let rows = DepthRows::Fast {
                 z00: z00 as u32, // modulo 2³², on purpose
@@ -331,7 +355,14 @@ impl DepthRows {
             };
             return Some((rows, dz));
         }
-        Some((DepthRows::Exact { plane, lo: i64::from(lo), hi: i64::from(hi) }, dz))
+        Some((
+            DepthRows::Exact {
+                plane,
+                lo: i64::from(lo),
+                hi: i64::from(hi),
+            },
+            dz,
+        ))
     }
 
     /// The biased accumulator at the centre of pixel (x, y), clamped to the vertices'
@@ -339,13 +370,23 @@ impl DepthRows {
     #[inline(always)]
     pub(crate) fn at(&self, x: i32, y: i32) -> u32 {
         match *self {
-            DepthRows::Fast { z00, sx, sy, lo, hi } => {
-                let s = z00.wrapping_add((x as u32).wrapping_mul(sx)).wrapping_add((y as u32).wrapping_mul(sy));
+            DepthRows::Fast {
+                z00,
+                sx,
+                sy,
+                lo,
+                hi,
+            } => {
+                let s = z00
+                    .wrapping_add((x as u32).wrapping_mul(sx))
+                    .wrapping_add((y as u32).wrapping_mul(sy));
                 // The true value is within 2¹⁴ of [lo, hi] ⊂ [2¹⁵, 2³² − 2¹⁵], so the
                 // wrapping sum is that value itself, and a plain clamp applies.
                 s.clamp(lo, hi)
             }
-            DepthRows::Exact { ref plane, lo, hi } => (plane.at_pixel(x, y).clamp(lo, hi) + i64::from(DEPTH_BIAS)) as u32,
+            DepthRows::Exact { ref plane, lo, hi } => {
+                (plane.at_pixel(x, y).clamp(lo, hi) + i64::from(DEPTH_BIAS)) as u32
+            }
         }
     }
 }
@@ -412,7 +453,13 @@ pub(crate) struct EdgeWalk {
 }
 
 impl EdgeWalk {
-    const EMPTY: EdgeWalk = EdgeWalk { x: 0, err: 0, denom: 1, step: 0, rem: 0 };
+    const EMPTY: EdgeWalk = EdgeWalk {
+        x: 0,
+        err: 0,
+        denom: 1,
+        step: 0,
+        rem: 0,
+    };
 
     /// The edge from `a` to `b` (`a.1 < b.1`), positioned at pixel row `py`.
     ///
@@ -487,7 +534,11 @@ impl Setup {
     /// `None` for a zero-area triangle.
     #[inline(always)]
     pub(crate) fn new(tri: &[ScreenVertex; 3]) -> Option<Setup> {
-        let mut v = [(tri[0].x, tri[0].y), (tri[1].x, tri[1].y), (tri[2].x, tri[2].y)];
+        let mut v = [
+            (tri[0].x, tri[0].y),
+            (tri[1].x, tri[1].y),
+            (tri[2].x, tri[2].y),
+        ];
         if v[1].1 < v[0].1 {
             v.swap(0, 1);
         }
@@ -511,7 +562,11 @@ impl Setup {
             return None;
         }
         // With y down, area > 0 means v0→v1→v2 turns clockwise on screen: v1 is right of v0→v2.
-        Some(Setup { v, mid_right: area > 0, small })
+        Some(Setup {
+            v,
+            mid_right: area > 0,
+            small,
+        })
     }
 
     /// The rows of covered pixels inside `clip`, top to bottom.
@@ -522,11 +577,18 @@ impl Setup {
         let row = |y: i32| (y + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS;
         let (top, mid, bottom) = (row(v0.1), row(v1.1), row(v2.1));
         let start = top.max(clip.y0);
-        let end = if clip.x0 < clip.x1 { bottom.min(clip.y1) } else { start };
+        let end = if clip.x0 < clip.x1 {
+            bottom.min(clip.y1)
+        } else {
+            start
+        };
         // Small triangles: edges in i32 around the pixel corner (ox, oy) at or above-left
         // of every vertex; pixel columns come back shifted by ox / 16.
         let origin = if self.small {
-            (v0.0.min(v1.0).min(v2.0) & !(SUBPIXEL - 1), v0.1 & !(SUBPIXEL - 1))
+            (
+                v0.0.min(v1.0).min(v2.0) & !(SUBPIXEL - 1),
+                v0.1 & !(SUBPIXEL - 1),
+            )
         } else {
             (0, 0)
         };
@@ -578,7 +640,11 @@ impl Spans {
     fn edge(&self, a: (i32, i32), b: (i32, i32), py: i32) -> EdgeWalk {
         if self.small {
             let (ox, oy) = self.origin;
-            let mut e = EdgeWalk::new_small((a.0 - ox, a.1 - oy), (b.0 - ox, b.1 - oy), py - (oy >> SUBPIXEL_BITS));
+            let mut e = EdgeWalk::new_small(
+                (a.0 - ox, a.1 - oy),
+                (b.0 - ox, b.1 - oy),
+                py - (oy >> SUBPIXEL_BITS),
+            );
             e.x += ox >> SUBPIXEL_BITS;
             e
         } else {
@@ -648,12 +714,21 @@ mod tests {
 
     #[test]
     fn small_edge_walk_matches_the_general_one() {
-        let cases = [((3, 5), (40, 77)), ((100, 0), (-33, 250)), ((7, 1), (8, 2)), ((8000, 3), (0, 8100))];
+        let cases = [
+            ((3, 5), (40, 77)),
+            ((100, 0), (-33, 250)),
+            ((7, 1), (8, 2)),
+            ((8000, 3), (0, 8100)),
+        ];
         for (a, b) in cases {
             let (ox, oy) = (a.0.min(b.0) & !15, a.1 & !15);
             let first = (a.1 + 7) >> 4;
             let mut g = EdgeWalk::new(a, b, first);
-            let mut s = EdgeWalk::new_small((a.0 - ox, a.1 - oy), (b.0 - ox, b.1 - oy), first - (oy >> 4));
+            let mut s = EdgeWalk::new_small(
+                (a.0 - ox, a.1 - oy),
+                (b.0 - ox, b.1 - oy),
+                first - (oy >> 4),
+            );
             for _ in first..(b.1 + 7) >> 4 {
                 assert_eq!((g.x, g.err), (s.x + (ox >> 4), s.err), "edge {a:?}→{b:?}");
                 g.advance();

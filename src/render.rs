@@ -100,6 +100,16 @@ pub struct CachedVertex {
 }
 
 impl CachedVertex {
+    #[inline]
+    pub(crate) fn code(&self) -> u8 {
+        self.code
+    }
+
+    #[inline]
+    pub(crate) fn screen(&self) -> ScreenVertex {
+        self.screen
+    }
+
     /// An empty entry, to initialise cache arrays.
     pub const EMPTY: CachedVertex = CachedVertex {
         screen: ScreenVertex::ORIGIN,
@@ -158,15 +168,15 @@ impl<const N: usize> DepthSort<N> {
 /// # Ok::<(), zraster::Error>(())
 /// ```
 pub struct Renderer<'m, 'c, M> {
-    mesh: Mesh<'m, M>,
+    pub(crate) mesh: Mesh<'m, M>,
     fixed: FixedTransform,
     map: ScreenMap,
-    options: RenderOptions,
+    pub(crate) options: RenderOptions,
     /// Unit light direction in model space, for model-space normals.
     light_model: Vec3,
     /// The light for Q14 normals: `L` in Q15, and the ambient and diffuse weights in Q15.
     light_q: ([i32; 3], i64, i64),
-    cache: Option<&'c mut [CachedVertex]>,
+    pub(crate) cache: Option<&'c mut [CachedVertex]>,
     stats: FrameStats,
     counted: bool,
 }
@@ -205,9 +215,14 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             options,
             light_model,
             light_q: (
-                [light_model.x, light_model.y, light_model.z].map(|c| crate::fixed::round_f32(c * 32768.0)),
-                i64::from(crate::fixed::round_f32(options.light.ambient.clamp(-2.0, 2.0) * 32768.0)),
-                i64::from(crate::fixed::round_f32(options.light.diffuse.clamp(-2.0, 2.0) * 32768.0)),
+                [light_model.x, light_model.y, light_model.z]
+                    .map(|c| crate::fixed::round_f32(c * 32768.0)),
+                i64::from(crate::fixed::round_f32(
+                    options.light.ambient.clamp(-2.0, 2.0) * 32768.0,
+                )),
+                i64::from(crate::fixed::round_f32(
+                    options.light.diffuse.clamp(-2.0, 2.0) * 32768.0,
+                )),
             ),
             cache: None,
             stats: FrameStats::default(),
@@ -232,7 +247,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         for (i, (p, slot)) in mesh.positions.iter().zip(cache.iter_mut()).enumerate() {
             let (code, screen) = r.map.project_fixed(&r.fixed.apply(p));
             let light = if gouraud { r.vertex_light(i) } else { ONE };
-            *slot = CachedVertex { screen, code, light };
+            *slot = CachedVertex {
+                screen,
+                code,
+                light,
+            };
         }
         r.cache = Some(cache);
         Ok(r)
@@ -420,6 +439,45 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         Ok(st)
     }
 
+    /// The geometry counts of face `f` alone, drawing nothing.
+    pub(crate) fn count_one(
+        &self,
+        f: usize,
+    ) -> Result<FrameStats, DrawError<core::convert::Infallible>> {
+        let clip = Clip {
+            x0: 0,
+            y0: 0,
+            x1: 0,
+            y1: 0,
+        };
+        self.for_each_triangle(&clip, true, core::iter::once(f), |_, _, _, _| Ok(()))
+    }
+
+    /// Record the geometry counts of a frame (taken once, by its first pass).
+    pub(crate) fn count_geometry(&mut self, geometry: FrameStats) {
+        self.count(geometry);
+    }
+
+    /// [`draw_buffer`](Renderer::draw_buffer) for the listed faces of a cached triangle
+    /// mesh (the band path; geometry already counted).
+    pub(crate) fn draw_listed<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        faces: impl Iterator<Item = usize>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        match self.mesh.faces {
+            Faces::Triangles { indices, materials } => {
+                self.draw_buffer_triangles(frame, zbuf, indices, materials, faces)
+            }
+            Faces::Polygons(_) => self.draw_buffer(frame, zbuf),
+        }
+    }
+
     fn count(&mut self, geometry: FrameStats) {
         if !self.counted {
             let FrameStats {
@@ -485,46 +543,60 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// share one loop instead of handing runs to a `DrawTarget`. Flat-coloured faces
     /// (flat shading, Lambert) take this path; Gouraud and dithered materials go through
     /// the buffer's `DrawTarget` runs.
-    pub fn draw_buffer<C>(&mut self, frame: &mut ColorBuffer<'_, C>, zbuf: &mut ZBuffer<'_>) -> Result<(), Error>
+    pub fn draw_buffer<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), Error>
     where
         C: PixelColor,
         M: Material<C>,
     {
         let fast = !M::DITHERED && matches!(self.options.shading, Shading::Flat | Shading::Lambert);
-        if let (true, Some(_), Faces::Triangles { indices, materials }) = (fast, &self.cache, self.mesh.faces) {
-            return self.draw_buffer_triangles(frame, zbuf, indices, materials);
+        if let (true, Some(_), Faces::Triangles { indices, materials }) =
+            (fast, &self.cache, self.mesh.faces)
+        {
+            return self.draw_buffer_triangles(frame, zbuf, indices, materials, 0..indices.len());
         }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
         let shading = self.options.shading;
         let first = !self.counted;
-        let geometry = self.for_each_triangle::<core::convert::Infallible>(
-            &clip,
-            first,
-            0..self.mesh.face_count(),
-            |f, mat, tri, lights| {
-                let s = match shading {
-                    Shading::Flat if !M::DITHERED => fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(ONE, 0, 0)),
-                    Shading::Lambert if !M::DITHERED => {
-                        fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(self.face_light(f), 0, 0))
-                    }
-                    _ => {
-                        let lights = match shading {
-                            Shading::Flat => [ONE; 3],
-                            Shading::Lambert => [self.face_light(f); 3],
-                            Shading::Gouraud => lights,
-                        };
-                        shade_triangle(frame, Some(&mut *zbuf), &clip, tri, mat, lights).map_err(DrawError::Target)?
-                    }
-                };
-                pixels.add_pixels(s);
-                Ok(())
-            },
-        )
-        .map_err(|e| match e {
-            DrawError::Input(e) => e,
-            DrawError::Target(never) => match never {},
-        })?;
+        let geometry = self
+            .for_each_triangle::<core::convert::Infallible>(
+                &clip,
+                first,
+                0..self.mesh.face_count(),
+                |f, mat, tri, lights| {
+                    let s = match shading {
+                        Shading::Flat if !M::DITHERED => {
+                            fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(ONE, 0, 0))
+                        }
+                        Shading::Lambert if !M::DITHERED => fill_flat_buffered(
+                            frame,
+                            zbuf,
+                            &clip,
+                            tri,
+                            mat.shade(self.face_light(f), 0, 0),
+                        ),
+                        _ => {
+                            let lights = match shading {
+                                Shading::Flat => [ONE; 3],
+                                Shading::Lambert => [self.face_light(f); 3],
+                                Shading::Gouraud => lights,
+                            };
+                            shade_triangle(frame, Some(&mut *zbuf), &clip, tri, mat, lights)
+                                .map_err(DrawError::Target)?
+                        }
+                    };
+                    pixels.add_pixels(s);
+                    Ok(())
+                },
+            )
+            .map_err(|e| match e {
+                DrawError::Input(e) => e,
+                DrawError::Target(never) => match never {},
+            })?;
         self.count(geometry);
         self.stats.pixels_tested += pixels.pixels_tested;
         self.stats.pixels_written += pixels.pixels_written;
@@ -541,6 +613,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         zbuf: &mut ZBuffer<'_>,
         indices: &'m [[u16; 3]],
         materials: crate::mesh::Materials<'m, M>,
+        faces: impl Iterator<Item = usize>,
     ) -> Result<(), Error>
     where
         C: PixelColor,
@@ -560,18 +633,29 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let Some(cache) = self.cache.as_deref() else {
             return Ok(());
         };
-        for (f, t) in indices.iter().enumerate() {
-            let get = |i: u16| cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange { face: f, index: usize::from(i) });
+        for f in faces {
+            let Some(t) = indices.get(f) else { continue };
+            let get = |i: u16| {
+                cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
+                    face: f,
+                    index: usize::from(i),
+                })
+            };
             let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
             if a.code | b.code | c.code != 0 {
                 // Outside or across a clip plane: the general path (rare).
                 let mut more = SpanStats::default();
                 let g = self
-                    .for_each_triangle::<core::convert::Infallible>(&clip, first, core::iter::once(f), |f, mat, tri, _| {
-                        let i = if lambert { self.face_light(f) } else { ONE };
-                        more += fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(i, 0, 0));
-                        Ok(())
-                    })
+                    .for_each_triangle::<core::convert::Infallible>(
+                        &clip,
+                        first,
+                        core::iter::once(f),
+                        |f, mat, tri, _| {
+                            let i = if lambert { self.face_light(f) } else { ONE };
+                            more += fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(i, 0, 0));
+                            Ok(())
+                        },
+                    )
                     .map_err(|e| match e {
                         DrawError::Input(e) => e,
                         DrawError::Target(never) => match never {},
@@ -604,7 +688,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 None => {
                     let m = match materials {
                         crate::mesh::Materials::Uniform(m) => m,
-                        crate::mesh::Materials::PerFace(ms) => *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?,
+                        crate::mesh::Materials::PerFace(ms) => {
+                            *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?
+                        }
                     };
                     m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0)
                 }

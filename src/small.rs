@@ -42,8 +42,14 @@ pub(crate) fn fill_small<C: Copy>(
     pass: impl Fn(u16, u16) -> bool + Copy,
 ) -> Option<(u32, u32)> {
     let [p0, p1, p2] = tri;
-    let (xmin, xmax) = (p0.x().min(p1.x()).min(p2.x()), p0.x().max(p1.x()).max(p2.x()));
-    let (ymin, ymax) = (p0.y().min(p1.y()).min(p2.y()), p0.y().max(p1.y()).max(p2.y()));
+    let (xmin, xmax) = (
+        p0.x().min(p1.x()).min(p2.x()),
+        p0.x().max(p1.x()).max(p2.x()),
+    );
+    let (ymin, ymax) = (
+        p0.y().min(p1.y()).min(p2.y()),
+        p0.y().max(p1.y()).max(p2.y()),
+    );
     if xmax - xmin >= SMALL || ymax - ymin >= SMALL {
         return None;
     }
@@ -54,15 +60,22 @@ pub(crate) fn fill_small<C: Copy>(
     if area == 0 {
         return Some((0, 0));
     }
-    let (dz1, dz2) = (i64::from(p1.z()) - i64::from(p0.z()), i64::from(p2.z()) - i64::from(p0.z()));
+    let (dz1, dz2) = (
+        i64::from(p1.z()) - i64::from(p0.z()),
+        i64::from(p2.z()) - i64::from(p0.z()),
+    );
     let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
     let bb = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
     let sx = i32::try_from(div_floor(a * i64::from(SUBPIXEL), i64::from(area))).ok()?;
     let sy = i32::try_from(div_floor(bb * i64::from(SUBPIXEL), i64::from(area))).ok()?;
     let half = i64::from(SUBPIXEL / 2);
-    let off = i64::from(sx) * (half - i64::from(p0.x())) + i64::from(sy) * (half - i64::from(p0.y()));
+    let off =
+        i64::from(sx) * (half - i64::from(p0.x())) + i64::from(sy) * (half - i64::from(p0.y()));
     let z00 = i64::from(p0.z()) + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
-    let (zlo, zhi) = (p0.z().min(p1.z()).min(p2.z()), p0.z().max(p1.z()).max(p2.z()));
+    let (zlo, zhi) = (
+        p0.z().min(p1.z()).min(p2.z()),
+        p0.z().max(p1.z()).max(p2.z()),
+    );
     let depth = Depth {
         z00: z00 as u32, // modulo 2³², on purpose
         sx: sx as u32,
@@ -73,7 +86,11 @@ pub(crate) fn fill_small<C: Copy>(
 
     // Vertices top to bottom, around the local origin (ox, oy).
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
-    let mut v = [(p0.x() - ox, p0.y() - oy), (p1.x() - ox, p1.y() - oy), (p2.x() - ox, p2.y() - oy)];
+    let mut v = [
+        (p0.x() - ox, p0.y() - oy),
+        (p1.x() - ox, p1.y() - oy),
+        (p2.x() - ox, p2.y() - oy),
+    ];
     if v[1].1 < v[0].1 {
         v.swap(0, 1);
     }
@@ -103,14 +120,44 @@ pub(crate) fn fill_small<C: Copy>(
     let upper_end = mid.min(end);
     if start < upper_end {
         let mut short = edge(v0, v1, start);
-        let (l, r) = if mid_right { (&mut long, &mut short) } else { (&mut short, &mut long) };
-        rows(b, l, r, start, upper_end, depth, color, write, pass, &mut counts);
+        let (l, r) = if mid_right {
+            (&mut long, &mut short)
+        } else {
+            (&mut short, &mut long)
+        };
+        rows(
+            b,
+            l,
+            r,
+            start,
+            upper_end,
+            depth,
+            color,
+            write,
+            pass,
+            &mut counts,
+        );
     }
     let lower_start = mid.max(start);
     if lower_start < end {
         let mut short = edge(v1, v2, lower_start);
-        let (l, r) = if mid_right { (&mut long, &mut short) } else { (&mut short, &mut long) };
-        rows(b, l, r, lower_start, end, depth, color, write, pass, &mut counts);
+        let (l, r) = if mid_right {
+            (&mut long, &mut short)
+        } else {
+            (&mut short, &mut long)
+        };
+        rows(
+            b,
+            l,
+            r,
+            lower_start,
+            end,
+            depth,
+            color,
+            write,
+            pass,
+            &mut counts,
+        );
     }
     Some(counts)
 }
@@ -138,7 +185,9 @@ fn rows<C: Copy>(
         left.advance();
         right.advance();
         if xa < xb {
-            let acc = row_z.wrapping_add((xa as u32).wrapping_mul(d.sx)).clamp(d.lo, d.hi);
+            let acc = row_z
+                .wrapping_add((xa as u32).wrapping_mul(d.sx))
+                .clamp(d.lo, d.hi);
             let (s, e) = (base + xa as usize, base + xb as usize);
             if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
                 let n = (xb - xa) as u32;

@@ -434,7 +434,10 @@ fn draw_buffer_gives_the_same_pixels_as_draw() {
     ] {
         let xf = camera(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), 60.0)
             .with_model(Mat4::rotation_y(radians(yaw)) * bunny.fit);
-        let opts = RenderOptions { shading, ..Default::default() };
+        let opts = RenderOptions {
+            shading,
+            ..Default::default()
+        };
         let run = |buffered: bool| {
             let mut pixels = vec![Rgb565::BLACK; (W * H) as usize];
             let mut depth = vec![0u16; (W * H) as usize];
@@ -442,7 +445,11 @@ fn draw_buffer_gives_the_same_pixels_as_draw() {
             {
                 let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
                 let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
-                zbuf.fill(if test == zraster::DepthTest::Greater { 0 } else { u16::MAX });
+                zbuf.fill(if test == zraster::DepthTest::Greater {
+                    0
+                } else {
+                    u16::MAX
+                });
                 zbuf.set_test(test);
                 let mut r = Renderer::new(&mesh, &xf, opts).unwrap();
                 if buffered {
@@ -461,4 +468,85 @@ fn draw_buffer_gives_the_same_pixels_as_draw() {
         assert_eq!((s1.pixels_written, s1.drawn), (s2.pixels_written, s2.drawn));
         assert!(s1.pixels_written > 500);
     }
+}
+
+#[test]
+fn banded_drawing_is_pixel_identical_with_and_without_bins() {
+    let bunny = scenes::Bunny::load();
+    let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
+    let (w, h) = (96u32, 70u32);
+    let xf = Transform::perspective(
+        Vec3::new(0.0, 0.0, 1.6),
+        Vec3::default(),
+        60.0,
+        0.1,
+        10.0,
+        Viewport::new(w, h).unwrap(),
+    )
+    .unwrap()
+    .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
+    let opts = RenderOptions {
+        shading: Shading::Lambert,
+        ..Default::default()
+    };
+    let mut cache = vec![CachedVertex::EMPTY; bunny.positions.len()];
+    // The whole frame at once.
+    let mut full = vec![Rgb565::BLACK; (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    let full_stats = {
+        let mut frame = ColorBuffer::new(&mut full, w, h).unwrap();
+        let mut zbuf = ZBuffer::new(&mut depth, w, h).unwrap();
+        zbuf.clear();
+        let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        r.stats()
+    };
+    for rows in [1, 7, 16, h] {
+        for binned in [false, true] {
+            let mut out = vec![Rgb565::BLUE; (w * h) as usize];
+            let mut cb = vec![Rgb565::BLACK; (w * rows) as usize];
+            let mut zb = vec![0u16; (w * rows) as usize];
+            let n = if binned {
+                zraster::BandBuffers::<Rgb565>::bins_needed(bunny.indices.len(), h, rows)
+            } else {
+                0
+            };
+            let mut bins = vec![0u16; n];
+            let stats = {
+                let mut display = ColorBuffer::new(&mut out, w, h).unwrap();
+                let mut bands =
+                    zraster::BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
+                let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+                r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+                    .unwrap();
+                r.stats()
+            };
+            let what = format!("rows {rows}, binned {binned}");
+            assert_same(&out, &full, &what);
+            assert_eq!(
+                (stats.triangles_in, stats.culled, stats.drawn),
+                (full_stats.triangles_in, full_stats.culled, full_stats.drawn),
+                "{what}: {stats:?} vs {full_stats:?}"
+            );
+            // Coverage does not depend on the order triangles are drawn in; how often a
+            // pixel is overwritten does (bins change the order).
+            assert_eq!(stats.pixels_tested, full_stats.pixels_tested, "{what}");
+            if !binned {
+                assert_eq!(stats.pixels_written, full_stats.pixels_written, "{what}");
+            }
+        }
+    }
+    // Wrong sizes are errors.
+    let (mut c, mut z, mut b) = (vec![Rgb565::BLACK; 10], vec![0u16; 10], vec![0u16; 0]);
+    assert_eq!(
+        zraster::BandBuffers::new(&mut c, &mut z, 4, 3, 9, &mut b).err(),
+        Some(Error::BufferTooSmall {
+            needed: 12,
+            got: 10
+        })
+    );
+    assert_eq!(
+        zraster::BandBuffers::new(&mut c, &mut z, 0, 3, 9, &mut b).err(),
+        Some(Error::ZeroSize)
+    );
 }

@@ -20,7 +20,7 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{Mesh, CUBE},
     shade::Shading,
-    CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
+    BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
 };
 
 const W: u32 = 320;
@@ -178,17 +178,8 @@ fn main() -> ! {
     let (band_pixels, _) = pixels_band();
     let (_, banded) = measure(|| {
         let mut renderer = Renderer::with_cache(&mesh, &xf, opts, cache).unwrap();
-        let mut y = 0;
-        while y < H {
-            let n = BAND.min(H - y);
-            let mut band = ColorBuffer::new_band(&mut band_pixels[..], W, n, y as i32).unwrap();
-            let mut bz = ZBuffer::new_band(&mut depth[..(W * n) as usize], W, n, y as i32).unwrap();
-            band.clear(Rgb565::BLACK).unwrap();
-            bz.clear();
-            renderer.draw_buffer(&mut band, &mut bz).unwrap();
-            band.flush(&mut frame).unwrap();
-            y += n;
-        }
+        let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, bins_band()).unwrap();
+        renderer.draw_banded(&mut frame, &mut bands, Rgb565::BLACK).unwrap();
     });
     let banded_sum = checksum(frame.as_slice());
     hprintln!("bunny-320 banded-16: total {} checksum {:08x} (same picture: {})", banded, banded_sum, banded_sum == sum);
@@ -215,6 +206,13 @@ fn main() -> ! {
 }
 
 static mut BAND_PIXELS: [Rgb565; (W * BAND) as usize] = [Rgb565::BLACK; (W * BAND) as usize];
+const BINS: usize = bunny::BUNNY_INDICES.len().div_ceil(2) + (H / BAND) as usize + 3 + bunny::BUNNY_INDICES.len();
+static mut BINS_BAND: [u16; BINS] = [0; BINS];
+
+fn bins_band() -> &'static mut [u16] {
+    // SAFETY: borrowed once.
+    unsafe { &mut *addr_of_mut!(BINS_BAND) }
+}
 
 fn pixels_band() -> (&'static mut [Rgb565], ()) {
     // SAFETY: borrowed once.
