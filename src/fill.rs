@@ -140,12 +140,12 @@ where
         i64::from(*intensity.iter().min().unwrap_or(&0)) << 16,
         i64::from(*intensity.iter().max().unwrap_or(&0)) << 16,
     );
-    let step = plane.step_x();
+    let step = plane.step_x_i64();
     depth_runs(zbuf, tri, clip, |y, x0, x1| {
         let start = plane.at_pixel(x0, y).clamp(lo, hi) + (1 << 15);
         let colors = (x0..x1).scan(start, |acc, x| {
             let i = (*acc >> 16).clamp(0, 65535) as u16;
-            *acc += i64::from(step);
+            *acc = acc.saturating_add(step);
             Some(material.shade(i, x, y))
         });
         target.fill_contiguous(&run_rect(y, x0, x1), colors)

@@ -240,8 +240,21 @@ impl Plane {
         if self.exact {
             self.value_at(cx, cy)
         } else {
-            let d = self.step_x * i64::from(cx - self.x0) + self.step_y * i64::from(cy - self.y0);
-            self.v0 + (d >> SUBPIXEL_BITS)
+            // In 128 bits: a sliver's slopes can reach 2⁵⁰ and more.
+            let d = i128::from(self.step_x) * i128::from(cx - self.x0) + i128::from(self.step_y) * i128::from(cy - self.y0);
+            let v = i128::from(self.v0) + (d >> SUBPIXEL_BITS);
+            v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+        }
+    }
+
+    /// Change per pixel along x, 16.16, as a full `i64` (saturated).
+    #[inline]
+    pub(crate) fn step_x_i64(&self) -> i64 {
+        if self.exact {
+            let s = div_floor_wide(i128::from(self.a) * i128::from(SUBPIXEL), i128::from(self.area2));
+            s.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
+        } else {
+            self.step_x
         }
     }
 
@@ -276,6 +289,27 @@ impl Plane {
 /// [`crate::fixed`] for why the accumulator never wraps).
 pub(crate) const DEPTH_BIAS: u32 = 1 << 15;
 
+/// The biased plane value at the centre of pixel (0, 0), modulo 2³², for the fast form
+/// `v0 + ⌊(sx·(X − x0) + sy·(Y − y0)) / 16⌋` with X = 16px + 8, Y = 16py + 8.
+///
+/// Split `x0 = 16·xi + xf`: the floor then only involves `sx·(8 − xf)` (below 2⁵⁵ for
+/// any slope a triangle in the guard band can have), and the whole-pixel parts
+/// `−sx·xi − sy·yi` are exact in wrapping arithmetic, which is all a value modulo 2³²
+/// needs. Steep slopes (a sliver's can exceed 2³²) are fine: each span then has at most
+/// one pixel, and stepping modulo 2³² stays exact.
+#[inline(always)]
+pub(crate) fn plane_origin(p0: &ScreenVertex, sx: i64, sy: i64) -> u32 {
+    let (xi, xf) = (p0.x >> SUBPIXEL_BITS, p0.x & (SUBPIXEL - 1));
+    let (yi, yf) = (p0.y >> SUBPIXEL_BITS, p0.y & (SUBPIXEL - 1));
+    let half = SUBPIXEL / 2;
+    let frac = (i128::from(sx) * i128::from(half - xf) + i128::from(sy) * i128::from(half - yf)) >> SUBPIXEL_BITS;
+    (frac as u32)
+        .wrapping_add(p0.z)
+        .wrapping_sub((sx as u32).wrapping_mul(xi as u32))
+        .wrapping_sub((sy as u32).wrapping_mul(yi as u32))
+        .wrapping_add(DEPTH_BIAS)
+}
+
 /// Depth at the start of each row of a triangle, in the pixel loop's biased form.
 ///
 /// For the usual triangle (extent within 4096 pixels, slopes within `i32`) this is the
@@ -302,6 +336,16 @@ impl DepthRows {
     pub(crate) fn new(tri: &[ScreenVertex; 3], setup: &Setup) -> Option<(DepthRows, u32)> {
         let zs = [tri[0].z, tri[1].z, tri[2].z];
         let (lo, hi) = (zs[0].min(zs[1]).min(zs[2]), zs[0].max(zs[1]).max(zs[2]));
+        let fast = |sx: i64, sy: i64| {
+            let rows = DepthRows::Fast {
+                z00: plane_origin(&tri[0], sx, sy),
+                sx: sx as u32, // modulo 2³², on purpose
+                sy: sy as u32,
+                lo: lo + DEPTH_BIAS,
+                hi: hi + DEPTH_BIAS,
+            };
+            Some((rows, sx as u32))
+        };
         if setup.small {
             // Extents below 2¹³: the area and the position products fit i32, the plane
             // numerators (|Δz| < 2³², |Δy| < 2¹³) fit i64, and divisions by a small
@@ -313,56 +357,17 @@ impl DepthRows {
             if area == 0 {
                 return None;
             }
-            let (dz1, dz2) = (
-                i64::from(p1.z) - i64::from(p0.z),
-                i64::from(p2.z) - i64::from(p0.z),
-            );
+            let (dz1, dz2) = (i64::from(p1.z) - i64::from(p0.z), i64::from(p2.z) - i64::from(p0.z));
             let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
             let b = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
-            let sx = div_floor(a * i64::from(SUBPIXEL), area);
-            let sy = div_floor(b * i64::from(SUBPIXEL), area);
-            if let (Ok(sx32), Ok(sy32)) = (i32::try_from(sx), i32::try_from(sy)) {
-                let half = i64::from(SUBPIXEL / 2);
-                let off = sx * (half - i64::from(p0.x)) + sy * (half - i64::from(p0.y));
-                let z00 = i64::from(p0.z) + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
-                let rows = DepthRows::Fast {
-                    z00: z00 as u32, // modulo 2³², on purpose
-                    sx: sx32 as u32,
-                    sy: sy32 as u32,
-                    lo: lo + DEPTH_BIAS,
-                    hi: hi + DEPTH_BIAS,
-                };
-                return Some((rows, sx32 as u32));
-            }
+            return fast(div_floor(a * i64::from(SUBPIXEL), area), div_floor(b * i64::from(SUBPIXEL), area));
         }
         let plane = Plane::new(tri, zs)?;
-        let dz = plane.step_x() as u32;
-        if let (false, Ok(sx), Ok(sy)) = (
-            plane.exact,
-            i32::try_from(plane.step_x),
-            i32::try_from(plane.step_y),
-        ) {
-            let half = i64::from(SUBPIXEL / 2);
-            let off = plane.step_x * (half - i64::from(plane.x0))
-                + plane.step_y * (half - i64::from(plane.y0));
-            let z00 = plane.v0 + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
-            let rows = DepthRows::Fast {
-                z00: z00 as u32, // modulo 2³², on purpose
-                sx: sx as u32,
-                sy: sy as u32,
-                lo: lo + DEPTH_BIAS,
-                hi: hi + DEPTH_BIAS,
-            };
-            return Some((rows, dz));
+        if !plane.exact {
+            return fast(plane.step_x, plane.step_y);
         }
-        Some((
-            DepthRows::Exact {
-                plane,
-                lo: i64::from(lo),
-                hi: i64::from(hi),
-            },
-            dz,
-        ))
+        let dz = plane.step_x_i64() as u32;
+        Some((DepthRows::Exact { plane, lo: i64::from(lo), hi: i64::from(hi) }, dz))
     }
 
     /// The biased accumulator at the centre of pixel (x, y), clamped to the vertices'

@@ -8,7 +8,7 @@
 //! the triangle walked by two plain loops.
 
 use crate::fixed::{div_floor, SUBPIXEL, SUBPIXEL_BITS};
-use crate::raster::{Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
+use crate::raster::{plane_origin, Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
 
 /// Colour and depth rows of the same geometry, and the pixels drawing may touch.
 pub(crate) struct Buffers<'z, 'c, C> {
@@ -30,9 +30,8 @@ struct Depth {
     hi: u32,
 }
 
-/// Fill `tri` if it is small (extents below 512 pixels) and its depth slopes fit
-/// `i32`; `None` means "not for this path", and nothing was drawn. Otherwise returns
-/// (pixels tested, pixels written).
+/// Fill `tri` if it is small (extents below 512 pixels); `None` means "not for this
+/// path", and nothing was drawn. Otherwise returns (pixels tested, pixels written).
 #[inline(always)]
 pub(crate) fn fill_small<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
@@ -66,19 +65,12 @@ pub(crate) fn fill_small<C: Copy>(
     );
     let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
     let bb = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
-    let sx = i32::try_from(div_floor(a * i64::from(SUBPIXEL), i64::from(area))).ok()?;
-    let sy = i32::try_from(div_floor(bb * i64::from(SUBPIXEL), i64::from(area))).ok()?;
-    let half = i64::from(SUBPIXEL / 2);
-    let off =
-        i64::from(sx) * (half - i64::from(p0.x())) + i64::from(sy) * (half - i64::from(p0.y()));
-    let z00 = i64::from(p0.z()) + (off >> SUBPIXEL_BITS) + i64::from(DEPTH_BIAS);
-    let (zlo, zhi) = (
-        p0.z().min(p1.z()).min(p2.z()),
-        p0.z().max(p1.z()).max(p2.z()),
-    );
+    let sx = div_floor(a * i64::from(SUBPIXEL), i64::from(area));
+    let sy = div_floor(bb * i64::from(SUBPIXEL), i64::from(area));
+    let (zlo, zhi) = (p0.z().min(p1.z()).min(p2.z()), p0.z().max(p1.z()).max(p2.z()));
     let depth = Depth {
-        z00: z00 as u32, // modulo 2³², on purpose
-        sx: sx as u32,
+        z00: plane_origin(p0, sx, sy),
+        sx: sx as u32, // modulo 2³², on purpose (see plane_origin)
         sy: sy as u32,
         lo: zlo + DEPTH_BIAS,
         hi: zhi + DEPTH_BIAS,

@@ -1,0 +1,224 @@
+//! Fuzz harnesses: arbitrary bytes into zraster's public API. Shared by the cargo-fuzz
+//! targets (`fuzz/fuzz_targets/`) and by `tests/fuzz_corpus.rs`, which replays the
+//! committed corpus in `cargo test` so CI checks the regressions on stable Rust.
+//!
+//! Every harness asserts what must hold whatever the input: no panic, nothing drawn
+//! outside the target (`MockDisplay` panics on that), and the invariants noted below.
+#![allow(dead_code)]
+
+use embedded_graphics::{
+    mock_display::MockDisplay,
+    pixelcolor::{BinaryColor, Rgb565, Rgb888},
+    prelude::*,
+};
+use zraster::{
+    camera::{Transform, Viewport},
+    math::{Mat4, Vec3},
+    mesh::{Face, Mesh},
+    shade::{Light, Shading},
+    BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DepthTest, RenderOptions, Renderer,
+    ScreenVertex, ZBuffer,
+};
+
+/// Reads numbers off the input, yielding zeros once it runs out.
+pub struct Bytes<'a>(pub &'a [u8]);
+
+impl Bytes<'_> {
+    pub fn u8(&mut self) -> u8 {
+        match self.0.split_first() {
+            Some((&b, rest)) => {
+                self.0 = rest;
+                b
+            }
+            None => 0,
+        }
+    }
+    pub fn u16(&mut self) -> u16 {
+        u16::from_le_bytes([self.u8(), self.u8()])
+    }
+    pub fn u32(&mut self) -> u32 {
+        u32::from_le_bytes([self.u8(), self.u8(), self.u8(), self.u8()])
+    }
+    pub fn i32(&mut self) -> i32 {
+        self.u32() as i32
+    }
+    /// Any f32 bit pattern: NaN, ±∞, subnormals included.
+    pub fn f32(&mut self) -> f32 {
+        f32::from_bits(self.u32())
+    }
+    /// Mostly ordinary floats, sometimes raw bits.
+    pub fn float(&mut self) -> f32 {
+        match self.u8() % 8 {
+            0 => self.f32(),
+            _ => f32::from(self.u16() as i16) / 64.0,
+        }
+    }
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+fn test_of(b: u8) -> DepthTest {
+    [DepthTest::Less, DepthTest::LessEqual, DepthTest::Greater, DepthTest::Equal, DepthTest::Always, DepthTest::Never]
+        [usize::from(b % 6)]
+}
+
+/// Screen-space triangles into a Z-buffer band and a 64×64 mock display.
+pub fn raster(data: &[u8]) {
+    let mut r = Bytes(data);
+    let width = u32::from(r.u8() % 70);
+    let rows = u32::from(r.u8() % 70);
+    let first_row = i32::from(r.u8() as i8);
+    let test = test_of(r.u8());
+    let write = r.u8() & 1 == 0;
+    let mut depth = vec![0u16; usize::from(r.u16() % 5000)];
+    let mut zbuf = match ZBuffer::new_band(&mut depth, width, rows, first_row) {
+        Ok(z) => z,
+        Err(_) => {
+            // Rejected sizes must be the ones that are wrong.
+            assert!(width == 0 || rows == 0 || (width * rows) as usize > depth.len());
+            return;
+        }
+    };
+    zbuf.clear();
+    zbuf.set_test(test);
+    zbuf.set_write(write);
+    let mut display = MockDisplay::<Rgb565>::new();
+    display.set_allow_overdraw(true);
+    display.set_allow_out_of_bounds_drawing(false);
+    while !r.is_empty() {
+        let kind = r.u8();
+        let v = |r: &mut Bytes| match kind % 3 {
+            0 => ScreenVertex::new(r.i32() % (1 << 25), r.i32() % (1 << 25), r.u32()),
+            1 => ScreenVertex::from_f32(r.f32(), r.f32(), r.f32()),
+            _ => ScreenVertex::from_pixels(i32::from(r.u8() as i8), i32::from(r.u8() as i8), r.u16()),
+        };
+        let (a, b, c) = (v(&mut r), v(&mut r), v(&mut r));
+        let (Ok(a), Ok(b), Ok(c)) = (a, b, c) else { continue };
+        let before: Vec<u16> = zbuf.as_slice().to_vec();
+        let color = Rgb565::new(r.u8() & 31, r.u8() & 63, r.u8() & 31);
+        let stats = if kind & 0x80 == 0 {
+            zraster::fill_triangle(&mut display, &mut zbuf, &[a, b, c], color).unwrap()
+        } else {
+            let i = [r.u16(), r.u16(), r.u16()];
+            zraster::fill_triangle_shaded(&mut display, &mut zbuf, &[a, b, c], Rgb888::new(200, 100, 50), i).unwrap()
+        };
+        assert!(stats.pixels_written <= stats.pixels_tested);
+        // With the Less test, stored depths only ever come nearer.
+        if test == DepthTest::Less {
+            assert!(zbuf.as_slice().iter().zip(&before).all(|(n, o)| n <= o));
+        }
+        if !write {
+            assert_eq!(zbuf.as_slice(), &before[..]);
+        }
+    }
+}
+
+/// Build a mesh, a transform and options from the bytes and draw them every way.
+pub fn pipeline(data: &[u8]) {
+    let mut r = Bytes(data);
+    let nv = usize::from(r.u8() % 40);
+    let positions: Vec<[i16; 3]> = (0..nv).map(|_| [r.u16() as i16, r.u16() as i16, r.u16() as i16]).collect();
+    let nf = usize::from(r.u8() % 40);
+    let mut index_store: Vec<Vec<u16>> = Vec::new();
+    for _ in 0..nf {
+        let n = usize::from(r.u8() % 6);
+        // Indices mostly in range, sometimes not.
+        index_store.push((0..n).map(|_| r.u16() % (nv as u16 + 2).max(1)).collect());
+    }
+    let faces: Vec<Face<'_, Rgb888>> = index_store
+        .iter()
+        .map(|v| Face { vertices: v, material: Rgb888::new(r.u8(), r.u8(), r.u8()) })
+        .collect();
+    let scale = if r.u8() % 4 == 0 { r.f32() } else { 1.0 / 4096.0 };
+    let mesh = Mesh::new(&positions, scale, &faces);
+    let w = u32::from(r.u8() % 64);
+    let h = u32::from(r.u8() % 64);
+    let Ok(vp) = Viewport::new(w, h) else { return };
+    let eye = Vec3::new(r.float(), r.float(), r.float());
+    let target = Vec3::new(r.float(), r.float(), r.float());
+    let (fov, near, far) = (r.float(), r.float(), r.float());
+    let Ok(mut xf) = Transform::perspective(eye, target, fov, near, far, vp) else { return };
+    if r.u8() % 3 == 0 {
+        let mut m = Mat4::IDENTITY;
+        for row in m.m.iter_mut() {
+            for v in row.iter_mut() {
+                *v = r.float();
+            }
+        }
+        xf.model = m;
+    }
+    let options = RenderOptions {
+        cull: [Cull::Back, Cull::Front, Cull::None][usize::from(r.u8() % 3)],
+        shading: [Shading::Flat, Shading::Lambert, Shading::Gouraud][usize::from(r.u8() % 3)],
+        light: Light { direction: Vec3::new(r.float(), r.float(), r.float()), ambient: r.float(), diffuse: r.float() },
+    };
+    let mode = r.u8();
+    let band = u32::from(r.u8() % 16) + 1;
+    let n = (w * h) as usize;
+    let mut display = MockDisplay::<Rgb565>::new();
+    display.set_allow_overdraw(true);
+    let mut depth = vec![0u16; n];
+    let Ok(mut zbuf) = ZBuffer::new(&mut depth, w, h) else { return };
+    zbuf.clear();
+    let mut cache = vec![CachedVertex::EMPTY; nv];
+    let renderer = if mode & 0x10 == 0 {
+        Renderer::new(&mesh, &xf, options)
+    } else {
+        Renderer::with_cache(&mesh, &xf, options, &mut cache)
+    };
+    let Ok(mut renderer) = renderer else { return };
+    let _ = match mode % 6 {
+        0 => renderer.draw(&mut display, &mut zbuf),
+        1 => renderer.draw_hidden_line(&mut display, &mut zbuf, Rgb565::WHITE),
+        2 => renderer.draw_wireframe(&mut display, Rgb565::WHITE),
+        3 => {
+            let mut sort = DepthSort::<16>::new();
+            renderer.draw_depth_sorted(&mut display, &mut sort)
+        }
+        4 => {
+            let mut pixels = vec![Rgb565::BLACK; n];
+            let Ok(mut frame) = ColorBuffer::new(&mut pixels, w, h) else { return };
+            let _ = renderer.draw_buffer(&mut frame, &mut zbuf);
+            Ok(())
+        }
+        _ => {
+            let rows = band.min(h);
+            let mut c = vec![Rgb565::BLACK; (w * rows) as usize];
+            let mut z = vec![0u16; (w * rows) as usize];
+            let mut bins = vec![0u16; BandBuffers::<Rgb565>::bins_needed(nf * 4, h, rows)];
+            let Ok(mut bands) = BandBuffers::new(&mut c, &mut z, w, rows, h, &mut bins) else { return };
+            renderer.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+        }
+    };
+    let s = renderer.stats();
+    assert!(s.culled + s.outside <= s.triangles_in + s.clipped * 8);
+}
+
+/// Read the bytes as an OBJ file; when they parse, draw the model on a 48×32 mono
+/// screen.
+pub fn obj(data: &[u8]) {
+    let text = String::from_utf8_lossy(data);
+    let Ok(model) = zraster::obj::parse_obj(&text, |_| Some(String::from_utf8_lossy(data).into_owned())) else {
+        return;
+    };
+    assert!(model.triangles.iter().all(|t| t.vertices.iter().all(|&v| (v as usize) < model.positions.len())));
+    if model.triangles.is_empty() || model.triangles.len() > 2000 {
+        return;
+    }
+    let q = zraster::obj::quantize(&model.positions, true);
+    let indices: Vec<[u16; 3]> = model.triangles.iter().map(|t| t.vertices.map(|v| v as u16)).collect();
+    let mesh = Mesh::triangles(&q.positions, q.scale, &indices, Rgb888::WHITE);
+    let Ok(vp) = Viewport::new(48, 32) else { return };
+    let Ok(xf) = Transform::perspective(Vec3::new(0.0, 0.0, 2.0 * q.scale * 32767.0 + 0.5), Vec3::default(), 60.0, 0.01, 1e4, vp) else {
+        return;
+    };
+    let mut display = MockDisplay::<BinaryColor>::new();
+    display.set_allow_overdraw(true);
+    let mut depth = vec![0u16; 48 * 32];
+    let Ok(mut zbuf) = ZBuffer::new(&mut depth, 48, 32) else { return };
+    zbuf.clear();
+    if let Ok(mut r) = Renderer::new(&mesh, &xf, RenderOptions { shading: Shading::Lambert, ..Default::default() }) {
+        let _ = r.draw(&mut display, &mut zbuf);
+    }
+}
