@@ -59,8 +59,14 @@ impl Bytes<'_> {
 }
 
 fn test_of(b: u8) -> DepthTest {
-    [DepthTest::Less, DepthTest::LessEqual, DepthTest::Greater, DepthTest::Equal, DepthTest::Always, DepthTest::Never]
-        [usize::from(b % 6)]
+    [
+        DepthTest::Less,
+        DepthTest::LessEqual,
+        DepthTest::Greater,
+        DepthTest::Equal,
+        DepthTest::Always,
+        DepthTest::Never,
+    ][usize::from(b % 6)]
 }
 
 /// Screen-space triangles into a Z-buffer band and a 64×64 mock display.
@@ -91,17 +97,28 @@ pub fn raster(data: &[u8]) {
         let v = |r: &mut Bytes| match kind % 3 {
             0 => ScreenVertex::new(r.i32() % (1 << 25), r.i32() % (1 << 25), r.u32()),
             1 => ScreenVertex::from_f32(r.f32(), r.f32(), r.f32()),
-            _ => ScreenVertex::from_pixels(i32::from(r.u8() as i8), i32::from(r.u8() as i8), r.u16()),
+            _ => {
+                ScreenVertex::from_pixels(i32::from(r.u8() as i8), i32::from(r.u8() as i8), r.u16())
+            }
         };
         let (a, b, c) = (v(&mut r), v(&mut r), v(&mut r));
-        let (Ok(a), Ok(b), Ok(c)) = (a, b, c) else { continue };
+        let (Ok(a), Ok(b), Ok(c)) = (a, b, c) else {
+            continue;
+        };
         let before: Vec<u16> = zbuf.as_slice().to_vec();
         let color = Rgb565::new(r.u8() & 31, r.u8() & 63, r.u8() & 31);
         let stats = if kind & 0x80 == 0 {
             zraster::fill_triangle(&mut display, &mut zbuf, &[a, b, c], color).unwrap()
         } else {
             let i = [r.u16(), r.u16(), r.u16()];
-            zraster::fill_triangle_shaded(&mut display, &mut zbuf, &[a, b, c], Rgb888::new(200, 100, 50), i).unwrap()
+            zraster::fill_triangle_shaded(
+                &mut display,
+                &mut zbuf,
+                &[a, b, c],
+                Rgb888::new(200, 100, 50),
+                i,
+            )
+            .unwrap()
         };
         assert!(stats.pixels_written <= stats.pixels_tested);
         // With the Less test, stored depths only ever come nearer.
@@ -118,7 +135,9 @@ pub fn raster(data: &[u8]) {
 pub fn pipeline(data: &[u8]) {
     let mut r = Bytes(data);
     let nv = usize::from(r.u8() % 40);
-    let positions: Vec<[i16; 3]> = (0..nv).map(|_| [r.u16() as i16, r.u16() as i16, r.u16() as i16]).collect();
+    let positions: Vec<[i16; 3]> = (0..nv)
+        .map(|_| [r.u16() as i16, r.u16() as i16, r.u16() as i16])
+        .collect();
     let nf = usize::from(r.u8() % 40);
     let mut index_store: Vec<Vec<u16>> = Vec::new();
     for _ in 0..nf {
@@ -128,9 +147,16 @@ pub fn pipeline(data: &[u8]) {
     }
     let faces: Vec<Face<'_, Rgb888>> = index_store
         .iter()
-        .map(|v| Face { vertices: v, material: Rgb888::new(r.u8(), r.u8(), r.u8()) })
+        .map(|v| Face {
+            vertices: v,
+            material: Rgb888::new(r.u8(), r.u8(), r.u8()),
+        })
         .collect();
-    let scale = if r.u8() % 4 == 0 { r.f32() } else { 1.0 / 4096.0 };
+    let scale = if r.u8() % 4 == 0 {
+        r.f32()
+    } else {
+        1.0 / 4096.0
+    };
     let mesh = Mesh::new(&positions, scale, &faces);
     let w = u32::from(r.u8() % 64);
     let h = u32::from(r.u8() % 64);
@@ -138,7 +164,9 @@ pub fn pipeline(data: &[u8]) {
     let eye = Vec3::new(r.float(), r.float(), r.float());
     let target = Vec3::new(r.float(), r.float(), r.float());
     let (fov, near, far) = (r.float(), r.float(), r.float());
-    let Ok(mut xf) = Transform::perspective(eye, target, fov, near, far, vp) else { return };
+    let Ok(mut xf) = Transform::perspective(eye, target, fov, near, far, vp) else {
+        return;
+    };
     if r.u8() % 3 == 0 {
         let mut m = Mat4::IDENTITY;
         for row in m.m.iter_mut() {
@@ -151,7 +179,11 @@ pub fn pipeline(data: &[u8]) {
     let options = RenderOptions {
         cull: [Cull::Back, Cull::Front, Cull::None][usize::from(r.u8() % 3)],
         shading: [Shading::Flat, Shading::Lambert, Shading::Gouraud][usize::from(r.u8() % 3)],
-        light: Light { direction: Vec3::new(r.float(), r.float(), r.float()), ambient: r.float(), diffuse: r.float() },
+        light: Light {
+            direction: Vec3::new(r.float(), r.float(), r.float()),
+            ambient: r.float(),
+            diffuse: r.float(),
+        },
     };
     let mode = r.u8();
     let band = u32::from(r.u8() % 16) + 1;
@@ -159,7 +191,9 @@ pub fn pipeline(data: &[u8]) {
     let mut display = MockDisplay::<Rgb565>::new();
     display.set_allow_overdraw(true);
     let mut depth = vec![0u16; n];
-    let Ok(mut zbuf) = ZBuffer::new(&mut depth, w, h) else { return };
+    let Ok(mut zbuf) = ZBuffer::new(&mut depth, w, h) else {
+        return;
+    };
     zbuf.clear();
     let mut cache = vec![CachedVertex::EMPTY; nv];
     let renderer = if mode & 0x10 == 0 {
@@ -178,7 +212,9 @@ pub fn pipeline(data: &[u8]) {
         }
         4 => {
             let mut pixels = vec![Rgb565::BLACK; n];
-            let Ok(mut frame) = ColorBuffer::new(&mut pixels, w, h) else { return };
+            let Ok(mut frame) = ColorBuffer::new(&mut pixels, w, h) else {
+                return;
+            };
             let _ = renderer.draw_buffer(&mut frame, &mut zbuf);
             Ok(())
         }
@@ -187,7 +223,9 @@ pub fn pipeline(data: &[u8]) {
             let mut c = vec![Rgb565::BLACK; (w * rows) as usize];
             let mut z = vec![0u16; (w * rows) as usize];
             let mut bins = vec![0u16; BandBuffers::<Rgb565>::bins_needed(nf * 4, h, rows)];
-            let Ok(mut bands) = BandBuffers::new(&mut c, &mut z, w, rows, h, &mut bins) else { return };
+            let Ok(mut bands) = BandBuffers::new(&mut c, &mut z, w, rows, h, &mut bins) else {
+                return;
+            };
             renderer.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
         }
     };
@@ -199,26 +237,53 @@ pub fn pipeline(data: &[u8]) {
 /// screen.
 pub fn obj(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
-    let Ok(model) = zraster::obj::parse_obj(&text, |_| Some(String::from_utf8_lossy(data).into_owned())) else {
+    let Ok(model) =
+        zraster::obj::parse_obj(&text, |_| Some(String::from_utf8_lossy(data).into_owned()))
+    else {
         return;
     };
-    assert!(model.triangles.iter().all(|t| t.vertices.iter().all(|&v| (v as usize) < model.positions.len())));
+    assert!(model.triangles.iter().all(|t| t
+        .vertices
+        .iter()
+        .all(|&v| (v as usize) < model.positions.len())));
     if model.triangles.is_empty() || model.triangles.len() > 2000 {
         return;
     }
     let q = zraster::obj::quantize(&model.positions, true);
-    let indices: Vec<[u16; 3]> = model.triangles.iter().map(|t| t.vertices.map(|v| v as u16)).collect();
+    let indices: Vec<[u16; 3]> = model
+        .triangles
+        .iter()
+        .map(|t| t.vertices.map(|v| v as u16))
+        .collect();
     let mesh = Mesh::triangles(&q.positions, q.scale, &indices, Rgb888::WHITE);
-    let Ok(vp) = Viewport::new(48, 32) else { return };
-    let Ok(xf) = Transform::perspective(Vec3::new(0.0, 0.0, 2.0 * q.scale * 32767.0 + 0.5), Vec3::default(), 60.0, 0.01, 1e4, vp) else {
+    let Ok(vp) = Viewport::new(48, 32) else {
+        return;
+    };
+    let Ok(xf) = Transform::perspective(
+        Vec3::new(0.0, 0.0, 2.0 * q.scale * 32767.0 + 0.5),
+        Vec3::default(),
+        60.0,
+        0.01,
+        1e4,
+        vp,
+    ) else {
         return;
     };
     let mut display = MockDisplay::<BinaryColor>::new();
     display.set_allow_overdraw(true);
     let mut depth = vec![0u16; 48 * 32];
-    let Ok(mut zbuf) = ZBuffer::new(&mut depth, 48, 32) else { return };
+    let Ok(mut zbuf) = ZBuffer::new(&mut depth, 48, 32) else {
+        return;
+    };
     zbuf.clear();
-    if let Ok(mut r) = Renderer::new(&mesh, &xf, RenderOptions { shading: Shading::Lambert, ..Default::default() }) {
+    if let Ok(mut r) = Renderer::new(
+        &mesh,
+        &xf,
+        RenderOptions {
+            shading: Shading::Lambert,
+            ..Default::default()
+        },
+    ) {
         let _ = r.draw(&mut display, &mut zbuf);
     }
 }

@@ -130,18 +130,45 @@ impl Transform {
 }
 
 /// Clip-space coordinates in fixed point (a common power-of-two scale that cancels in
-/// the perspective divide).
-pub(crate) type Clip4 = [i32; 4];
+/// the perspective divide), as two partial sums per row: the value is
+/// `hi · 2¹⁴ + lo`. See [`FixedTransform`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Clip4 {
+    hi: [i32; 4],
+    lo: [i32; 4],
+}
+
+impl Clip4 {
+    /// The four coordinates, exactly (below 2⁴⁵ in magnitude).
+    #[inline]
+    pub(crate) fn wide(&self) -> [i64; 4] {
+        let w = |r: usize| (i64::from(self.hi[r]) << 14) + i64::from(self.lo[r]);
+        [w(0), w(1), w(2), w(3)]
+    }
+
+    /// The four coordinates as `f32`, rounded once: two conversions and a multiply-add
+    /// each, with no 64-bit conversion.
+    #[inline]
+    pub(crate) fn to_f32(&self) -> [f32; 4] {
+        let f = |r: usize| self.hi[r] as f32 * 16384.0 + self.lo[r] as f32;
+        [f(0), f(1), f(2), f(3)]
+    }
+}
 
 /// The model-view-projection matrix with the mesh's position scale folded in, in
-/// fixed point: `clip = M·p + t` for `i16` positions `p`, with every `|M_ij| ≤ 16383`
-/// and every `|t_i| ≤ 2²⁹`, so a row `Σ M_ij·p_j + t_i` is at most
-/// 3·16383·32768 + 2²⁹ < 2³¹: three 16×16-bit multiplies and adds in `i32`, exact —
-/// the M0+'s single-cycle `MULS` suffices.
+/// fixed point, for `i16` positions `p`: `clip = C·p + T` with coefficients `C` of 27
+/// bits (the `f32` matrix's full precision) and `|T| ≤ 2⁴³`.
+///
+/// Each coefficient is split as `C = hi·2¹⁴ + lo` with `|hi| ≤ 2¹³` and `0 ≤ lo < 2¹⁴`
+/// (and `T` likewise, `|T_hi| ≤ 2²⁹`), so a row is two sums of three 16×16-bit products:
+/// `Σ hi·p + T_hi ≤ 3·2¹³·2¹⁵ + 2²⁹ < 2³¹` and `Σ lo·p + T_lo < 3·2¹⁴·2¹⁵ + 2¹⁴ < 2³¹`,
+/// exact in `i32` — the M0+'s single-cycle `MULS` suffices — and together exact to the
+/// matrix's precision. (A single 14-bit coefficient set would put every object's depth
+/// off by a few units, differently for each model matrix.)
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct FixedTransform {
-    m: [[i32; 3]; 4],
-    t: [i32; 4],
+    hi: [[i32; 4]; 4],
+    lo: [[i32; 4]; 4],
 }
 
 impl FixedTransform {
@@ -149,41 +176,53 @@ impl FixedTransform {
         if !mvp.is_finite() || !scale.is_finite() {
             return Err(Error::NotFinite);
         }
-        let mut max_m = 0.0f32;
-        let mut max_t = 0.0f32;
+        let scale = f64::from(scale);
+        let mut max_m = 0.0f64;
+        let mut max_t = 0.0f64;
         for row in &mvp.m {
             for v in &row[..3] {
-                max_m = max_m.max((v * scale).abs());
+                max_m = max_m.max((f64::from(*v) * scale).abs());
             }
-            max_t = max_t.max(row[3].abs());
+            max_t = max_t.max(f64::from(row[3]).abs());
         }
         if !(max_m.is_finite() && max_t.is_finite()) || (max_m == 0.0 && max_t == 0.0) {
             return Err(Error::InvalidParameter(
                 "degenerate or overflowing transform",
             ));
         }
-        // The largest power of two k with max_m·2^k ≤ 16383 and max_t·2^k ≤ 2²⁹.
-        let mut k = 0i32;
+        // The largest power of two k with max_m·2^k ≤ 2²⁷ − 2¹⁴ and max_t·2^k ≤ 2⁴³.
         let limit = |k: i32| {
-            let f = pow2(k);
-            max_m * f <= 16383.0 && max_t * f <= (1u32 << 29) as f32
+            let f = pow2_f64(k);
+            max_m * f <= ((1u64 << 27) - (1 << 14)) as f64 && max_t * f <= (1u64 << 43) as f64
         };
-        while k < 120 && limit(k + 1) {
+        let mut k = 0i32;
+        while k < 1000 && limit(k + 1) {
             k += 1;
         }
-        while k > -120 && !limit(k) {
+        while k > -1000 && !limit(k) {
             k -= 1;
         }
-        let f = pow2(k);
-        let mut out = FixedTransform {
-            m: [[0; 3]; 4],
-            t: [0; 4],
+        let f = pow2_f64(k);
+        let q = |v: f64, max: i64| {
+            let r = v * f;
+            let r = if r >= 0.0 { r + 0.5 } else { r - 0.5 };
+            (r as i64).clamp(-max, max)
         };
-        for ((row, m), t) in mvp.m.iter().zip(&mut out.m).zip(&mut out.t) {
-            for (q, v) in m.iter_mut().zip(row) {
-                *q = round_f32(v * scale * f).clamp(-16383, 16383);
+        let mut out = FixedTransform {
+            hi: [[0; 4]; 4],
+            lo: [[0; 4]; 4],
+        };
+        for (r, row) in mvp.m.iter().enumerate() {
+            for c in 0..4 {
+                let v = if c < 3 {
+                    q(f64::from(row[c]) * scale, 1 << 27)
+                } else {
+                    q(f64::from(row[3]), 1 << 43)
+                };
+                // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
+                out.hi[r][c] = (v >> 14) as i32;
+                out.lo[r][c] = (v & 0x3fff) as i32;
             }
-            *t = round_f32(row[3] * f).clamp(-(1 << 29), 1 << 29);
         }
         Ok(out)
     }
@@ -192,14 +231,27 @@ impl FixedTransform {
     #[inline]
     pub(crate) fn apply(&self, p: &[i16; 3]) -> Clip4 {
         let (x, y, z) = (i32::from(p[0]), i32::from(p[1]), i32::from(p[2]));
-        let row = |r: usize| self.m[r][0] * x + self.m[r][1] * y + self.m[r][2] * z + self.t[r];
-        [row(0), row(1), row(2), row(3)]
+        let row = |m: &[i32; 4]| m[0] * x + m[1] * y + m[2] * z + m[3];
+        Clip4 {
+            hi: [
+                row(&self.hi[0]),
+                row(&self.hi[1]),
+                row(&self.hi[2]),
+                row(&self.hi[3]),
+            ],
+            lo: [
+                row(&self.lo[0]),
+                row(&self.lo[1]),
+                row(&self.lo[2]),
+                row(&self.lo[3]),
+            ],
+        }
     }
 }
 
-/// 2^k as `f32` for |k| ≤ 126.
-fn pow2(k: i32) -> f32 {
-    f32::from_bits(((k.clamp(-126, 127) + 127) as u32) << 23)
+/// 2^k as `f64`.
+fn pow2_f64(k: i32) -> f64 {
+    f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52)
 }
 
 /// How far outside the screen (in screen widths) a vertex may project before the
@@ -249,10 +301,10 @@ pub(crate) fn outcode_of(c: &[f32; 4]) -> u8 {
     o
 }
 
-/// Fixed clip coordinates as `f32` (exact to 24 bits).
+/// Fixed clip coordinates as `f32` (rounded once).
 #[inline]
 pub(crate) fn to_f32(c: &Clip4) -> [f32; 4] {
-    [c[0] as f32, c[1] as f32, c[2] as f32, c[3] as f32]
+    c.to_f32()
 }
 
 /// Screen mapping of a viewport, precomputed.
@@ -284,29 +336,27 @@ impl ScreenMap {
     /// sum could overflow); only points inside are divided by w.
     #[inline]
     pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
-        let [x, y, z, w] = *c;
-        if w < 1 {
-            return (outcode::W, ScreenVertex::ORIGIN);
-        }
-        // w ≥ 1, so −w cannot overflow; x >> 6 compares x with 64·w without forming it
-        // (x slightly past 64·w may pass: the guard band has room for that).
-        let mut code = 0;
+        let [x, y, z, w] = c.wide();
+        let g = w << 6; // GUARD = 64; |w| < 2⁴⁵, no overflow
+                        // Every plane is tested, also behind the eye (w < 1): clipping then cuts at the
+                        // near plane first, well away from w = 0.
+        let mut code = if w < 1 { outcode::W } else { 0 };
         if z < -w {
             code |= outcode::NEAR;
         }
         if z > w {
             code |= outcode::FAR;
         }
-        if (x >> 6) < -w {
+        if x < -g {
             code |= outcode::LEFT;
         }
-        if (x >> 6) > w {
+        if x > g {
             code |= outcode::RIGHT;
         }
-        if (y >> 6) < -w {
+        if y < -g {
             code |= outcode::BOTTOM;
         }
-        if (y >> 6) > w {
+        if y > g {
             code |= outcode::TOP;
         }
         if code != 0 {
@@ -314,10 +364,11 @@ impl ScreenMap {
         }
         // Inside: |x|, |y| < 65·w and |z| ≤ w, so x and y land within ±65·8192·8 < 2²³
         // (no clamp needed) and only z needs clamping against rounding.
-        let inv = 1.0 / w as f32;
-        let sx = x as f32 * inv * self.sx + self.ox;
-        let sy = y as f32 * inv * self.sy + self.oy;
-        let sz = (z as f32 * inv + 1.0) * DEPTH_HALF + 0.5;
+        let [x, y, z, w] = c.to_f32();
+        let inv = 1.0 / w;
+        let sx = x * inv * self.sx + self.ox;
+        let sy = y * inv * self.sy + self.oy;
+        let sz = (z * inv + 1.0) * DEPTH_HALF + 0.5;
         (
             0,
             ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)),
@@ -366,12 +417,12 @@ mod tests {
             let c = mvp.transform_point(pf);
             let sx = (c[0] / c[3] + 1.0) * 160.0 * 16.0;
             let sy = (1.0 - c[1] / c[3]) * 120.0 * 16.0;
-            let v = map.project(&to_f32(&fx.apply(&p))).unwrap();
+            let v = map.project(&fx.apply(&p).to_f32()).unwrap();
             assert!((v.x() as f32 - sx).abs() <= 1.0, "{p:?}: {} vs {sx}", v.x());
             assert!((v.y() as f32 - sy).abs() <= 1.0, "{p:?}: {} vs {sy}", v.y());
             let zw = (c[2] / c[3] + 1.0) * 0.5 * 65535.0 * 65536.0;
             let err = (v.z() as f32 - zw) / 65536.0;
-            assert!(err.abs() < 4.0, "{p:?}: depth");
+            assert!(err.abs() < 0.05, "{p:?}: depth error {err}");
         }
     }
 

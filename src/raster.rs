@@ -241,7 +241,8 @@ impl Plane {
             self.value_at(cx, cy)
         } else {
             // In 128 bits: a sliver's slopes can reach 2⁵⁰ and more.
-            let d = i128::from(self.step_x) * i128::from(cx - self.x0) + i128::from(self.step_y) * i128::from(cy - self.y0);
+            let d = i128::from(self.step_x) * i128::from(cx - self.x0)
+                + i128::from(self.step_y) * i128::from(cy - self.y0);
             let v = i128::from(self.v0) + (d >> SUBPIXEL_BITS);
             v.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
         }
@@ -251,7 +252,10 @@ impl Plane {
     #[inline]
     pub(crate) fn step_x_i64(&self) -> i64 {
         if self.exact {
-            let s = div_floor_wide(i128::from(self.a) * i128::from(SUBPIXEL), i128::from(self.area2));
+            let s = div_floor_wide(
+                i128::from(self.a) * i128::from(SUBPIXEL),
+                i128::from(self.area2),
+            );
             s.clamp(i128::from(i64::MIN), i128::from(i64::MAX)) as i64
         } else {
             self.step_x
@@ -302,7 +306,8 @@ pub(crate) fn plane_origin(p0: &ScreenVertex, sx: i64, sy: i64) -> u32 {
     let (xi, xf) = (p0.x >> SUBPIXEL_BITS, p0.x & (SUBPIXEL - 1));
     let (yi, yf) = (p0.y >> SUBPIXEL_BITS, p0.y & (SUBPIXEL - 1));
     let half = SUBPIXEL / 2;
-    let frac = (i128::from(sx) * i128::from(half - xf) + i128::from(sy) * i128::from(half - yf)) >> SUBPIXEL_BITS;
+    let frac = (i128::from(sx) * i128::from(half - xf) + i128::from(sy) * i128::from(half - yf))
+        >> SUBPIXEL_BITS;
     (frac as u32)
         .wrapping_add(p0.z)
         .wrapping_sub((sx as u32).wrapping_mul(xi as u32))
@@ -357,17 +362,30 @@ impl DepthRows {
             if area == 0 {
                 return None;
             }
-            let (dz1, dz2) = (i64::from(p1.z) - i64::from(p0.z), i64::from(p2.z) - i64::from(p0.z));
+            let (dz1, dz2) = (
+                i64::from(p1.z) - i64::from(p0.z),
+                i64::from(p2.z) - i64::from(p0.z),
+            );
             let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
             let b = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
-            return fast(div_floor(a * i64::from(SUBPIXEL), area), div_floor(b * i64::from(SUBPIXEL), area));
+            return fast(
+                div_floor(a * i64::from(SUBPIXEL), area),
+                div_floor(b * i64::from(SUBPIXEL), area),
+            );
         }
         let plane = Plane::new(tri, zs)?;
         if !plane.exact {
             return fast(plane.step_x, plane.step_y);
         }
         let dz = plane.step_x_i64() as u32;
-        Some((DepthRows::Exact { plane, lo: i64::from(lo), hi: i64::from(hi) }, dz))
+        Some((
+            DepthRows::Exact {
+                plane,
+                lo: i64::from(lo),
+                hi: i64::from(hi),
+            },
+            dz,
+        ))
     }
 
     /// The biased accumulator at the centre of pixel (x, y), clamped to the vertices'

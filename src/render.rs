@@ -128,7 +128,7 @@ impl Default for CachedVertex {
 /// bytes) per face. More faces than `N` is [`Error::CapacityExceeded`].
 #[derive(Debug, Default)]
 pub struct DepthSort<const N: usize> {
-    items: heapless::Vec<(i32, u16), N>,
+    items: heapless::Vec<(i64, u16), N>,
 }
 
 impl<const N: usize> DepthSort<N> {
@@ -736,9 +736,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         index: usize::from(v),
                     })?;
                 // Clip-space z grows with distance from the eye (for both projections).
-                sum += i64::from(self.fixed.apply(p)[2]);
+                sum += self.fixed.apply(p).wide()[2];
             }
-            let key = (sum / vs.len() as i64) as i32;
+            let key = sum / vs.len() as i64;
             let _ = sort.items.push((key, f as u16));
         }
         // Farthest (largest z) first; equal depths keep the face order.

@@ -67,7 +67,10 @@ pub(crate) fn fill_small<C: Copy>(
     let bb = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
     let sx = div_floor(a * i64::from(SUBPIXEL), i64::from(area));
     let sy = div_floor(bb * i64::from(SUBPIXEL), i64::from(area));
-    let (zlo, zhi) = (p0.z().min(p1.z()).min(p2.z()), p0.z().max(p1.z()).max(p2.z()));
+    let (zlo, zhi) = (
+        p0.z().min(p1.z()).min(p2.z()),
+        p0.z().max(p1.z()).max(p2.z()),
+    );
     let depth = Depth {
         z00: plane_origin(p0, sx, sy),
         sx: sx as u32, // modulo 2³², on purpose (see plane_origin)
