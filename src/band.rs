@@ -124,23 +124,31 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let y0 = k * rows;
             let n = rows.min(bands.height - y0);
             let len = (w * n) as usize;
-            let mut color = ColorBuffer::new_band(&mut bands.color[..len], w, n, y0 as i32)?;
-            let mut zbuf = ZBuffer::new_band(&mut bands.depth[..len], w, n, y0 as i32)?;
+            // new() checked both slices hold `width × rows` entries, and len is at most that.
+            let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
+            let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
+            let _ = len;
             color.data_mut().fill(background);
             zbuf.clear();
             match binned {
                 Some(nt) => {
-                    let start_at = nt.div_ceil(2); // after the keys
-                    let start = &bands.bins[start_at..start_at + nb as usize + 2];
-                    let order = &bands.bins[start_at + nb as usize + 2..];
+                    // Layout of the bins (see `bin`): keys, then nb + 2 bin starts, then the order.
+                    let (_, rest) = bands.bins.split_at(nt.div_ceil(2).min(bands.bins.len()));
+                    let (start, order) = rest.split_at((nb as usize + 2).min(rest.len()));
+                    let bin = |b: usize| -> &[u16] {
+                        let (s, e) = (
+                            start.get(b).copied().unwrap_or(0),
+                            start.get(b + 1).copied().unwrap_or(0),
+                        );
+                        order.get(usize::from(s)..usize::from(e)).unwrap_or(&[])
+                    };
                     // This band's bin, the one above (triangles reaching two bands) and
                     // the tall/clipped bin.
-                    let range = |b: usize| usize::from(start[b])..usize::from(start[b + 1]);
-                    let above = if k > 0 { range(k as usize - 1) } else { 0..0 };
-                    let faces = order[above]
+                    let above = if k > 0 { bin(k as usize - 1) } else { &[] };
+                    let faces = above
                         .iter()
-                        .chain(&order[range(k as usize)])
-                        .chain(&order[range(nb as usize)])
+                        .chain(bin(k as usize))
+                        .chain(bin(nb as usize))
                         .map(|&f| usize::from(f));
                     self.draw_listed(&mut color, &mut zbuf, faces)?;
                 }
@@ -249,8 +257,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 }
             }
         }
-        for b in 1..start.len() {
-            start[b] += start[b - 1];
+        let mut sum = 0;
+        for s in start.iter_mut() {
+            sum += *s;
+            *s = sum;
         }
         // Place, using start[b] as the running position of bin b, then shift back.
         for f in 0..nt {
@@ -265,10 +275,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 }
             }
         }
-        for b in (1..start.len()).rev() {
-            start[b] = start[b - 1];
+        start.rotate_right(1);
+        if let Some(s) = start.first_mut() {
+            *s = 0;
         }
-        start[0] = 0;
         self.count_geometry(st);
         Ok(Some(nt))
     }

@@ -1,5 +1,7 @@
 //! From model space to the screen: the frame's transforms, the fixed-point per-vertex
 //! transform, and the projection to screen vertices.
+// Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
+#![allow(clippy::indexing_slicing)]
 
 use crate::fixed::{round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::math::{Mat4, Vec3};
@@ -141,7 +143,7 @@ pub(crate) struct Clip4 {
 impl Clip4 {
     /// The four coordinates, exactly (below 2⁴⁵ in magnitude).
     #[inline]
-    pub(crate) fn wide(&self) -> [i64; 4] {
+    pub(crate) fn wide(self) -> [i64; 4] {
         let w = |r: usize| (i64::from(self.hi[r]) << 14) + i64::from(self.lo[r]);
         [w(0), w(1), w(2), w(3)]
     }
@@ -149,7 +151,7 @@ impl Clip4 {
     /// The four coordinates as `f32`, rounded once: two conversions and a multiply-add
     /// each, with no 64-bit conversion.
     #[inline]
-    pub(crate) fn to_f32(&self) -> [f32; 4] {
+    pub(crate) fn to_f32(self) -> [f32; 4] {
         let f = |r: usize| self.hi[r] as f32 * 16384.0 + self.lo[r] as f32;
         [f(0), f(1), f(2), f(3)]
     }

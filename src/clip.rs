@@ -60,9 +60,7 @@ pub(crate) fn clip_polygon(poly: &mut ClipPolygon, planes: u8) {
             continue;
         }
         let mut out = ClipPolygon::new();
-        let n = poly.len();
-        for i in 0..n {
-            let (a, b) = (&poly[i], &poly[(i + 1) % n]);
+        for (a, b) in poly.iter().zip(poly.iter().cycle().skip(1)) {
             let (ina, inb) = (distance(plane, &a.c) >= 0.0, distance(plane, &b.c) >= 0.0);
             if ina {
                 let _ = out.push(*a);

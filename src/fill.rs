@@ -374,30 +374,21 @@ fn scan<E>(
     pass: impl Fn(u16, u16) -> bool,
     emit: &mut impl FnMut(usize, usize) -> Result<(), E>,
 ) -> Result<(), E> {
-    let n = row.len();
-    let mut i = 0;
-    while i < n {
-        // Skip pixels that fail.
-        while i < n && !pass((acc >> 16) as u16, row[i]) {
-            acc = acc.wrapping_add(dz);
-            i += 1;
-        }
-        let start = i;
-        // Take pixels that pass.
-        while i < n {
-            let z = (acc >> 16) as u16;
-            if !pass(z, row[i]) {
-                break;
-            }
+    let mut open: Option<usize> = None;
+    for (i, stored) in row.iter_mut().enumerate() {
+        let z = (acc >> 16) as u16;
+        acc = acc.wrapping_add(dz);
+        if pass(z, *stored) {
             if write {
-                row[i] = z;
+                *stored = z;
             }
-            acc = acc.wrapping_add(dz);
-            i += 1;
-        }
-        if i > start {
+            open.get_or_insert(i);
+        } else if let Some(start) = open.take() {
             emit(start, i)?;
         }
     }
-    Ok(())
+    match open {
+        Some(start) => emit(start, row.len()),
+        None => Ok(()),
+    }
 }

@@ -6,6 +6,8 @@
 //! tests and firmware produce the same matrices. (micromath's `sin` is within ~1e-3,
 //! which moves vertices by a fifth of a pixel on a 320-pixel screen; its `sqrt` seeds
 //! the Newton steps used here.)
+// Indexing here is into fixed 4×4 arrays by loop constants below 4: it cannot panic.
+#![allow(clippy::indexing_slicing)]
 
 use core::ops::{Add, Mul, Neg, Sub};
 use micromath::F32Ext;

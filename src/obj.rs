@@ -3,6 +3,8 @@
 //! Reads `v` and `f` (with `v`, `v/vt`, `v/vt/vn`, `v//vn` and negative indices),
 //! `mtllib` + `usemtl` with `Kd` colours; other statements are ignored. Errors name the
 //! line. The result converts into a [`Mesh`](crate::mesh::Mesh) with quantised positions.
+// Host-side tooling: indexing below is into fixed [_; 3] arrays by loop constants.
+#![allow(clippy::indexing_slicing)]
 
 use alloc::string::{String, ToString};
 use alloc::vec::Vec;
@@ -136,12 +138,16 @@ pub fn parse_obj(
                         ),
                     ));
                 }
-                for k in 1..idx.len() - 1 {
-                    m.triangles.push(ObjTriangle {
-                        vertices: [idx[0], idx[k], idx[k + 1]],
-                        material: current,
-                        line,
-                    });
+                if let Some((&first, rest)) = idx.split_first() {
+                    for pair in rest.windows(2) {
+                        if let &[b, c] = pair {
+                            m.triangles.push(ObjTriangle {
+                                vertices: [first, b, c],
+                                material: current,
+                                line,
+                            });
+                        }
+                    }
                 }
             }
             "mtllib" => {

@@ -145,6 +145,20 @@ impl<const N: usize> DepthSort<N> {
     }
 }
 
+/// The triangles of a polygon fanned around its first vertex.
+fn fan(vs: &[u16]) -> impl Iterator<Item = (u16, u16, u16)> + '_ {
+    let (first, rest) = vs.split_first().map_or((0, &[][..]), |(f, r)| (*f, r));
+    rest.windows(2).filter_map(move |w| match *w {
+        [b, c] => Some((first, b, c)),
+        _ => None,
+    })
+}
+
+/// The edges of a polygon, the closing one included.
+fn edges(vs: &[u16]) -> impl Iterator<Item = (u16, u16)> + '_ {
+    vs.iter().copied().zip(vs.iter().copied().cycle().skip(1))
+}
+
 /// Draws one mesh, placed by one transform, into targets with the methods below.
 ///
 /// ```
@@ -367,10 +381,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
         for f in faces {
             let (vs, mat) = self.face(f)?;
-            let v0 = self.fetch(vs[0], f)?;
-            for k in 1..vs.len() - 1 {
-                let v1 = self.fetch(vs[k], f)?;
-                let v2 = self.fetch(vs[k + 1], f)?;
+            for (i0, i1, i2) in fan(vs) {
+                let v0 = self.fetch(i0, f)?;
+                let v1 = self.fetch(i1, f)?;
+                let v2 = self.fetch(i2, f)?;
                 st.triangles_in += 1;
                 if v0.code & v1.code & v2.code != 0 {
                     st.outside += 1;
@@ -424,8 +438,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         let _ = out.push((s, crate::shade::to_intensity(c.light / f32::from(ONE))));
                     }
                 }
-                for j in 1..out.len().saturating_sub(1) {
-                    let (a, b, c) = (out[0], out[j], out[j + 1]);
+                let Some((&a, rest)) = out.split_first() else {
+                    continue;
+                };
+                for pair in rest.windows(2) {
+                    let &[b, c] = pair else { continue };
                     let tri = [a.0, b.0, c.0];
                     let p = |v: &ScreenVertex| (v.x(), v.y());
                     if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
@@ -796,9 +813,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let (vs, _) = self.face(f)?;
             let mut visible = false;
             let mut bias = 1u16;
-            let v0 = self.fetch(vs[0], f)?;
-            for k in 1..vs.len() - 1 {
-                let (v1, v2) = (self.fetch(vs[k], f)?, self.fetch(vs[k + 1], f)?);
+            for (i0, i1, i2) in fan(vs) {
+                let (v0, v1, v2) = (self.fetch(i0, f)?, self.fetch(i1, f)?, self.fetch(i2, f)?);
                 if v0.code | v1.code | v2.code != 0 {
                     // Near the clip planes: decide by the clip-space winding instead.
                     visible |= self.clipped_face_visible(&[v0.index, v1.index, v2.index]);
@@ -821,8 +837,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             if !visible {
                 continue;
             }
-            for k in 0..vs.len() {
-                let (a, b) = (vs[k], vs[(k + 1) % vs.len()]);
+            for (a, b) in edges(vs) {
                 let s = self.edge(target, Some(&mut *zbuf), &clip, f, a, b, color, bias)?;
                 pixels.add_pixels(s);
             }
@@ -845,8 +860,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         for f in 0..self.mesh.face_count() {
             let (vs, _) = self.face(f)?;
             geometry.triangles_in += vs.len() as u32 - 2;
-            for k in 0..vs.len() {
-                let (a, b) = (vs[k], vs[(k + 1) % vs.len()]);
+            for (a, b) in edges(vs) {
                 let s = self.edge(target, None, &clip, f, a, b, color, 0)?;
                 pixels.add_pixels(s);
             }
@@ -881,8 +895,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let pts: heapless::Vec<ScreenVertex, { crate::clip::MAX_CLIPPED }> =
             poly.iter().filter_map(|c| self.map.project(&c.c)).collect();
         let p = |v: &ScreenVertex| (v.x(), v.y());
-        (1..pts.len().saturating_sub(1)).any(|j| {
-            let area = signed_area(p(&pts[0]), p(&pts[j]), p(&pts[j + 1]));
+        let Some((first, rest)) = pts.split_first() else {
+            return false;
+        };
+        rest.windows(2).any(|pair| {
+            let &[b, c] = pair else { return false };
+            let area = signed_area(p(first), p(&b), p(&c));
             area != 0 && !self.options.cull.drops(area)
         })
     }

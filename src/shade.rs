@@ -131,13 +131,16 @@ pub fn luma(c: Rgb888) -> u8 {
     ((77 * u32::from(c.r()) + 150 * u32::from(c.g()) + 29 * u32::from(c.b()) + 128) >> 8) as u8
 }
 
-/// The 4×4 Bayer matrix.
-const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+/// The 4×4 Bayer matrix, row by row.
+const BAYER4: [u8; 16] = [0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5];
 
 /// Ordered dithering of a grey level to on/off at pixel (x, y): over any aligned 4×4
 /// block, `round(level · 16 / 255)` pixels are on.
 pub fn dither(level: u8, x: i32, y: i32) -> BinaryColor {
-    let t = BAYER4[(y & 3) as usize][(x & 3) as usize];
+    let t = BAYER4
+        .get(((y & 3) * 4 + (x & 3)) as usize)
+        .copied()
+        .unwrap_or(0);
     // Levels 0..=255 map to 0..=16 pixels on; pixel on when its threshold is below.
     let on = (u32::from(level) * 16 + 127) / 255;
     if u32::from(t) < on {

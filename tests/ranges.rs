@@ -202,21 +202,54 @@ fn resolved(z: f32, gap: f32, n: f32, f: f32) -> bool {
     })
 }
 
+/// The stored depth of a screen-filling square facing the camera at distance `z`.
+fn stored(z: f32, n: f32, f: f32) -> u16 {
+    let pos = [[-1i16, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]];
+    let faces = [Face {
+        vertices: &[0u16, 1, 2, 3][..],
+        material: Rgb888::RED,
+    }];
+    let quad = Mesh::new(&pos, 1.0, &faces);
+    let vp = Viewport::new(8, 8).unwrap();
+    let cam =
+        Transform::perspective(Vec3::default(), Vec3::new(0.0, 0.0, -1.0), 60.0, n, f, vp).unwrap();
+    let xf = cam.with_model(
+        Mat4::translation(Vec3::new(0.0, 0.0, -z)) * Mat4::scaling(Vec3::new(z, z, 1.0)),
+    );
+    let mut px = vec![Rgb565::BLACK; 64];
+    let mut depth = vec![0u16; 64];
+    let mut frame = ColorBuffer::new(&mut px, 8, 8).unwrap();
+    let mut zbuf = ZBuffer::new(&mut depth, 8, 8).unwrap();
+    zbuf.clear();
+    Renderer::new(&quad, &xf, RenderOptions::default())
+        .unwrap()
+        .draw(&mut frame, &mut zbuf)
+        .unwrap();
+    zbuf.depth(4, 4).unwrap()
+}
+
 #[test]
 fn sixteen_bit_depth_resolves_what_the_formula_says() {
     let (n, f) = (0.1, 10.0);
     for z in [0.25f32, 0.5, 1.0, 2.5, 5.0, 9.0] {
         let r = resolution(z, n, f);
-        // Three units apart always resolve; a tenth of a unit apart cannot.
+        // Three units apart always resolve, in either drawing order.
         assert!(
             resolved(z, 3.0 * r, n, f),
             "z = {z}: 3 units ({}) not resolved",
             3.0 * r
         );
+        // The stored depth moves by the formula's count of units (±1 for rounding).
+        let units = |gap: f32| i32::from(stored(z + gap, n, f)) - i32::from(stored(z, n, f));
         assert!(
-            !resolved(z, 0.1 * r, n, f),
-            "z = {z}: 0.1 unit ({}) resolved",
-            0.1 * r
+            (2..=4).contains(&units(3.0 * r)),
+            "z = {z}: {}",
+            units(3.0 * r)
+        );
+        assert!(
+            (0..=1).contains(&units(0.1 * r)),
+            "z = {z}: {}",
+            units(0.1 * r)
         );
     }
     // Moving the near plane out is what buys precision: at z = 5, near 0.1 → 0.5 is 5×.
