@@ -17,8 +17,8 @@ use embedded_graphics::pixelcolor::Rgb888;
 use zraster::{
     math::Vec3,
     mesh::{compute_face_normals, compute_vertex_normals, Mesh},
-    obj::{parse_obj, quantize},
 };
+use zraster_obj::{parse_obj, quantize};
 
 /// The Rust source for `obj`, with items prefixed by `name` (upper case).
 fn convert(src: &str, name: &str) -> Result<String, String> {

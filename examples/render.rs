@@ -17,11 +17,11 @@ use zraster::{
     camera::{Transform, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
-    obj::{parse_obj, quantize},
     shade::{Intensity, Light, Material, Shading, ONE},
     BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions,
     Renderer, ZBuffer,
 };
+use zraster_obj::{parse_obj, quantize};
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]

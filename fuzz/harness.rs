@@ -238,7 +238,7 @@ pub fn pipeline(data: &[u8]) {
 pub fn obj(data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let Ok(model) =
-        zraster::obj::parse_obj(&text, |_| Some(String::from_utf8_lossy(data).into_owned()))
+        zraster_obj::parse_obj(&text, |_| Some(String::from_utf8_lossy(data).into_owned()))
     else {
         return;
     };
@@ -249,7 +249,7 @@ pub fn obj(data: &[u8]) {
     if model.triangles.is_empty() || model.triangles.len() > 2000 {
         return;
     }
-    let q = zraster::obj::quantize(&model.positions, true);
+    let q = zraster_obj::quantize(&model.positions, true);
     let indices: Vec<[u16; 3]> = model
         .triangles
         .iter()

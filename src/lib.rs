@@ -55,9 +55,6 @@
 #[cfg(test)]
 extern crate std;
 
-#[cfg(feature = "obj")]
-extern crate alloc;
-
 mod band;
 pub mod camera;
 mod clip;
@@ -67,8 +64,6 @@ pub mod fixed;
 mod line;
 pub mod math;
 pub mod mesh;
-#[cfg(feature = "obj")]
-pub mod obj;
 mod raster;
 mod render;
 pub mod shade;

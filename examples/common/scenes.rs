@@ -11,10 +11,10 @@ use zraster::{
     camera::{Transform, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Face, Mesh, CUBE},
-    obj::{parse_obj, quantize},
     shade::{Light, Shading},
     ColorBuffer, Cull, DepthSort, DepthTest, RenderOptions, Renderer, ZBuffer,
 };
+use zraster_obj::{parse_obj, quantize};
 
 /// The Stanford bunny (public domain; see the licence line at the top of the file).
 pub const BUNNY_OBJ: &str = include_str!("../models/bunny.obj");

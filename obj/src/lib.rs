@@ -1,14 +1,14 @@
-//! A Wavefront OBJ reader for host tools (feature `obj`, needs `alloc`).
+//! A Wavefront OBJ reader for zraster's host tools: the `render` example, the
+//! `obj2rust` converter, the tests.
 //!
 //! Reads `v` and `f` (with `v`, `v/vt`, `v/vt/vn`, `v//vn` and negative indices),
 //! `mtllib` + `usemtl` with `Kd` colours; other statements are ignored. Errors name the
-//! line. The result converts into a [`Mesh`](crate::mesh::Mesh) with quantised positions.
-// Host-side tooling: indexing below is into fixed [_; 3] arrays by loop constants.
-#![allow(clippy::indexing_slicing)]
+//! line. [`quantize`] turns the positions into the `i16` vertex table of a
+//! `zraster::mesh::Mesh`.
+//!
+//! It lives in its own crate because it allocates: zraster itself never does.
 
-use alloc::string::{String, ToString};
-use alloc::vec::Vec;
-use core::fmt;
+use std::fmt;
 
 /// A material from an MTL file.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,7 +62,7 @@ impl fmt::Display for ObjError {
     }
 }
 
-impl core::error::Error for ObjError {}
+impl std::error::Error for ObjError {}
 
 fn err(line: usize, message: impl ToString) -> ObjError {
     ObjError {
@@ -72,12 +72,12 @@ fn err(line: usize, message: impl ToString) -> ObjError {
 }
 
 fn number(tok: Option<&str>, line: usize, what: &str) -> Result<f32, ObjError> {
-    let tok = tok.ok_or_else(|| err(line, alloc::format!("missing {what}")))?;
+    let tok = tok.ok_or_else(|| err(line, format!("missing {what}")))?;
     let v: f32 = tok
         .parse()
-        .map_err(|_| err(line, alloc::format!("{what} is not a number: {tok:?}")))?;
+        .map_err(|_| err(line, format!("{what} is not a number: {tok:?}")))?;
     if !v.is_finite() {
-        return Err(err(line, alloc::format!("{what} is not finite: {tok:?}")));
+        return Err(err(line, format!("{what} is not finite: {tok:?}")));
     }
     Ok(v)
 }
@@ -87,6 +87,14 @@ pub const MAX_VERTICES: usize = 1 << 16;
 
 /// Read an OBJ file. `load_mtl(name)` returns the text of an MTL file named by `mtllib`
 /// (relative to the OBJ file), or `None` if it cannot be read (a warning, not an error).
+///
+/// ```
+/// let model = zraster_obj::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n", |_| None)?;
+/// assert_eq!(model.triangles.len(), 2); // the quad, fanned
+/// let err = zraster_obj::parse_obj("v 0 0 0\nf 1 2 3\n", |_| None).unwrap_err();
+/// assert_eq!(err.to_string(), "line 2: vertex index 2 out of range (the file has 1 vertices)");
+/// # Ok::<(), zraster_obj::ObjError>(())
+/// ```
 pub fn parse_obj(
     src: &str,
     mut load_mtl: impl FnMut(&str) -> Option<String>,
@@ -104,10 +112,7 @@ pub fn parse_obj(
                 let y = number(toks.next(), line, "y")?;
                 let z = number(toks.next(), line, "z")?;
                 if m.positions.len() >= MAX_VERTICES {
-                    return Err(err(
-                        line,
-                        alloc::format!("more than {MAX_VERTICES} vertices"),
-                    ));
+                    return Err(err(line, format!("more than {MAX_VERTICES} vertices")));
                 }
                 m.positions.push([x, y, z]);
             }
@@ -117,7 +122,7 @@ pub fn parse_obj(
                     let first = t.split('/').next().unwrap_or("");
                     let v: i64 = first
                         .parse()
-                        .map_err(|_| err(line, alloc::format!("bad vertex reference {t:?}")))?;
+                        .map_err(|_| err(line, format!("bad vertex reference {t:?}")))?;
                     let n = m.positions.len() as i64;
                     let resolved = match v {
                         0 => return Err(err(line, "vertex index 0 (OBJ indices start at 1)")),
@@ -125,14 +130,14 @@ pub fn parse_obj(
                         v => v - 1,
                     };
                     if resolved < 0 || resolved >= MAX_VERTICES as i64 {
-                        return Err(err(line, alloc::format!("vertex index {v} out of range")));
+                        return Err(err(line, format!("vertex index {v} out of range")));
                     }
                     idx.push(resolved as u32);
                 }
                 if idx.len() < 3 {
                     return Err(err(
                         line,
-                        alloc::format!(
+                        format!(
                             "a face needs 3 or more vertices, this one has {}",
                             idx.len()
                         ),
@@ -154,10 +159,10 @@ pub fn parse_obj(
                 for name in toks {
                     match load_mtl(name) {
                         Some(text) => parse_mtl(&text, &mut m.materials)
-                            .map_err(|e| err(line, alloc::format!("in {name}: {e}")))?,
-                        None => m.warnings.push(alloc::format!(
-                            "line {line}: cannot read material library {name}"
-                        )),
+                            .map_err(|e| err(line, format!("in {name}: {e}")))?,
+                        None => m
+                            .warnings
+                            .push(format!("line {line}: cannot read material library {name}")),
                     }
                 }
             }
@@ -166,7 +171,7 @@ pub fn parse_obj(
                 current = m.materials.iter().position(|mat| mat.name == name);
                 if current.is_none() {
                     m.warnings
-                        .push(alloc::format!("line {line}: unknown material {name:?}"));
+                        .push(format!("line {line}: unknown material {name:?}"));
                 }
             }
             _ => {}
@@ -186,7 +191,7 @@ pub fn parse_obj(
             .unwrap_or(0);
         return Err(err(
             t.line,
-            alloc::format!(
+            format!(
                 "vertex index {} out of range (the file has {n} vertices)",
                 bad + 1
             ),
@@ -221,7 +226,7 @@ pub fn parse_mtl(src: &str, out: &mut Vec<ObjMaterial>) -> Result<(), ObjError> 
     Ok(())
 }
 
-/// Positions quantised to `i16` for a [`Mesh`](crate::mesh::Mesh): `q × scale + offset`
+/// Positions quantised to `i16` for a `zraster::mesh::Mesh`: `q × scale + offset`
 /// reproduces each position to within half a step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Quantized {
@@ -262,7 +267,7 @@ pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
         }
     }
     let scale = if reach > 0.0 { reach / 32767.0 } else { 1.0 };
-    let q = |v: f32| crate::fixed::round_f32(v / scale).clamp(-32767, 32767) as i16;
+    let q = |v: f32| (v / scale).round().clamp(-32767.0, 32767.0) as i16;
     Quantized {
         positions: positions
             .iter()

@@ -1,0 +1,164 @@
+//! Host benchmarks (criterion): `cargo bench`.
+//!
+//! - `bunny-320`: the performance issue's scene, one frame (transform, cull, draw).
+//! - `bunny-320 banded 16`: the same frame in 16-row bands with bins.
+//! - `fill-bound cube`: the seeds' cube filling a 320×240 screen.
+//! - `tiny triangles`: 2000 triangles of a few pixels each, screen space (setup cost).
+//! - `transform`: the bunny's 1839 vertices transformed and projected alone.
+//!
+//! Times on a shared host move around; the instruction counts in the README (callgrind,
+//! QEMU) are the figures to compare across commits.
+
+#[allow(dead_code, clippy::all)]
+#[path = "../bench/mcu/src/bunny.rs"]
+mod bunny;
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::prelude::*;
+use std::hint::black_box;
+use zraster::{
+    camera::{Transform, Viewport},
+    math::{radians, Mat4, Vec3},
+    mesh::{Faces, Materials, CUBE},
+    shade::Shading,
+    BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ScreenVertex, ZBuffer,
+};
+
+const W: u32 = 320;
+const H: u32 = 240;
+
+fn bunny_scene() -> (
+    zraster::mesh::Mesh<'static, Rgb888>,
+    Transform,
+    RenderOptions,
+) {
+    let mut mesh = bunny::BUNNY_MESH;
+    mesh.faces = Faces::Triangles {
+        indices: &bunny::BUNNY_INDICES,
+        materials: Materials::Uniform(Rgb888::new(255, 204, 153)),
+    };
+    let fit = bunny::BUNNY_FIT;
+    let xf = Transform::perspective(
+        Vec3::new(0.0, 0.0, 1.6),
+        Vec3::new(0.0, 0.0, 0.6),
+        60.0,
+        0.1,
+        10.0,
+        Viewport::new(W, H).unwrap(),
+    )
+    .unwrap()
+    .with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)));
+    (
+        mesh,
+        xf,
+        RenderOptions {
+            shading: Shading::Lambert,
+            ..Default::default()
+        },
+    )
+}
+
+fn benches(c: &mut Criterion) {
+    let n = (W * H) as usize;
+    let mut pixels = vec![Rgb565::BLACK; n];
+    let mut depth = vec![0u16; n];
+    let mut cache = vec![CachedVertex::EMPTY; bunny::BUNNY_POSITIONS.len()];
+    let (mesh, xf, opts) = bunny_scene();
+
+    c.bench_function("bunny-320", |b| {
+        b.iter(|| {
+            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+            let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
+            frame.clear(Rgb565::BLACK).unwrap();
+            zbuf.clear();
+            let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+            r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+            black_box(r.stats())
+        })
+    });
+
+    let rows = 16;
+    let mut band_px = vec![Rgb565::BLACK; (W * rows) as usize];
+    let mut band_z = vec![0u16; (W * rows) as usize];
+    let mut bins =
+        vec![0u16; BandBuffers::<Rgb565>::bins_needed(bunny::BUNNY_INDICES.len(), H, rows)];
+    c.bench_function("bunny-320 banded 16", |b| {
+        b.iter(|| {
+            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+            let mut bands =
+                BandBuffers::new(&mut band_px, &mut band_z, W, rows, H, &mut bins).unwrap();
+            let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+            r.draw_banded(&mut frame, &mut bands, Rgb565::BLACK)
+                .unwrap();
+            black_box(r.stats())
+        })
+    });
+
+    let cube_xf = Transform::perspective(
+        Vec3::new(0.5, 0.5, 1.3),
+        Vec3::new(0.5, 0.5, 0.0),
+        60.0,
+        0.1,
+        10.0,
+        Viewport::new(W, H).unwrap(),
+    )
+    .unwrap();
+    c.bench_function("fill-bound cube", |b| {
+        b.iter(|| {
+            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+            let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
+            zbuf.clear();
+            let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
+            r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+            black_box(r.stats())
+        })
+    });
+
+    // 2000 screen triangles of 2-8 px, scattered (deterministic).
+    let mut s = 12345u32;
+    let mut rnd = move |m: u32| {
+        s = s.wrapping_mul(1664525).wrapping_add(1013904223);
+        (s >> 8) % m
+    };
+    let tris: Vec<[ScreenVertex; 3]> = (0..2000)
+        .map(|_| {
+            let (x, y) = (rnd(300 * 16) as i32, rnd(220 * 16) as i32);
+            let v = |dx: u32, dy: u32, z: u32| {
+                ScreenVertex::new(x + dx as i32, y + dy as i32, z << 16).unwrap()
+            };
+            [
+                v(0, 0, rnd(60000)),
+                v(16 + rnd(64), rnd(32), rnd(60000)),
+                v(rnd(32), 16 + rnd(64), rnd(60000)),
+            ]
+        })
+        .collect();
+    c.bench_function("tiny triangles (2000)", |b| {
+        b.iter(|| {
+            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+            let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
+            zbuf.clear();
+            let mut written = 0;
+            for t in &tris {
+                written += zraster::fill_triangle(&mut frame, &mut zbuf, t, Rgb565::RED)
+                    .unwrap()
+                    .pixels_written;
+            }
+            black_box(written)
+        })
+    });
+
+    c.bench_function("transform (1839 vertices)", |b| {
+        b.iter(|| {
+            black_box(
+                Renderer::with_cache(&mesh, &xf, opts, &mut cache)
+                    .unwrap()
+                    .stats(),
+            )
+        })
+    });
+}
+
+criterion_group!(render, benches);
+criterion_main!(render);
