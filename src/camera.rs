@@ -131,46 +131,57 @@ impl Transform {
     }
 }
 
-/// Clip-space coordinates in fixed point (a common power-of-two scale that cancels in
-/// the perspective divide), as two partial sums per row: the value is
-/// `hi · 2¹⁴ + lo`. See [`FixedTransform`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Clip-space coordinates in fixed point. x and y come in one scale, z and w in
+/// another (`s`, a power of two, is x and y's factor to the z/w scale); z and w are
+/// two partial sums each, the value being `hi · 2¹⁴ + lo`. See [`FixedTransform`].
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Clip4 {
-    hi: [i32; 4],
-    lo: [i32; 4],
+    xy: [i32; 2],
+    hi: [i32; 2],
+    lo: [i32; 2],
+    s: f32,
 }
 
 impl Clip4 {
-    /// The four coordinates, exactly (below 2⁴⁵ in magnitude).
+    /// z and w exactly (below 2⁴⁵ in magnitude), in their common scale.
     #[inline]
-    pub(crate) fn wide(self) -> [i64; 4] {
+    pub(crate) fn zw(self) -> (i64, i64) {
         let w = |r: usize| (i64::from(self.hi[r]) << 14) + i64::from(self.lo[r]);
-        [w(0), w(1), w(2), w(3)]
+        (w(0), w(1))
     }
 
-    /// The four coordinates as `f32`, rounded once: two conversions and a multiply-add
-    /// each, with no 64-bit conversion.
+    /// The four coordinates as `f32` in one scale, each rounded once: no 64-bit
+    /// conversion.
     #[inline]
     pub(crate) fn to_f32(self) -> [f32; 4] {
         let f = |r: usize| self.hi[r] as f32 * 16384.0 + self.lo[r] as f32;
-        [f(0), f(1), f(2), f(3)]
+        [
+            self.xy[0] as f32 * self.s,
+            self.xy[1] as f32 * self.s,
+            f(0),
+            f(1),
+        ]
     }
 }
 
 /// The model-view-projection matrix with the mesh's position scale folded in, in
-/// fixed point, for `i16` positions `p`: `clip = C·p + T` with coefficients `C` of 27
-/// bits (the `f32` matrix's full precision) and `|T| ≤ 2⁴³`.
+/// fixed point, for `i16` positions `p`.
 ///
-/// Each coefficient is split as `C = hi·2¹⁴ + lo` with `|hi| ≤ 2¹³` and `0 ≤ lo < 2¹⁴`
-/// (and `T` likewise, `|T_hi| ≤ 2²⁹`), so a row is two sums of three 16×16-bit products:
-/// `Σ hi·p + T_hi ≤ 3·2¹³·2¹⁵ + 2²⁹ < 2³¹` and `Σ lo·p + T_lo < 3·2¹⁴·2¹⁵ + 2¹⁴ < 2³¹`,
-/// exact in `i32` — the M0+'s single-cycle `MULS` suffices — and together exact to the
-/// matrix's precision. (A single 14-bit coefficient set would put every object's depth
-/// off by a few units, differently for each model matrix.)
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// The x and y rows have 14-bit coefficients (`|C| ≤ 16383`, `|T| ≤ 2²⁹`): a row
+/// `Σ C·p + T ≤ 3·16383·32768 + 2²⁹ < 2³¹` is three 16×16-bit products, exact in `i32`,
+/// and 14 bits place a vertex to a hundredth of a pixel. Depth needs more: the z and w
+/// rows carry 27-bit coefficients (the `f32` matrix's full precision; with 14 bits every
+/// object's depth would be off by a few units, differently for each model matrix). Each
+/// is split as `C = hi·2¹⁴ + lo` with `|hi| ≤ 2¹³` and `0 ≤ lo < 2¹⁴` (`T` likewise,
+/// `|T_hi| ≤ 2²⁹`), so both partial sums stay exact in `i32`:
+/// `Σ hi·p + T_hi ≤ 3·2¹³·2¹⁵ + 2²⁹ < 2³¹` and `Σ lo·p + T_lo < 3·2¹⁴·2¹⁵ + 2¹⁴ < 2³¹`.
+/// The M0+'s single-cycle `MULS` suffices for all of it.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FixedTransform {
-    hi: [[i32; 4]; 4],
-    lo: [[i32; 4]; 4],
+    xy: [[i32; 4]; 2],
+    hi: [[i32; 4]; 2],
+    lo: [[i32; 4]; 2],
+    s: f32,
 }
 
 impl FixedTransform {
@@ -179,47 +190,67 @@ impl FixedTransform {
             return Err(Error::NotFinite);
         }
         let scale = f64::from(scale);
-        let mut max_m = 0.0f64;
-        let mut max_t = 0.0f64;
-        for row in &mvp.m {
-            for v in &row[..3] {
-                max_m = max_m.max((f64::from(*v) * scale).abs());
+        let maxes = |rows: &[[f32; 4]]| {
+            let (mut m, mut t) = (0.0f64, 0.0f64);
+            for row in rows {
+                for v in &row[..3] {
+                    m = m.max((f64::from(*v) * scale).abs());
+                }
+                t = t.max(f64::from(row[3]).abs());
             }
-            max_t = max_t.max(f64::from(row[3]).abs());
-        }
-        if !(max_m.is_finite() && max_t.is_finite()) || (max_m == 0.0 && max_t == 0.0) {
+            (m, t)
+        };
+        let (mxy, txy) = maxes(&mvp.m[..2]);
+        let (mzw, tzw) = maxes(&mvp.m[2..]);
+        if !(mxy.is_finite() && txy.is_finite() && mzw.is_finite() && tzw.is_finite())
+            || (mzw == 0.0 && tzw == 0.0)
+        {
             return Err(Error::InvalidParameter(
                 "degenerate or overflowing transform",
             ));
         }
-        // The largest power of two k with max_m·2^k ≤ 2²⁷ − 2¹⁴ and max_t·2^k ≤ 2⁴³.
-        let limit = |k: i32| {
-            let f = pow2_f64(k);
-            max_m * f <= ((1u64 << 27) - (1 << 14)) as f64 && max_t * f <= (1u64 << 43) as f64
+        // The largest power of two k with m·2^k ≤ mlim and t·2^k ≤ tlim.
+        let exponent = |m: f64, t: f64, mlim: f64, tlim: f64| {
+            let fits = |k: i32| m * pow2_f64(k) <= mlim && t * pow2_f64(k) <= tlim;
+            let mut k = 0i32;
+            while k < 1000 && fits(k + 1) {
+                k += 1;
+            }
+            while k > -1000 && !fits(k) {
+                k -= 1;
+            }
+            k
         };
-        let mut k = 0i32;
-        while k < 1000 && limit(k + 1) {
-            k += 1;
-        }
-        while k > -1000 && !limit(k) {
-            k -= 1;
-        }
-        let f = pow2_f64(k);
-        let q = |v: f64, max: i64| {
-            let r = v * f;
+        let kxy = exponent(mxy, txy, 16383.0, (1u32 << 29) as f64);
+        let kzw = exponent(
+            mzw,
+            tzw,
+            ((1u64 << 27) - (1 << 14)) as f64,
+            (1u64 << 43) as f64,
+        );
+        let q = |v: f64, k: i32, max: i64| {
+            let r = v * pow2_f64(k);
             let r = if r >= 0.0 { r + 0.5 } else { r - 0.5 };
             (r as i64).clamp(-max, max)
         };
         let mut out = FixedTransform {
-            hi: [[0; 4]; 4],
-            lo: [[0; 4]; 4],
+            xy: [[0; 4]; 2],
+            hi: [[0; 4]; 2],
+            lo: [[0; 4]; 2],
+            s: pow2_f64(kzw - kxy) as f32,
         };
-        for (r, row) in mvp.m.iter().enumerate() {
+        for r in 0..2 {
+            let row = &mvp.m[r];
+            for c in 0..3 {
+                out.xy[r][c] = q(f64::from(row[c]) * scale, kxy, 16383) as i32;
+            }
+            out.xy[r][3] = q(f64::from(row[3]), kxy, 1 << 29) as i32;
+            let row = &mvp.m[r + 2];
             for c in 0..4 {
                 let v = if c < 3 {
-                    q(f64::from(row[c]) * scale, 1 << 27)
+                    q(f64::from(row[c]) * scale, kzw, 1 << 27)
                 } else {
-                    q(f64::from(row[3]), 1 << 43)
+                    q(f64::from(row[3]), kzw, 1 << 43)
                 };
                 // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
                 out.hi[r][c] = (v >> 14) as i32;
@@ -235,18 +266,10 @@ impl FixedTransform {
         let (x, y, z) = (i32::from(p[0]), i32::from(p[1]), i32::from(p[2]));
         let row = |m: &[i32; 4]| m[0] * x + m[1] * y + m[2] * z + m[3];
         Clip4 {
-            hi: [
-                row(&self.hi[0]),
-                row(&self.hi[1]),
-                row(&self.hi[2]),
-                row(&self.hi[3]),
-            ],
-            lo: [
-                row(&self.lo[0]),
-                row(&self.lo[1]),
-                row(&self.lo[2]),
-                row(&self.lo[3]),
-            ],
+            xy: [row(&self.xy[0]), row(&self.xy[1])],
+            hi: [row(&self.hi[0]), row(&self.hi[1])],
+            lo: [row(&self.lo[0]), row(&self.lo[1])],
+            s: self.s,
         }
     }
 }
@@ -338,10 +361,9 @@ impl ScreenMap {
     /// sum could overflow); only points inside are divided by w.
     #[inline]
     pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
-        let [x, y, z, w] = c.wide();
-        let g = w << 6; // GUARD = 64; |w| < 2⁴⁵, no overflow
-                        // Every plane is tested, also behind the eye (w < 1): clipping then cuts at the
-                        // near plane first, well away from w = 0.
+        // Near, far and w ≥ 1 exactly, in 64 bits; every plane is tested, also behind
+        // the eye, so that clipping cuts at the near plane first, well away from w = 0.
+        let (z, w) = c.zw();
         let mut code = if w < 1 { outcode::W } else { 0 };
         if z < -w {
             code |= outcode::NEAR;
@@ -349,6 +371,9 @@ impl ScreenMap {
         if z > w {
             code |= outcode::FAR;
         }
+        // The guard band in f32: it has room for rounding.
+        let [x, y, zf, wf] = c.to_f32();
+        let g = GUARD * wf;
         if x < -g {
             code |= outcode::LEFT;
         }
@@ -364,13 +389,12 @@ impl ScreenMap {
         if code != 0 {
             return (code, ScreenVertex::ORIGIN);
         }
-        // Inside: |x|, |y| < 65·w and |z| ≤ w, so x and y land within ±65·8192·8 < 2²³
-        // (no clamp needed) and only z needs clamping against rounding.
-        let [x, y, z, w] = c.to_f32();
-        let inv = 1.0 / w;
+        // Inside: |x|, |y| ≤ 64·w (to f32 rounding) and |z| ≤ w, so x and y land
+        // within ±65·8192·8 < 2²³ (no clamp needed) and only z needs clamping.
+        let inv = 1.0 / wf;
         let sx = x * inv * self.sx + self.ox;
         let sy = y * inv * self.sy + self.oy;
-        let sz = (z * inv + 1.0) * DEPTH_HALF + 0.5;
+        let sz = (zf * inv + 1.0) * DEPTH_HALF + 0.5;
         (
             0,
             ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)),

@@ -753,7 +753,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         index: usize::from(v),
                     })?;
                 // Clip-space z grows with distance from the eye (for both projections).
-                sum += self.fixed.apply(p).wide()[2];
+                sum += self.fixed.apply(p).zw().0;
             }
             let key = sum / vs.len() as i64;
             let _ = sort.items.push((key, f as u16));

@@ -78,10 +78,24 @@ fn bunny_320_matches_its_golden_image_and_stats() {
         "bunny-320 differs from {}",
         golden.display()
     );
-    // 3674 triangles, 1480 facing the camera, ~11,100 covered pixels.
-    assert!(stats.contains("\"triangles_in\":3674"), "{stats}");
-    assert!(stats.contains("\"drawn\":1480"), "{stats}");
-    assert!(stats.contains("\"culled\":2194"), "{stats}");
+    // 3674 triangles, about 1480 facing the camera (the count moves by one or two with
+    // sub-pixel changes: some are edge-on), about 11,100 covered pixels.
+    let field = |name: &str| -> i64 {
+        let at = stats.find(&format!("\"{name}\":")).unwrap() + name.len() + 3;
+        stats[at..]
+            .split(|c: char| !c.is_ascii_digit())
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    assert_eq!(field("triangles_in"), 3674, "{stats}");
+    assert!((1475..=1485).contains(&field("drawn")), "{stats}");
+    assert_eq!(field("culled") + field("drawn"), 3674, "{stats}");
+    assert!(
+        (11_000..=11_400).contains(&field("pixels_written")),
+        "{stats}"
+    );
 }
 
 #[test]
