@@ -239,22 +239,19 @@ impl FixedTransform {
             lo: [[0; 4]; 2],
             s: pow2_f64(kzw - kxy) as f32,
         };
-        for r in 0..2 {
-            let row = &mvp.m[r];
-            for c in 0..3 {
-                out.xy[r][c] = q(f64::from(row[c]) * scale, kxy, 16383) as i32;
-            }
-            out.xy[r][3] = q(f64::from(row[3]), kxy, 1 << 29) as i32;
-            let row = &mvp.m[r + 2];
-            for c in 0..4 {
-                let v = if c < 3 {
-                    q(f64::from(row[c]) * scale, kzw, 1 << 27)
+        for (r, row) in mvp.m.iter().enumerate() {
+            for (c, &v) in row.iter().enumerate() {
+                // Coefficients carry the mesh scale; the translation column does not.
+                let v = if c < 3 { f64::from(v) * scale } else { f64::from(v) };
+                if r < 2 {
+                    let max = if c < 3 { 16383 } else { 1 << 29 };
+                    out.xy[r][c] = q(v, kxy, max) as i32;
                 } else {
-                    q(f64::from(row[3]), kzw, 1 << 43)
-                };
-                // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
-                out.hi[r][c] = (v >> 14) as i32;
-                out.lo[r][c] = (v & 0x3fff) as i32;
+                    let v = q(v, kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
+                    // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
+                    out.hi[r - 2][c] = (v >> 14) as i32;
+                    out.lo[r - 2][c] = (v & 0x3fff) as i32;
+                }
             }
         }
         Ok(out)
