@@ -242,7 +242,11 @@ impl FixedTransform {
         for (r, row) in mvp.m.iter().enumerate() {
             for (c, &v) in row.iter().enumerate() {
                 // Coefficients carry the mesh scale; the translation column does not.
-                let v = if c < 3 { f64::from(v) * scale } else { f64::from(v) };
+                let v = if c < 3 {
+                    f64::from(v) * scale
+                } else {
+                    f64::from(v)
+                };
                 if r < 2 {
                     let max = if c < 3 { 16383 } else { 1 << 29 };
                     out.xy[r][c] = q(v, kxy, max) as i32;
