@@ -254,7 +254,7 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
     }
 
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
-        self.data.fill(color);
+        crate::zbuffer::fill_fast(self.data, color);
         Ok(())
     }
 }
