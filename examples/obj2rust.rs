@@ -61,6 +61,7 @@ fn convert(src: &str, name: &str) -> Result<String, String> {
         indices.len()
     );
     let _ = writeln!(w, "#![allow(clippy::all, dead_code)]");
+    let _ = writeln!(w, "#![cfg_attr(rustfmt, rustfmt::skip)]");
     let _ = writeln!(w, "use embedded_graphics::pixelcolor::Rgb888;");
     let _ = writeln!(w, "use zraster::mesh::{{Faces, Materials, Mesh}};\n");
     let _ = writeln!(

@@ -285,3 +285,35 @@ fn materials_are_used_exactly_without_lighting() {
     let want: Rgb888 = embedded_graphics::pixelcolor::Rgb565::new(16, 16, 31).into();
     assert_eq!(load(&out).get_pixel(Point::new(16, 16)), want);
 }
+
+#[test]
+fn the_committed_flash_bunny_is_what_obj2rust_makes() {
+    static BUILD: Once = Once::new();
+    BUILD.call_once(|| {
+        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let status = Command::new(cargo)
+            .args(["build", "--quiet", "--example", "obj2rust"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .status()
+            .unwrap();
+        assert!(status.success());
+    });
+    let bin = render_bin().with_file_name(format!("obj2rust{}", std::env::consts::EXE_SUFFIX));
+    let out = Command::new(bin).args([BUNNY, "bunny"]).output().unwrap();
+    assert!(out.status.success());
+    let committed = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/bench/mcu/src/bunny.rs"
+    ))
+    .unwrap();
+    assert!(
+        String::from_utf8(out.stdout).unwrap() == committed,
+        "regenerate bench/mcu/src/bunny.rs with obj2rust"
+    );
+    // Bad input: a message and exit code 2.
+    let bad = Command::new(render_bin().with_file_name("obj2rust"))
+        .arg("/nonexistent.obj")
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+}
