@@ -296,8 +296,8 @@ pub(crate) const DEPTH_BIAS: u32 = 1 << 15;
 /// The biased plane value at the centre of pixel (0, 0), modulo 2³², for the fast form
 /// `v0 + ⌊(sx·(X − x0) + sy·(Y − y0)) / 16⌋` with X = 16px + 8, Y = 16py + 8.
 ///
-/// Split `x0 = 16·xi + xf`: the floor then only involves `sx·(8 − xf)` (below 2⁵⁵ for
-/// any slope a triangle in the guard band can have), and the whole-pixel parts
+/// Split `x0 = 16·xi + xf`: the floor then only involves `sx·(8 − xf)` (below 2⁵⁷ for
+/// the slopes of triangles within 4096 pixels, the only ones using this form), and the whole-pixel parts
 /// `−sx·xi − sy·yi` are exact in wrapping arithmetic, which is all a value modulo 2³²
 /// needs. Steep slopes (a sliver's can exceed 2³²) are fine: each span then has at most
 /// one pixel, and stepping modulo 2³² stays exact.
@@ -306,7 +306,10 @@ pub(crate) fn plane_origin(p0: &ScreenVertex, sx: i64, sy: i64) -> u32 {
     let (xi, xf) = (p0.x >> SUBPIXEL_BITS, p0.x & (SUBPIXEL - 1));
     let (yi, yf) = (p0.y >> SUBPIXEL_BITS, p0.y & (SUBPIXEL - 1));
     let half = SUBPIXEL / 2;
-    let frac = (i128::from(sx) * i128::from(half - xf) + i128::from(sy) * i128::from(half - yf))
+    // |s| < 2⁵³ on every path that uses this form and |half − f| ≤ 8: below 2⁵⁷.
+    let frac = sx
+        .wrapping_mul(i64::from(half - xf))
+        .wrapping_add(sy.wrapping_mul(i64::from(half - yf)))
         >> SUBPIXEL_BITS;
     (frac as u32)
         .wrapping_add(p0.z)
