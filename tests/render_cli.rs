@@ -317,3 +317,175 @@ fn the_committed_flash_bunny_is_what_obj2rust_makes() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));
 }
+
+/// A plain f64 reference of the bunny-320 scene, straight from the OBJ file: the
+/// same camera and light, edge functions at pixel centres (top-left rule), depth
+/// interpolated in screen space, colour `Kd × I` rounded to RGB565.
+fn reference_bunny_320() -> Vec<Option<[u8; 3]>> {
+    let obj = zraster_obj::parse_obj(&std::fs::read_to_string(BUNNY).unwrap(), |_| None).unwrap();
+    let (w, h) = (320usize, 240usize);
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for p in &obj.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(f64::from(p[k]));
+            hi[k] = hi[k].max(f64::from(p[k]));
+        }
+    }
+    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let centre = [
+        (lo[0] + hi[0]) / 2.0,
+        (lo[1] + hi[1]) / 2.0,
+        (lo[2] + hi[2]) / 2.0,
+    ];
+    let (s, c) = (30f64.to_radians().sin(), 30f64.to_radians().cos());
+    // World: fitted, then turned 30° about +Y.
+    let world: Vec<[f64; 3]> = obj
+        .positions
+        .iter()
+        .map(|p| {
+            let q = [
+                (f64::from(p[0]) - centre[0]) / extent,
+                (f64::from(p[1]) - centre[1]) / extent,
+                (f64::from(p[2]) - centre[2]) / extent,
+            ];
+            [c * q[0] + s * q[2], q[1], -s * q[0] + c * q[2]]
+        })
+        .collect();
+    let (near, far, dist) = (0.1f64, 10.0f64, 1.6f64);
+    let f = 1.0 / 30f64.to_radians().tan();
+    let aspect = w as f64 / h as f64;
+    // Screen x, y (pixels) and window depth of each vertex.
+    let screen: Vec<[f64; 3]> = world
+        .iter()
+        .map(|p| {
+            let ze = p[2] - dist;
+            let (xc, yc, wc) = (f / aspect * p[0], f * p[1], -ze);
+            let zc = (far + near) / (near - far) * ze + 2.0 * far * near / (near - far);
+            [
+                (xc / wc + 1.0) / 2.0 * w as f64,
+                (1.0 - yc / wc) / 2.0 * h as f64,
+                (zc / wc + 1.0) / 2.0,
+            ]
+        })
+        .collect();
+    let l = {
+        let v = [-1.0f64, 1.0, 1.0];
+        let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        [v[0] / n, v[1] / n, v[2] / n]
+    };
+    let mut depth = vec![f64::INFINITY; w * h];
+    let mut color = vec![None; w * h];
+    for t in &obj.triangles {
+        let [a, b, cc] = t.vertices.map(|i| screen[i as usize]);
+        let area = (b[0] - a[0]) * (cc[1] - a[1]) - (cc[0] - a[0]) * (b[1] - a[1]);
+        if area >= 0.0 {
+            continue; // back-facing (y down: front faces have negative area)
+        }
+        let [pa, pb, pc] = t.vertices.map(|i| world[i as usize]);
+        let (u, v) = (
+            [pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2]],
+            [pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2]],
+        );
+        let n = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        let ndl = if len > 0.0 {
+            (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / len
+        } else {
+            0.0
+        };
+        let i = 0.2 + 0.8 * ndl.max(0.0);
+        let q = |kd: f64, max: f64| ((kd * i * max + 0.5).floor()).min(max) as u8;
+        let rgb = [q(1.0, 31.0), q(0.8, 63.0), q(0.6, 31.0)];
+        // Orient counter-clockwise in y-down terms for the edge tests.
+        let p = [a, cc, b];
+        let (x0, x1) = (
+            p.iter()
+                .map(|v| v[0])
+                .fold(f64::MAX, f64::min)
+                .floor()
+                .max(0.0) as usize,
+            p.iter()
+                .map(|v| v[0])
+                .fold(f64::MIN, f64::max)
+                .ceil()
+                .min(w as f64) as usize,
+        );
+        let (y0, y1) = (
+            p.iter()
+                .map(|v| v[1])
+                .fold(f64::MAX, f64::min)
+                .floor()
+                .max(0.0) as usize,
+            p.iter()
+                .map(|v| v[1])
+                .fold(f64::MIN, f64::max)
+                .ceil()
+                .min(h as f64) as usize,
+        );
+        for py in y0..y1 {
+            for px in x0..x1 {
+                let (x, y) = (px as f64 + 0.5, py as f64 + 0.5);
+                let mut inside = true;
+                let mut bary = [0.0; 3];
+                for k in 0..3 {
+                    let (e0, e1) = (p[k], p[(k + 1) % 3]);
+                    let (dx, dy) = (e1[0] - e0[0], e1[1] - e0[1]);
+                    let e = dx * (y - e0[1]) - dy * (x - e0[0]);
+                    inside &= e > 0.0 || (e == 0.0 && ((dy == 0.0 && dx > 0.0) || dy < 0.0));
+                    bary[(k + 2) % 3] = e;
+                }
+                if !inside {
+                    continue;
+                }
+                let sum = bary[0] + bary[1] + bary[2];
+                let z = (bary[0] * p[0][2] + bary[1] * p[1][2] + bary[2] * p[2][2]) / sum;
+                let k = py * w + px;
+                if z < depth[k] {
+                    depth[k] = z;
+                    color[k] = Some(rgb);
+                }
+            }
+        }
+    }
+    color
+}
+
+#[test]
+fn bunny_320_is_within_one_lsb_of_a_float_reference_almost_everywhere() {
+    let out = tmp("bunny320-ref.png");
+    run_ok(&[&BUNNY_320[..], &["--out", out.to_str().unwrap()]].concat());
+    let img = load(&out);
+    let reference = reference_bunny_320();
+    let (mut covered, mut close) = (0, 0);
+    for (k, want) in reference.iter().enumerate() {
+        let p = Point::new((k % 320) as i32, (k / 320) as i32);
+        let got: embedded_graphics::pixelcolor::Rgb565 = img.get_pixel(p).into();
+        let got = [got.r(), got.g(), got.b()];
+        let drawn = got != [0, 0, 0];
+        if want.is_none() && !drawn {
+            continue;
+        }
+        covered += 1;
+        if let Some(want) = want {
+            if drawn
+                && got
+                    .iter()
+                    .zip(want)
+                    .all(|(g, w)| (i16::from(*g) - i16::from(*w)).abs() <= 1)
+            {
+                close += 1;
+            }
+        }
+    }
+    let share = f64::from(close) / f64::from(covered);
+    println!(
+        "{close} of {covered} covered pixels within 1 LSB ({:.2}%)",
+        share * 100.0
+    );
+    assert!(covered > 11_000);
+    assert!(share >= 0.99, "only {:.2}% within 1 LSB", share * 100.0);
+}
