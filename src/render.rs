@@ -83,6 +83,12 @@ pub struct FrameStats {
 }
 
 impl FrameStats {
+    fn add_pixel_counts(&mut self, o: &FrameStats) {
+        self.pixels_tested += o.pixels_tested;
+        self.pixels_written += o.pixels_written;
+        self.runs += o.runs;
+    }
+
     fn add_pixels(&mut self, s: SpanStats) {
         self.pixels_tested += s.pixels_tested;
         self.pixels_written += s.pixels_written;
@@ -549,9 +555,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             },
         )?;
         self.count(geometry);
-        self.stats.pixels_tested += pixels.pixels_tested;
-        self.stats.pixels_written += pixels.pixels_written;
-        self.stats.runs += pixels.runs;
+        self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
 
@@ -615,9 +619,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 DrawError::Target(never) => match never {},
             })?;
         self.count(geometry);
-        self.stats.pixels_tested += pixels.pixels_tested;
-        self.stats.pixels_written += pixels.pixels_written;
-        self.stats.runs += pixels.runs;
+        self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
 
@@ -715,9 +717,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             px += fill_flat_buffered(frame, zbuf, &clip, &tri, color);
         }
         self.count(st);
-        self.stats.pixels_tested += px.pixels_tested;
-        self.stats.pixels_written += px.pixels_written;
-        self.stats.runs += px.runs;
+        self.stats.add_pixels(px);
         Ok(())
     }
 
@@ -778,9 +778,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             Ok(())
         })?;
         self.count(geometry);
-        self.stats.pixels_tested += pixels.pixels_tested;
-        self.stats.pixels_written += pixels.pixels_written;
-        self.stats.runs += pixels.runs;
+        self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
 
@@ -842,9 +840,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 pixels.add_pixels(s);
             }
         }
-        self.stats.pixels_tested += pixels.pixels_tested;
-        self.stats.pixels_written += pixels.pixels_written;
-        self.stats.runs += pixels.runs;
+        self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
 
@@ -866,9 +862,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             }
         }
         self.count(geometry);
-        self.stats.pixels_tested += pixels.pixels_tested;
-        self.stats.pixels_written += pixels.pixels_written;
-        self.stats.runs += pixels.runs;
+        self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
 
