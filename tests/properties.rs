@@ -250,3 +250,95 @@ proptest! {
         prop_assert!(a == b, "the fused path differs from the run path");
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(60))]
+
+    /// A jittered grid mesh through the renderers that fill — Z-buffer (runs), Z-buffer
+    /// fused into a colour buffer, and depth sort — covers every pixel of its outline
+    /// exactly once.
+    #[test]
+    fn renderer_grids_are_watertight(seed in any::<u64>(), n in 2usize..7) {
+        use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+        use zraster::{camera::{Transform, Viewport}, math::Mat4, mesh::Mesh, DepthSort, RenderOptions, Renderer};
+        let mut s = seed;
+        let mut rnd = move || { s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); (s >> 40) as i32 };
+        // Model units are 1/16 pixel; the outline is the rectangle (2, 2)–(62, 46) px.
+        let (cx, cy) = ((W - 4) * 16 / n as i32, (H - 4) * 16 / n as i32);
+        let r = cx.min(cy) / 8;
+        let mut pos = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let (mut x, mut y) = (32 + i as i32 * cx, 32 + j as i32 * cy);
+                if i > 0 && i < n { x += rnd() % (2 * r + 1) - r; }
+                if j > 0 && j < n { y += rnd() % (2 * r + 1) - r; }
+                pos.push([x as i16, y as i16, (rnd() % 2000) as i16]);
+            }
+        }
+        let at = |i: usize, j: usize| (j * (n + 1) + i) as u16;
+        let mut idx = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+                if rnd() % 2 == 0 { idx.push([a, d, c]); idx.push([a, c, b]); } else { idx.push([a, d, b]); idx.push([b, d, c]); }
+            }
+        }
+        let mesh = Mesh::triangles(&pos, 1.0 / 16.0, &idx, Rgb888::WHITE);
+        let xf = Transform {
+            model: Mat4::IDENTITY,
+            view: Mat4::IDENTITY,
+            projection: Mat4::orthographic(0.0, W as f32, H as f32, 0.0, -200.0, 200.0),
+            viewport: Viewport::new(W as u32, H as u32).unwrap(),
+        };
+        let opts = RenderOptions { cull: zraster::Cull::None, ..Default::default() };
+        let inside = |px: i32, py: i32| (2..62).contains(&px) && (2..46).contains(&py);
+        // Z-buffer through runs, with Always so that nothing hides an overdraw.
+        let mut depth = vec![0u16; (W * H) as usize];
+        let mut zbuf = ZBuffer::new(&mut depth, W as u32, H as u32).unwrap();
+        zbuf.set_test(DepthTest::Always);
+        let mut counter = Counter::new();
+        Renderer::new(&mesh, &xf, opts).unwrap().draw(&mut BinaryTarget(&mut counter), &mut zbuf).unwrap();
+        // Depth sort (no Z-buffer).
+        let mut sorted = Counter::new();
+        let mut sort = DepthSort::<128>::new();
+        Renderer::new(&mesh, &xf, opts).unwrap().draw_depth_sorted(&mut BinaryTarget(&mut sorted), &mut sort).unwrap();
+        // Fused: every pixel of the outline written once (pixels_written counts writes).
+        let mut px = vec![Rgb565::BLACK; (W * H) as usize];
+        let mut frame = ColorBuffer::new(&mut px, W as u32, H as u32).unwrap();
+        zbuf.fill(0);
+        let mut r = Renderer::new(&mesh, &xf, opts).unwrap();
+        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        prop_assert_eq!(r.stats().pixels_written, 60 * 44);
+        for py in 0..H {
+            for px in 0..W {
+                prop_assert_eq!(counter.at(px, py), u8::from(inside(px, py)), "Z-buffer, pixel ({}, {})", px, py);
+                prop_assert_eq!(sorted.at(px, py), u8::from(inside(px, py)), "depth sort, pixel ({}, {})", px, py);
+            }
+        }
+    }
+}
+
+/// Presents the counting target as an `Rgb565` one (the renderers' materials are
+/// `Rgb888`, which shades to `Rgb565`).
+struct BinaryTarget<'a>(&'a mut Counter);
+
+impl OriginDimensions for BinaryTarget<'_> {
+    fn size(&self) -> Size {
+        self.0.size()
+    }
+}
+
+impl DrawTarget for BinaryTarget<'_> {
+    type Color = embedded_graphics::pixelcolor::Rgb565;
+    type Error = core::convert::Infallible;
+    fn draw_iter<I: IntoIterator<Item = Pixel<Self::Color>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        self.0.draw_iter(
+            pixels
+                .into_iter()
+                .map(|Pixel(p, _)| Pixel(p, BinaryColor::On)),
+        )
+    }
+}
