@@ -489,3 +489,30 @@ fn bunny_320_is_within_one_lsb_of_a_float_reference_almost_everywhere() {
     assert!(covered > 11_000);
     assert!(share >= 0.99, "only {:.2}% within 1 LSB", share * 100.0);
 }
+
+#[test]
+fn no_fit_keeps_raw_coordinates() {
+    // A triangle (0,0,0), (0.5,0,0), (0,0.5,0): at distance 2.5 with a 60° field of view
+    // its corner (0.5, 0, 0) lands at x = (1 + 0.5·√3/(4/3)/2.5)/2 · 320 = 201.6.
+    let tri = write("raw.obj", b"v 0 0 0\nv 0.5 0 0\nv 0 0.5 0\nf 1 2 3\n");
+    let (raw, fit) = (tmp("raw.png"), tmp("fit.png"));
+    run_ok(&[
+        &tri,
+        "--no-fit",
+        "--shade",
+        "none",
+        "--out",
+        raw.to_str().unwrap(),
+    ]);
+    run_ok(&[&tri, "--shade", "none", "--out", fit.to_str().unwrap()]);
+    let raw = load(&raw);
+    let white = Rgb888::WHITE;
+    assert_eq!(raw.get_pixel(Point::new(165, 117)), white);
+    assert_eq!(raw.get_pixel(Point::new(200, 119)), white);
+    assert_eq!(raw.get_pixel(Point::new(203, 119)), Rgb888::BLACK);
+    assert_eq!(raw.get_pixel(Point::new(159, 117)), Rgb888::BLACK);
+    // Fitted, it is centred on its bounding box and twice the size.
+    let fit = load(&fit);
+    assert_eq!(fit.get_pixel(Point::new(120, 100)), white);
+    assert_eq!(raw.get_pixel(Point::new(120, 100)), Rgb888::BLACK);
+}
