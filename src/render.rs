@@ -134,7 +134,7 @@ impl Default for CachedVertex {
 /// bytes) per face. More faces than `N` is [`Error::CapacityExceeded`].
 #[derive(Debug, Default)]
 pub struct DepthSort<const N: usize> {
-    items: heapless::Vec<(i64, u16), N>,
+    items: heapless::Vec<(i32, u16), N>,
 }
 
 impl<const N: usize> DepthSort<N> {
@@ -755,7 +755,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 // Clip-space z grows with distance from the eye (for both projections).
                 sum += self.fixed.apply(p).zw().0;
             }
-            let key = sum / vs.len() as i64;
+            // |z| < 2⁴⁵ (clip-space scale): dropping 16 bits keeps the order and fits i32.
+            let key = ((sum / vs.len() as i64) >> 16) as i32;
             let _ = sort.items.push((key, f as u16));
         }
         // Farthest (largest z) first; equal depths keep the face order.
