@@ -29,6 +29,8 @@
 //! assert_eq!(frame.pixel(1, 1), Some(Rgb565::BLUE));
 //! assert_eq!(zbuf.depth(5, 5), Some(1000));
 //! // frame.flush(&mut display) sends it to a display in one fill_contiguous.
+//! // Meshes go through a `Renderer` (see `render`'s docs), whole frames or band by
+//! // band (`BandBuffers`).
 //! # Ok::<(), zraster::Error>(())
 //! ```
 //!
