@@ -257,7 +257,7 @@ fn flat_rows<C: PixelColor>(
 /// The pixel loop of [`fill_flat_buffered`]: depth test, depth write, colour write.
 /// Out of line, so that the loop has every register to itself. Returns the number of
 /// pixels that failed the test.
-#[inline(always)]
+#[inline(never)]
 pub(crate) fn flat_span<C: Copy>(
     zrow: &mut [u16],
     crow: &mut [C],
