@@ -16,7 +16,6 @@ ir() {
 }
 a=$(ir "$N"); b=$(ir $((2 * N)))
 echo "x86-64 bunny-320: $(( (b - a) / N )) instructions per frame (callgrind, frames $N and $((2 * N)))"
-a=$(ir "$N" ); b=$(ir $((2 * N)))
 args+=(--band 16)
 c=$(ir "$N"); d=$(ir $((2 * N)))
 echo "x86-64 bunny-320 banded 16: $(( (d - c) / N )) instructions per frame"
