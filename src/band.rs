@@ -123,12 +123,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         for k in 0..nb {
             let y0 = k * rows;
             let n = rows.min(bands.height - y0);
-            let len = (w * n) as usize;
-            // new() checked both slices hold `width × rows` entries, and len is at most that.
+            // new() checked both slices hold `width × rows` entries: the last, shorter
+            // band uses the front of them.
             let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
             let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
-            let _ = len;
-            color.data_mut().fill(background);
+            crate::zbuffer::fill_fast(color.data_mut(), background);
             zbuf.clear();
             match binned {
                 Some(nt) => {

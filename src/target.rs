@@ -145,7 +145,6 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     /// The pixels, mutable.
     #[inline]
     pub(crate) fn data_mut(&mut self) -> &mut [C] {
-        // (also used to clear a band without going through DrawTarget)
         self.data
     }
 
