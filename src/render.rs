@@ -78,7 +78,8 @@ pub struct FrameStats {
     pub pixels_tested: u32,
     /// Pixels written.
     pub pixels_written: u32,
-    /// Runs handed to the draw target.
+    /// Runs handed to the draw target (the fused path of
+    /// [`Renderer::draw_buffer`] writes pixels directly and hands over none).
     pub runs: u32,
 }
 
