@@ -476,16 +476,47 @@ impl ScreenMap {
         // Inside: 1 ≤ w < 2⁴⁵, 0 ≤ z + w ≤ 2w, |x|, |y| ≤ 64w. Shift everything so that
         // w fits 31 bits; the ratios keep 30 bits or more.
         let sh = (64 - w.leading_zeros()).saturating_sub(31);
-        let wn = w >> sh; // 1 ..< 2³¹
+        let wn = w >> sh; // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
         let (xn, yn, un) = (x >> sh, y >> sh, (z + w) >> sh); // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³²
-        let div = |n: i64, d: i64| (2 * n + d).div_euclid(2 * d); // rounded to nearest
-                                                                  // |xn|·half_w ≤ 2³⁷·2¹⁶: exact in i64.
-        let sx = self.ox_i + div(xn * self.half_w, wn);
-        let sy = self.oy_i - div(yn * self.half_h, wn);
-        // Depth: (z/w + 1)/2 · 65535 · 2¹⁶ = (un/wn) · 65535 · 2¹⁵, through the ratio
-        // in Q30 (un·2³⁰ ≤ 2⁶²; the ratio ≤ 2³¹, times 65535 < 2⁴⁷).
-        let ratio = div(un << 30, wn);
-        let sz = ((ratio * 65535 + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH));
+                                                              // One division: r = ⌊2⁶²/wn⌋ (r ≤ 2⁶², and ≤ 2³² when wn ≥ 2³⁰). Each quotient n/wn
+                                                              // is then n·r/2⁶², formed from 32-bit halves of n (no 128-bit arithmetic), exact
+                                                              // to within one unit of the result's last place.
+        let r = (1u64 << 62) / wn as u64;
+        let times_r = |n: u64| -> u64 {
+            // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴.
+            let (hi, lo) = (n >> 32, n & 0xffff_ffff);
+            hi.wrapping_mul(r)
+                .wrapping_shl(2)
+                .wrapping_add(lo.wrapping_mul(r) >> 30)
+        };
+        // A quotient rounded to nearest: (n/wn) in units of 2⁻³², then halved.
+        let ratio = |n: i64| -> i64 {
+            let q = times_r(n.unsigned_abs()) as i64; // n/wn · 2³²
+            let q = (q + (1 << 31)) >> 32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let sx = if wn >= 1 << 30 {
+            self.ox_i + ratio(xn * self.half_w)
+        } else {
+            self.ox_i + (2 * xn * self.half_w + wn).div_euclid(2 * wn)
+        };
+        let sy = if wn >= 1 << 30 {
+            self.oy_i - ratio(yn * self.half_h)
+        } else {
+            self.oy_i - (2 * yn * self.half_h + wn).div_euclid(2 * wn)
+        };
+        // Depth: (z/w + 1)/2 · 65535 · 2¹⁶ = (un/wn) · 65535 · 2¹⁵, through the ratio in
+        // Q30 (≤ 2³¹; times 65535 < 2⁴⁷).
+        let q30 = if wn >= 1 << 30 {
+            ((times_r(un as u64) >> 1) + 1) as i64 >> 1 // un/wn · 2³⁰, rounded (un ≥ 0)
+        } else {
+            (2 * (un << 30) + wn).div_euclid(2 * wn)
+        };
+        let sz = ((q30 * 65535 + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH));
         Some((0, ScreenVertex::from_raw(sx as i32, sy as i32, sz as u32)))
     }
 
