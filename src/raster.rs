@@ -105,6 +105,18 @@ impl ScreenVertex {
 /// (y down, as [`ScreenVertex`] has it) the same triangle has a negative value: see
 /// [`Facing::of`].
 pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
+    // On 32-bit targets: differences of guard-band coordinates fit i32 (below 2²⁵);
+    // when all four are below 2¹⁵ the products fit too, and a chip without a 64-bit
+    // multiplier (M0+) saves two library calls. (64-bit hosts multiply directly.)
+    #[cfg(target_pointer_width = "32")]
+    {
+        let (dx1, dy1) = (p1.0.wrapping_sub(p0.0), p1.1.wrapping_sub(p0.1));
+        let (dx2, dy2) = (p2.0.wrapping_sub(p0.0), p2.1.wrapping_sub(p0.1));
+        let small = |d: i32| (d as u32).wrapping_add(1 << 15);
+        if small(dx1) | small(dy1) | small(dx2) | small(dy2) < 1 << 16 {
+            return i64::from(dx1 * dy2 - dx2 * dy1);
+        }
+    }
     let (dx1, dy1) = (
         i64::from(p1.0) - i64::from(p0.0),
         i64::from(p1.1) - i64::from(p0.1),
