@@ -43,7 +43,12 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     if d < 1 << 16 && m < 1 << 48 {
         let d32 = d as u32;
         let hi = (m >> 16) as u32; // < 2³²
-        let (q1, r1) = (hi / d32, hi % d32);
+                                   // The high digit is usually a few bits: cheap by shift and subtract.
+        let (q1, r1) = if SOFT_DIVIDE {
+            udivrem(hi, d32)
+        } else {
+            (hi / d32, hi % d32)
+        };
         let lo = (r1 << 16) | (m as u32 & 0xffff); // r1 < d < 2¹⁶: fits
         let (q0, r0) = (lo / d32, lo % d32);
         let q = (u64::from(q1) << 16 | u64::from(q0)) as i64;
@@ -59,15 +64,65 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     n.div_euclid(d)
 }
 
+/// Whether the target has no divide instruction: ARMv6-M (Cortex-M0/M0+), recognised as
+/// the Arm profile without 32-bit atomics. There a division is a library call costing
+/// about 130 instructions whatever the operands; [`udivrem`] costs about 7 per quotient
+/// bit, and the rasterizer's quotients are mostly a few bits (pixel positions inside a
+/// small triangle, edge slopes).
+pub(crate) const SOFT_DIVIDE: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// `(n / d, n % d)` for `d > 0` by restoring shift-and-subtract division, one step per
+/// quotient bit: the divisor is doubled while it stays at most `n / 2` (so it never
+/// overflows), then halved back down, subtracting where it fits.
+#[inline]
+pub(crate) fn udivrem(n: u32, d: u32) -> (u32, u32) {
+    if n < d || d == 0 {
+        return (0, n);
+    }
+    let (mut dd, mut bit) = (d, 1u32);
+    while dd <= n >> 1 {
+        dd <<= 1;
+        bit <<= 1;
+    }
+    let (mut q, mut r) = (0, n);
+    loop {
+        if r >= dd {
+            r -= dd;
+            q |= bit;
+        }
+        if bit == 1 {
+            return (q, r);
+        }
+        dd >>= 1;
+        bit >>= 1;
+    }
+}
+
 /// ⌊n / d⌋ in 32 bits for `d > 0` (one division and a correction, inlined: the
 /// standard library's `div_euclid` is an out-of-line call on Thumb).
 #[inline(always)]
 pub(crate) fn floor_div32(n: i32, d: i32) -> i32 {
+    if SOFT_DIVIDE {
+        return floor_div32_soft(n, d);
+    }
     let q = n / d;
     if n % d < 0 {
         q - 1
     } else {
         q
+    }
+}
+
+/// [`floor_div32`] through [`udivrem`]. For `n = i32::MIN` the quotient 2³¹ wraps to
+/// `i32::MIN`, which negated is itself: still exact.
+#[inline]
+pub(crate) fn floor_div32_soft(n: i32, d: i32) -> i32 {
+    let (q, r) = udivrem(n.unsigned_abs(), d as u32);
+    let q = q as i32;
+    match (n < 0, r == 0) {
+        (false, _) => q,
+        (true, true) => q.wrapping_neg(),
+        (true, false) => q.wrapping_neg() - 1,
     }
 }
 
@@ -105,6 +160,41 @@ mod tests {
     use super::*;
 
     #[test]
+    fn shift_and_subtract_division_is_exact() {
+        let edges = [
+            0u32,
+            1,
+            2,
+            3,
+            7,
+            8,
+            255,
+            256,
+            65535,
+            65536,
+            1 << 31,
+            u32::MAX - 1,
+            u32::MAX,
+        ];
+        for &n in &edges {
+            for &d in edges.iter().filter(|&&d| d > 0) {
+                assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+            }
+        }
+        let mut x = 0x9e37_79b9_u64;
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let n = (x >> 32) as u32 >> (x % 32);
+            let d = ((x >> 7) as u32 >> ((x >> 3) % 32)).max(1);
+            assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+            let (ni, di) = (n as i32, (d >> 1).max(1) as i32);
+            assert_eq!(floor_div32_soft(ni, di), ni.div_euclid(di), "{ni} / {di}");
+        }
+    }
+
+    #[test]
     fn floor_and_ceil_division_round_the_right_way() {
         assert_eq!(div_floor(7, 2), 3);
         assert_eq!(div_floor(-7, 2), -4);
@@ -122,6 +212,7 @@ mod tests {
             (i32::MAX, 7),
         ] {
             assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
         }
         // The 64-bit and two-digit paths agree with plain division.
         assert_eq!(div_floor(-(1 << 40) - 1, 1 << 20), -(1 << 20) - 1);
