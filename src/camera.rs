@@ -287,6 +287,28 @@ impl FixedTransform {
     }
 }
 
+/// ⌊2⁶² / d⌋. For 2³⁰ < d < 2³¹ (the projection's normal case) by binary long division
+/// in 32-bit registers: 2⁶² is 2³⁰ · 2³², the high part leaves the remainder 2³⁰ < d,
+/// and each of the 32 zero bits below adds one quotient bit; the remainder stays below
+/// d, so doubling it fits 32 bits. About 5 instructions a bit, against a 64-bit library
+/// division on chips without one (all of the integer-projection targets). Other `d`
+/// (and 0, taken as 1) go through `u64` division.
+pub(crate) fn recip62(d: u32) -> u64 {
+    if d <= 1 << 30 {
+        return (1 << 62) / u64::from(d.max(1));
+    }
+    let (mut r, mut q) = (1u32 << 30, 0u32);
+    for _ in 0..32 {
+        r <<= 1;
+        q <<= 1;
+        if r >= d {
+            r -= d;
+            q |= 1;
+        }
+    }
+    u64::from(q)
+}
+
 /// 2^k as `f64`.
 fn pow2_f64(k: i32) -> f64 {
     f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52)
@@ -477,11 +499,13 @@ impl ScreenMap {
         // w fits 31 bits; the ratios keep 30 bits or more.
         let sh = (64 - w.leading_zeros()).saturating_sub(31);
         let wn = w >> sh; // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
-        let (xn, yn, un) = (x >> sh, y >> sh, (z + w) >> sh); // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³²
-                                                              // One division: r = ⌊2⁶²/wn⌋ (r ≤ 2⁶², and ≤ 2³² when wn ≥ 2³⁰). Each quotient n/wn
-                                                              // is then n·r/2⁶², formed from 32-bit halves of n (no 128-bit arithmetic), exact
-                                                              // to within one unit of the result's last place.
-        let r = (1u64 << 62) / wn as u64;
+                          // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
+        let (xn, yn, un) = (x >> sh, y >> sh, (z + w) >> sh);
+        // One division: r = ⌊2⁶²/wn⌋ (≤ 2³² when wn ≥ 2³⁰; below that the exact
+        // divisions further down run instead). Each quotient n/wn is then n·r/2⁶², formed
+        // from 32-bit halves of n (no 128-bit arithmetic), exact to within one unit of the
+        // result's last place.
+        let r = if wn >= 1 << 30 { recip62(wn as u32) } else { 0 };
         let times_r = |n: u64| -> u64 {
             // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴.
             let (hi, lo) = (n >> 32, n & 0xffff_ffff);
@@ -538,6 +562,28 @@ impl ScreenMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn recip62_is_the_exact_quotient() {
+        let check = |d: u32| assert_eq!(recip62(d), (1u64 << 62) / u64::from(d), "{d}");
+        for d in [
+            1 << 30,
+            (1 << 30) + 1,
+            (1 << 30) + 2,
+            0x5555_5555,
+            (1 << 31) - 2,
+            (1 << 31) - 1,
+        ] {
+            check(d);
+        }
+        let mut x = 0x2545_f491_u32;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            check((1 << 30) | (x >> 2));
+        }
+    }
     use crate::math::radians;
 
     #[test]
