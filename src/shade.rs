@@ -86,10 +86,31 @@ pub trait Material<C>: Copy {
 /// requantised to `max` levels.
 #[inline]
 fn channel(v: u8, i: Intensity, max: u32) -> u8 {
-    // ≤ 255 · 65535 · 255 < 2³², and the divisor is a constant (a multiply, not a division).
+    // ≤ 255 · 65535 · 255 < 2³². Dividing by 255 · 2¹⁵ is dividing by 2¹⁵, then by
+    // 255 (nested floors compose); the second is a multiply, also on chips where the
+    // compiler would call a division routine for a 32-bit constant divisor (ARMv6-M).
     let num = u32::from(v) * u32::from(i) * max;
     const DEN: u32 = 255 * ONE as u32;
-    ((num + DEN / 2) / DEN).min(max) as u8
+    div255((num + DEN / 2) >> 15).min(max) as u8
+}
+
+/// ⌊x / 255⌋ for x < 2²⁰. Without a divide instruction (where the compiler would call a
+/// division routine even for this constant) in adds and shifts: x/255 = (x + x/255)/256,
+/// with x/255 on the right estimated once the same way. Exact over that range: a test
+/// checks every x against the formula.
+#[inline]
+fn div255(x: u32) -> u32 {
+    if crate::fixed::SOFT_DIVIDE {
+        div255_shifts(x)
+    } else {
+        x / 255 // a multiply-high where the chip has one
+    }
+}
+
+/// The adds-and-shifts form of [`div255`].
+#[inline]
+fn div255_shifts(x: u32) -> u32 {
+    (x + 1 + ((x + 1 + (x >> 8)) >> 8)) >> 8
 }
 
 impl Material<Rgb565> for Rgb888 {
@@ -153,6 +174,16 @@ pub fn dither(level: u8, x: i32, y: i32) -> BinaryColor {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn div255_is_exact_over_its_range() {
+        for x in 0..1u32 << 20 {
+            assert_eq!(div255_shifts(x), x / 255, "{x}");
+            assert_eq!(div255(x), x / 255, "{x}");
+        }
+        // The largest argument `channel` makes: 255 · 65535 · 255 plus the rounding half.
+        assert!((255 * 65535 * 255 + 255 * u32::from(ONE) / 2) >> 15 < 1 << 20);
+    }
 
     #[test]
     fn full_intensity_keeps_the_colour() {
