@@ -3,7 +3,7 @@
 // Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use crate::fixed::{round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
+use crate::fixed::{mul_wide, round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::math::{Mat4, Vec3};
 use crate::raster::ScreenVertex;
 use crate::{Error, MAX_DIMENSION};
@@ -507,11 +507,19 @@ impl ScreenMap {
         // result's last place.
         let r = if wn >= 1 << 30 { recip62(wn as u32) } else { 0 };
         let times_r = |n: u64| -> u64 {
-            // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴.
+            // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴; with 32×32-bit products
+            // unless r = 2³² (wn = 2³⁰ exactly).
             let (hi, lo) = (n >> 32, n & 0xffff_ffff);
-            hi.wrapping_mul(r)
-                .wrapping_shl(2)
-                .wrapping_add(lo.wrapping_mul(r) >> 30)
+            if r >> 32 == 0 {
+                let (hi, lo, r) = (hi as u32, lo as u32, r as u32);
+                mul_wide(hi, r)
+                    .wrapping_shl(2)
+                    .wrapping_add(mul_wide(lo, r) >> 30)
+            } else {
+                hi.wrapping_mul(r)
+                    .wrapping_shl(2)
+                    .wrapping_add(lo.wrapping_mul(r) >> 30)
+            }
         };
         // A quotient rounded to nearest: (n/wn) in units of 2⁻³², then halved.
         let ratio = |n: i64| -> i64 {

@@ -44,7 +44,7 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
         let d32 = d as u32;
         let hi = (m >> 16) as u32; // < 2³²
                                    // The high digit is usually a few bits: cheap by shift and subtract.
-        let (q1, r1) = if SOFT_DIVIDE {
+        let (q1, r1) = if ARMV6M {
             udivrem(hi, d32)
         } else {
             (hi / d32, hi % d32)
@@ -64,12 +64,34 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     n.div_euclid(d)
 }
 
-/// Whether the target has no divide instruction: ARMv6-M (Cortex-M0/M0+), recognised as
-/// the Arm profile without 32-bit atomics. There a division is a library call costing
-/// about 130 instructions whatever the operands; [`udivrem`] costs about 7 per quotient
-/// bit, and the rasterizer's quotients are mostly a few bits (pixel positions inside a
-/// small triangle, edge slopes).
-pub(crate) const SOFT_DIVIDE: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+/// Whether the target is ARMv6-M (Cortex-M0/M0+), recognised as the Arm profile without
+/// 32-bit atomics. It has no divide instruction and no 32×32→64-bit multiply: a division
+/// is a library call costing about 130 instructions whatever the operands ([`udivrem`]
+/// costs about 7 per quotient bit, and the rasterizer's quotients are mostly a few bits),
+/// and a 64-bit product a call costing about 45 ([`mul_wide`] is 4 multiplies inline).
+pub(crate) const ARMV6M: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+
+/// `a · b` in 64 bits. On ARMv6-M from four 16×16-bit products, carries added by hand;
+/// elsewhere the plain widening multiply (one `UMULL` on a Cortex-M3/M4).
+#[inline]
+pub(crate) fn mul_wide(a: u32, b: u32) -> u64 {
+    if ARMV6M {
+        mul_wide_parts(a, b)
+    } else {
+        u64::from(a) * u64::from(b)
+    }
+}
+
+/// The four-product form of [`mul_wide`].
+#[inline]
+fn mul_wide_parts(a: u32, b: u32) -> u64 {
+    let (a1, a0) = (a >> 16, a & 0xffff);
+    let (b1, b0) = (b >> 16, b & 0xffff);
+    let (mid, carry) = (a1 * b0).overflowing_add(a0 * b1); // each < 2³²; carry is 2⁴⁸
+    let (low, c) = (a0 * b0).overflowing_add(mid << 16);
+    let high = a1 * b1 + (mid >> 16) + (u32::from(carry) << 16) + u32::from(c);
+    (u64::from(high) << 32) | u64::from(low)
+}
 
 /// `(n / d, n % d)` for `d > 0` by restoring shift-and-subtract division, one step per
 /// quotient bit: the divisor is doubled while it stays at most `n / 2` (so it never
@@ -102,7 +124,7 @@ pub(crate) fn udivrem(n: u32, d: u32) -> (u32, u32) {
 /// standard library's `div_euclid` is an out-of-line call on Thumb).
 #[inline(always)]
 pub(crate) fn floor_div32(n: i32, d: i32) -> i32 {
-    if SOFT_DIVIDE {
+    if ARMV6M {
         return floor_div32_soft(n, d);
     }
     let q = n / d;
@@ -158,6 +180,36 @@ pub(crate) fn round_f32(v: f32) -> i32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wide_products_are_exact() {
+        let edges = [
+            0u32,
+            1,
+            0xffff,
+            0x1_0000,
+            0x1_0001,
+            0x8000_0000,
+            u32::MAX - 1,
+            u32::MAX,
+        ];
+        let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut pairs = edges
+            .iter()
+            .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+            .collect::<std::vec::Vec<_>>();
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            pairs.push(((x >> 32) as u32, x as u32 >> (x % 31)));
+        }
+        for (a, b) in pairs {
+            let want = u64::from(a) * u64::from(b);
+            assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
+            assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+        }
+    }
 
     #[test]
     fn shift_and_subtract_division_is_exact() {
