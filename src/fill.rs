@@ -267,6 +267,41 @@ pub(crate) fn flat_span<C: Copy>(
     write: bool,
     pass: &impl Fn(u16, u16) -> bool,
 ) -> u32 {
+    // Rows of small triangles are mostly 1 to 3 pixels: they take a plain loop here,
+    // which needs few registers (a cheap call); longer ones the unrolled loop.
+    if zrow.len() >= LONG_SPAN {
+        return flat_span_long(zrow, crow, acc, dz, color, write, pass);
+    }
+    let mut failed = 0;
+    for (d, c) in zrow.iter_mut().zip(crow.iter_mut()) {
+        let z = (acc >> 16) as u16;
+        acc = acc.wrapping_add(dz);
+        if pass(z, *d) {
+            if write {
+                *d = z;
+            }
+            *c = color;
+        } else {
+            failed += 1;
+        }
+    }
+    failed
+}
+
+/// Spans at least this long take [`flat_span_long`].
+const LONG_SPAN: usize = 8;
+
+/// [`flat_span`] for long spans (the compiler unrolls this loop).
+#[inline(never)]
+fn flat_span_long<C: Copy>(
+    zrow: &mut [u16],
+    crow: &mut [C],
+    mut acc: u32,
+    dz: u32,
+    color: C,
+    write: bool,
+    pass: &impl Fn(u16, u16) -> bool,
+) -> u32 {
     let mut failed = 0;
     for (d, c) in zrow.iter_mut().zip(crow.iter_mut()) {
         let z = (acc >> 16) as u16;
