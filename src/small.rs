@@ -115,44 +115,66 @@ pub(crate) fn fill_small<C: Copy>(
     let upper_end = mid.min(end);
     if start < upper_end {
         let mut short = edge(v0, v1, start);
-        let (l, r) = if mid_right {
-            (&mut long, &mut short)
+        // Two calls rather than a choice of references: the loop then keeps each edge
+        // in the same registers every row.
+        if mid_right {
+            rows(
+                b,
+                &mut long,
+                &mut short,
+                start,
+                upper_end,
+                depth,
+                color,
+                write,
+                pass,
+                &mut counts,
+            );
         } else {
-            (&mut short, &mut long)
-        };
-        rows(
-            b,
-            l,
-            r,
-            start,
-            upper_end,
-            depth,
-            color,
-            write,
-            pass,
-            &mut counts,
-        );
+            rows(
+                b,
+                &mut short,
+                &mut long,
+                start,
+                upper_end,
+                depth,
+                color,
+                write,
+                pass,
+                &mut counts,
+            );
+        }
     }
     let lower_start = mid.max(start);
     if lower_start < end {
         let mut short = edge(v1, v2, lower_start);
-        let (l, r) = if mid_right {
-            (&mut long, &mut short)
+        if mid_right {
+            rows(
+                b,
+                &mut long,
+                &mut short,
+                lower_start,
+                end,
+                depth,
+                color,
+                write,
+                pass,
+                &mut counts,
+            );
         } else {
-            (&mut short, &mut long)
-        };
-        rows(
-            b,
-            l,
-            r,
-            lower_start,
-            end,
-            depth,
-            color,
-            write,
-            pass,
-            &mut counts,
-        );
+            rows(
+                b,
+                &mut short,
+                &mut long,
+                lower_start,
+                end,
+                depth,
+                color,
+                write,
+                pass,
+                &mut counts,
+            );
+        }
     }
     Some(counts)
 }
