@@ -202,9 +202,12 @@ fn rows<C: Copy>(
         left.advance();
         right.advance();
         if xa < xb {
+            // lo ≤ hi: max then min is the clamp, without `clamp`'s check (which the
+            // compiler sometimes leaves as a call here).
             let acc = row_z
                 .wrapping_add((xa as u32).wrapping_mul(d.sx))
-                .clamp(d.lo, d.hi);
+                .max(d.lo)
+                .min(d.hi);
             let (s, e) = (base + xa as usize, base + xb as usize);
             if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
                 let n = (xb - xa) as u32;
