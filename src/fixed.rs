@@ -170,11 +170,8 @@ pub(crate) fn sat_i32(v: i64) -> i32 {
 /// that the value is finite and within `i32`.
 #[inline]
 pub(crate) fn round_f32(v: f32) -> i32 {
-    if v >= 0.0 {
-        (v + 0.5) as i32
-    } else {
-        (v - 0.5) as i32
-    }
+    // ±½ by the sign bit, then truncation: no branch.
+    (v + 0.5f32.copysign(v)) as i32
 }
 
 #[cfg(test)]
