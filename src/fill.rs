@@ -261,7 +261,7 @@ fn flat_rows<C: PixelColor>(
 pub(crate) fn flat_span<C: Copy>(
     zrow: &mut [u16],
     crow: &mut [C],
-    mut acc: u32,
+    acc: u32,
     dz: u32,
     color: C,
     write: bool,
@@ -272,20 +272,7 @@ pub(crate) fn flat_span<C: Copy>(
     if zrow.len() >= LONG_SPAN {
         return flat_span_long(zrow, crow, acc, dz, color, write, pass);
     }
-    let mut failed = 0;
-    for (d, c) in zrow.iter_mut().zip(crow.iter_mut()) {
-        let z = (acc >> 16) as u16;
-        acc = acc.wrapping_add(dz);
-        if pass(z, *d) {
-            if write {
-                *d = z;
-            }
-            *c = color;
-        } else {
-            failed += 1;
-        }
-    }
-    failed
+    span_pixels(zrow, crow, acc, dz, color, write, pass)
 }
 
 /// Spans at least this long take [`flat_span_long`].
@@ -294,6 +281,21 @@ const LONG_SPAN: usize = 8;
 /// [`flat_span`] for long spans (the compiler unrolls this loop).
 #[inline(never)]
 fn flat_span_long<C: Copy>(
+    zrow: &mut [u16],
+    crow: &mut [C],
+    acc: u32,
+    dz: u32,
+    color: C,
+    write: bool,
+    pass: &impl Fn(u16, u16) -> bool,
+) -> u32 {
+    span_pixels(zrow, crow, acc, dz, color, write, pass)
+}
+
+/// The pixel loop itself, inlined into both [`flat_span`] (kept rolled there) and
+/// [`flat_span_long`] (unrolled there).
+#[inline(always)]
+fn span_pixels<C: Copy>(
     zrow: &mut [u16],
     crow: &mut [C],
     mut acc: u32,
