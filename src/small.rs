@@ -112,68 +112,38 @@ pub(crate) fn fill_small<C: Copy>(
     };
     let mut long = edge(v0, v2, start);
     let mut counts = (0, 0);
+    let mut half = |left: &mut EdgeWalk, right: &mut EdgeWalk, from: i32, to: i32| {
+        rows(
+            b,
+            left,
+            right,
+            from,
+            to,
+            depth,
+            color,
+            write,
+            pass,
+            &mut counts,
+        );
+    };
+    // Two calls in each half rather than a choice of references: the loop then keeps
+    // each edge in the same registers every row.
     let upper_end = mid.min(end);
     if start < upper_end {
         let mut short = edge(v0, v1, start);
-        // Two calls rather than a choice of references: the loop then keeps each edge
-        // in the same registers every row.
         if mid_right {
-            rows(
-                b,
-                &mut long,
-                &mut short,
-                start,
-                upper_end,
-                depth,
-                color,
-                write,
-                pass,
-                &mut counts,
-            );
+            half(&mut long, &mut short, start, upper_end);
         } else {
-            rows(
-                b,
-                &mut short,
-                &mut long,
-                start,
-                upper_end,
-                depth,
-                color,
-                write,
-                pass,
-                &mut counts,
-            );
+            half(&mut short, &mut long, start, upper_end);
         }
     }
     let lower_start = mid.max(start);
     if lower_start < end {
         let mut short = edge(v1, v2, lower_start);
         if mid_right {
-            rows(
-                b,
-                &mut long,
-                &mut short,
-                lower_start,
-                end,
-                depth,
-                color,
-                write,
-                pass,
-                &mut counts,
-            );
+            half(&mut long, &mut short, lower_start, end);
         } else {
-            rows(
-                b,
-                &mut short,
-                &mut long,
-                lower_start,
-                end,
-                depth,
-                color,
-                write,
-                pass,
-                &mut counts,
-            );
+            half(&mut short, &mut long, lower_start, end);
         }
     }
     Some(counts)
