@@ -12,8 +12,7 @@
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::mesh::Faces;
-use crate::raster::signed_area;
-use crate::render::{CachedVertex, Cull};
+use crate::render::{culled, CachedVertex};
 use crate::shade::{Material, Shading};
 use crate::{ColorBuffer, DrawError, Error, FrameStats, Renderer, ZBuffer, MAX_DIMENSION};
 
@@ -219,17 +218,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     DrawError::Input(e) => e,
                     DrawError::Target(never) => match never {},
                 })?;
-                st.triangles_in += g.triangles_in;
-                st.clipped += g.clipped;
-                st.culled += g.culled;
-                st.drawn += g.drawn;
-                st.outside += g.outside;
+                st.add_geometry(&g);
                 tall
             } else {
                 st.triangles_in += 1;
-                let (p, q, r) = (a.screen(), b.screen(), c.screen());
-                let pt = |v: &crate::ScreenVertex| (v.x(), v.y());
-                if Cull::drops(cull, signed_area(pt(&p), pt(&q), pt(&r))) {
+                let tri = [a.screen(), b.screen(), c.screen()];
+                let [p, q, r] = tri;
+                if culled(&tri, cull) {
                     st.culled += 1;
                     NOT_DRAWN
                 } else {
@@ -278,7 +273,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         if let Some(s) = start.first_mut() {
             *s = 0;
         }
-        self.count_geometry(st);
+        self.count(st);
         Ok(Some(nt))
     }
 }

@@ -84,6 +84,15 @@ pub struct FrameStats {
 }
 
 impl FrameStats {
+    /// Add the triangle counts of `g` (not its pixel counts).
+    pub(crate) fn add_geometry(&mut self, g: &FrameStats) {
+        self.triangles_in += g.triangles_in;
+        self.culled += g.culled;
+        self.outside += g.outside;
+        self.clipped += g.clipped;
+        self.drawn += g.drawn;
+    }
+
     fn add_pixel_counts(&mut self, o: &FrameStats) {
         self.pixels_tested += o.pixels_tested;
         self.pixels_written += o.pixels_written;
@@ -95,6 +104,22 @@ impl FrameStats {
         self.pixels_written += s.pixels_written;
         self.runs += s.runs;
     }
+}
+
+/// Whether `tri` lies wholly above or below rows `row0..row1` (in 1/16 pixel): later
+/// passes (bands) skip such triangles before anything else.
+#[inline(always)]
+fn outside_rows(tri: &[ScreenVertex; 3], row0: i32, row1: i32) -> bool {
+    let ymin = tri[0].y().min(tri[1].y()).min(tri[2].y());
+    let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
+    ymax + 8 < row0 || ymin + 8 > row1
+}
+
+/// Whether `cull` drops `tri`.
+#[inline(always)]
+pub(crate) fn culled(tri: &[ScreenVertex; 3], cull: Cull) -> bool {
+    let p = |v: &ScreenVertex| (v.x(), v.y());
+    cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2])))
 }
 
 /// A vertex transformed and projected once per frame (16 bytes), so that every band
@@ -399,16 +424,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 }
                 if v0.code | v1.code | v2.code == 0 {
                     let tri = [v0.screen, v1.screen, v2.screen];
-                    if !first {
-                        // Later bands: skip triangles above or below this band first.
-                        let ymin = tri[0].y().min(tri[1].y()).min(tri[2].y());
-                        let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
-                        if ymax + 8 < row0 || ymin + 8 > row1 {
-                            continue;
-                        }
+                    if !first && outside_rows(&tri, row0, row1) {
+                        continue;
                     }
-                    let p = |v: &ScreenVertex| (v.x(), v.y());
-                    if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
+                    if culled(&tri, cull) {
                         st.culled += 1;
                         continue;
                     }
@@ -477,11 +496,6 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.for_each_triangle(&clip, true, core::iter::once(f), |_, _, _, _| Ok(()))
     }
 
-    /// Record the geometry counts of a frame (taken once, by its first pass).
-    pub(crate) fn count_geometry(&mut self, geometry: FrameStats) {
-        self.count(geometry);
-    }
-
     /// [`draw_buffer`](Renderer::draw_buffer) for the listed faces of a cached triangle
     /// mesh (the band path; geometry already counted).
     pub(crate) fn draw_listed<C>(
@@ -502,7 +516,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         }
     }
 
-    fn count(&mut self, geometry: FrameStats) {
+    /// Record the geometry counts of a frame (taken once, by its first pass).
+    pub(crate) fn count(&mut self, geometry: FrameStats) {
         if !self.counted {
             let FrameStats {
                 pixels_tested,
@@ -680,25 +695,16 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         DrawError::Input(e) => e,
                         DrawError::Target(never) => match never {},
                     })?;
-                st.triangles_in += g.triangles_in;
-                st.outside += g.outside;
-                st.clipped += g.clipped;
-                st.culled += g.culled;
-                st.drawn += g.drawn;
+                st.add_geometry(&g);
                 px += more;
                 continue;
             }
             st.triangles_in += 1;
             let tri = [a.screen, b.screen, c.screen];
-            if !first {
-                let ymin = tri[0].y().min(tri[1].y()).min(tri[2].y());
-                let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
-                if ymax + 8 < row0 || ymin + 8 > row1 {
-                    continue;
-                }
+            if !first && outside_rows(&tri, row0, row1) {
+                continue;
             }
-            let p = |v: &ScreenVertex| (v.x(), v.y());
-            if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
+            if culled(&tri, cull) {
                 st.culled += 1;
                 continue;
             }
