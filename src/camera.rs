@@ -331,18 +331,15 @@ pub(crate) mod outcode {
     pub const W: u8 = 64;
 }
 
-/// The outcode of a clip-space point.
-#[inline]
-pub(crate) fn outcode_of(c: &[f32; 4]) -> u8 {
-    let [x, y, z, w] = *c;
-    let g = GUARD * w;
-    let mut o = 0;
-    if z < -w {
-        o |= outcode::NEAR;
-    }
-    if z > w {
-        o |= outcode::FAR;
-    }
+/// `o` with the guard-band bits of an outcode added: `x` and `y` against `±g`
+/// (g = GUARD · w), in whichever number type the caller tests in (`f32`, or exact `i64`).
+#[inline(always)]
+fn guard_code<T: PartialOrd + core::ops::Neg<Output = T> + Copy>(
+    mut o: u8,
+    x: T,
+    y: T,
+    g: T,
+) -> u8 {
     if x < -g {
         o |= outcode::LEFT;
     }
@@ -355,6 +352,22 @@ pub(crate) fn outcode_of(c: &[f32; 4]) -> u8 {
     if y > g {
         o |= outcode::TOP;
     }
+    o
+}
+
+/// The outcode of a clip-space point.
+#[inline]
+pub(crate) fn outcode_of(c: &[f32; 4]) -> u8 {
+    let [x, y, z, w] = *c;
+    let g = GUARD * w;
+    let mut o = 0;
+    if z < -w {
+        o |= outcode::NEAR;
+    }
+    if z > w {
+        o |= outcode::FAR;
+    }
+    o = guard_code(o, x, y, g);
     if w < 1.0 || w.is_nan() {
         o |= outcode::W;
     }
@@ -438,18 +451,7 @@ impl ScreenMap {
         // The guard band in f32: it has room for rounding.
         let [x, y, zf, wf] = c.to_f32();
         let g = GUARD * wf;
-        if x < -g {
-            code |= outcode::LEFT;
-        }
-        if x > g {
-            code |= outcode::RIGHT;
-        }
-        if y < -g {
-            code |= outcode::BOTTOM;
-        }
-        if y > g {
-            code |= outcode::TOP;
-        }
+        code = guard_code(code, x, y, g);
         if code != 0 {
             return (code, ScreenVertex::ORIGIN);
         }
@@ -479,18 +481,7 @@ impl ScreenMap {
         let (x, y) = c.xy_wide()?;
         if code & outcode::W == 0 {
             let g = w << 6; // w < 2⁴⁵
-            if x < -g {
-                code |= outcode::LEFT;
-            }
-            if x > g {
-                code |= outcode::RIGHT;
-            }
-            if y < -g {
-                code |= outcode::BOTTOM;
-            }
-            if y > g {
-                code |= outcode::TOP;
-            }
+            code = guard_code(code, x, y, g);
         }
         if code != 0 {
             return Some((code, ScreenVertex::ORIGIN));
