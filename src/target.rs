@@ -9,7 +9,7 @@ use embedded_graphics::{
 
 use crate::error::prefix_mut;
 use crate::raster::Clip;
-use crate::zbuffer::check_dims;
+use crate::zbuffer::{check_dims, row_span};
 use crate::Error;
 
 /// A frame (or a band of one) of colours in a caller-provided slice.
@@ -128,12 +128,7 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     /// of it lies outside the buffer.
     #[inline]
     pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [C]> {
-        let r = y.wrapping_sub(self.first_row) as u32;
-        if r >= u32::from(self.rows) || x0 < 0 || x1 > i32::from(self.width) || x0 > x1 {
-            return None;
-        }
-        let start = r as usize * usize::from(self.width) + x0 as usize;
-        self.data.get_mut(start..start + (x1 - x0) as usize)
+        row_span(self.data, self.geometry(), y, x0, x1)
     }
 
     /// (width, rows, first row), as [`ZBuffer`](crate::ZBuffer) reports it.

@@ -175,12 +175,7 @@ impl<'a> ZBuffer<'a> {
     /// it lies outside the buffer.
     #[inline]
     pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [u16]> {
-        let r = y.wrapping_sub(self.first_row) as u32;
-        if r >= u32::from(self.rows) || x0 < 0 || x1 > i32::from(self.width) || x0 > x1 {
-            return None;
-        }
-        let start = r as usize * usize::from(self.width) + x0 as usize;
-        self.data.get_mut(start..start + (x1 - x0) as usize)
+        row_span(self.data, self.geometry(), y, x0, x1)
     }
 
     /// (width, rows, first row): two buffers with the same geometry share indices.
@@ -215,6 +210,24 @@ pub(crate) fn fill_fast<T: Copy>(data: &mut [T], value: T) {
     #[cfg(target_arch = "x86_64")]
     let value = core::hint::black_box(value);
     data.fill(value);
+}
+
+/// The part of screen row `y` from column `x0` to `x1` (exclusive) in `data`, a buffer
+/// of the given (width, rows, first row) geometry; `None` when any of it lies outside.
+#[inline]
+pub(crate) fn row_span<T>(
+    data: &mut [T],
+    (width, rows, first_row): (u16, u16, i32),
+    y: i32,
+    x0: i32,
+    x1: i32,
+) -> Option<&mut [T]> {
+    let r = y.wrapping_sub(first_row) as u32;
+    if r >= u32::from(rows) || x0 < 0 || x1 > i32::from(width) || x0 > x1 {
+        return None;
+    }
+    let start = r as usize * usize::from(width) + x0 as usize;
+    data.get_mut(start..start + (x1 - x0) as usize)
 }
 
 /// Validate `width × rows` against [`MAX_DIMENSION`] and a slice length.
