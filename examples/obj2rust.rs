@@ -18,7 +18,7 @@ use zraster::{
     math::Vec3,
     mesh::{compute_face_normals, compute_vertex_normals, Mesh},
 };
-use zraster_obj::{parse_obj, quantize};
+use zraster_obj::{fit_scale, parse_obj, quantize};
 
 /// The Rust source for `obj`, with items prefixed by `name` (upper case).
 fn convert(src: &str, name: &str) -> Result<String, String> {
@@ -38,15 +38,7 @@ fn convert(src: &str, name: &str) -> Result<String, String> {
     let mut scratch = vec![Vec3::default(); q.positions.len()];
     compute_face_normals(&mesh, &mut fnorm).map_err(|e| e.to_string())?;
     compute_vertex_normals(&mesh, &mut scratch, &mut vnorm).map_err(|e| e.to_string())?;
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in &obj.positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max);
-    let fit = if extent > 0.0 { 1.0 / extent } else { 1.0 };
+    let fit = fit_scale(&obj.positions);
     let n = name.to_uppercase();
     let mut out = String::new();
     let w = &mut out;

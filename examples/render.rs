@@ -21,7 +21,7 @@ use zraster::{
     BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions,
     Renderer, ZBuffer,
 };
-use zraster_obj::{parse_obj, quantize};
+use zraster_obj::{fit_scale, parse_obj, quantize};
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]
@@ -316,16 +316,8 @@ fn main() {
 
     // Model space → fitted: centre the bounding box, largest extent 1 (positions are
     // already stored around the bounding-box centre, q.offset).
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for p in &obj.positions {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max);
     let place = if o.fit {
-        Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * if extent > 0.0 { 1.0 / extent } else { 1.0 })
+        Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit_scale(&obj.positions))
     } else {
         Mat4::translation(Vec3::new(q.offset[0], q.offset[1], q.offset[2]))
     };

@@ -14,7 +14,7 @@ use zraster::{
     shade::{Light, Shading},
     ColorBuffer, Cull, DepthSort, DepthTest, RenderOptions, Renderer, ZBuffer,
 };
-use zraster_obj::{parse_obj, quantize};
+use zraster_obj::{fit_scale, parse_obj, quantize};
 
 /// The Stanford bunny (public domain; see the licence line at the top of the file).
 pub const BUNNY_OBJ: &str = include_str!("../models/bunny.obj");
@@ -289,21 +289,13 @@ impl Bunny {
     pub fn load() -> Bunny {
         let obj = parse_obj(BUNNY_OBJ, |_| None).expect("bunny.obj");
         let q = quantize(&obj.positions, true);
-        let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-        for p in &obj.positions {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f32::max);
         let indices: Vec<[u16; 3]> = obj
             .triangles
             .iter()
             .map(|t| t.vertices.map(|v| v as u16))
             .collect();
         let mut b = Bunny {
-            fit: Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * (1.0 / extent)),
+            fit: Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit_scale(&obj.positions)),
             face_normals: vec![[0; 3]; indices.len()],
             vertex_normals: vec![[0; 3]; q.positions.len()],
             positions: q.positions,

@@ -238,9 +238,12 @@ pub struct Quantized {
     pub offset: [f32; 3],
 }
 
-/// Quantise positions to `i16`. With `centre`, around the bounding-box centre (best
-/// precision); otherwise around the origin.
-pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
+/// The bounding box of `positions`: its lowest and highest corner (both zero when there
+/// are no positions).
+pub fn bounds(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
+    if positions.is_empty() {
+        return ([0.0; 3], [0.0; 3]);
+    }
     let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
     for p in positions {
         for k in 0..3 {
@@ -248,9 +251,25 @@ pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
             hi[k] = hi[k].max(p[k]);
         }
     }
-    if positions.is_empty() {
-        (lo, hi) = ([0.0; 3], [0.0; 3]);
+    (lo, hi)
+}
+
+/// The uniform scale that makes the largest extent of the bounding box 1 (1 when the
+/// box is a point or there are no positions).
+pub fn fit_scale(positions: &[[f32; 3]]) -> f32 {
+    let (lo, hi) = bounds(positions);
+    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max);
+    if extent > 0.0 {
+        1.0 / extent
+    } else {
+        1.0
     }
+}
+
+/// Quantise positions to `i16`. With `centre`, around the bounding-box centre (best
+/// precision); otherwise around the origin.
+pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
+    let (lo, hi) = bounds(positions);
     let offset = if centre {
         [
             (lo[0] + hi[0]) * 0.5,
@@ -287,6 +306,16 @@ pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bounds_and_fit_scale() {
+        let box_ = [[-1.0, 0.5, 2.0], [1.0, 0.0, 2.5], [0.0, -0.5, 2.25]];
+        assert_eq!(bounds(&box_), ([-1.0, -0.5, 2.0], [1.0, 0.5, 2.5]));
+        assert_eq!(fit_scale(&box_), 0.5); // largest extent 2 (x)
+        assert_eq!(bounds(&[]), ([0.0; 3], [0.0; 3]));
+        assert_eq!(fit_scale(&[]), 1.0);
+        assert_eq!(fit_scale(&[[3.0, 3.0, 3.0]]), 1.0);
+    }
 
     fn parse(s: &str) -> Result<ObjModel, ObjError> {
         parse_obj(s, |_| None)
