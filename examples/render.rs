@@ -240,6 +240,26 @@ fn parse_args(args: &[String]) -> Options {
     o
 }
 
+/// One drawing of `frame` (the whole frame, or one band of it) in `mode`.
+fn draw_pass(
+    renderer: &mut Renderer<'_, '_, Kd>,
+    mode: Mode,
+    sort: Option<&mut DepthSort<65536>>,
+    frame: &mut ColorBuffer<'_, Rgb565>,
+    zbuf: &mut ZBuffer<'_>,
+    line_color: Rgb565,
+) -> Result<(), DrawError<core::convert::Infallible>> {
+    match mode {
+        Mode::ZBuffer => renderer.draw_buffer(frame, zbuf).map_err(DrawError::Input),
+        Mode::Painter => match sort {
+            Some(s) => renderer.draw_depth_sorted(frame, s),
+            None => Ok(()),
+        },
+        Mode::HiddenLine => renderer.draw_hidden_line(frame, zbuf, line_color),
+        Mode::Wireframe => renderer.draw_wireframe(frame, line_color),
+    }
+}
+
 /// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly.
 #[derive(Clone, Copy)]
 struct Kd([f32; 3]);
@@ -385,17 +405,14 @@ fn main() {
                 ZBuffer::new(&mut depth_full, w, h).unwrap_or_else(|e| input_error(&e.to_string()));
             full.clear(Rgb565::BLACK).ok();
             zbuf.clear();
-            let result = match o.mode {
-                Mode::ZBuffer => renderer
-                    .draw_buffer(&mut full, &mut zbuf)
-                    .map_err(DrawError::Input),
-                Mode::Painter => match sort.as_deref_mut() {
-                    Some(s) => renderer.draw_depth_sorted(&mut full, s),
-                    None => Ok(()),
-                },
-                Mode::HiddenLine => renderer.draw_hidden_line(&mut full, &mut zbuf, line_color),
-                Mode::Wireframe => renderer.draw_wireframe(&mut full, line_color),
-            };
+            let result = draw_pass(
+                &mut renderer,
+                o.mode,
+                sort.as_deref_mut(),
+                &mut full,
+                &mut zbuf,
+                line_color,
+            );
             if let Err(e) = result {
                 input_error(&format!("{}: {e}", o.model));
             }
@@ -432,17 +449,14 @@ fn main() {
                 .unwrap_or_else(|e| input_error(&e.to_string()));
             color.clear(Rgb565::BLACK).ok();
             zbuf.clear();
-            let result = match o.mode {
-                Mode::ZBuffer => renderer
-                    .draw_buffer(&mut color, &mut zbuf)
-                    .map_err(DrawError::Input),
-                Mode::Painter => match sort.as_deref_mut() {
-                    Some(s) => renderer.draw_depth_sorted(&mut color, s),
-                    None => Ok(()),
-                },
-                Mode::HiddenLine => renderer.draw_hidden_line(&mut color, &mut zbuf, line_color),
-                Mode::Wireframe => renderer.draw_wireframe(&mut color, line_color),
-            };
+            let result = draw_pass(
+                &mut renderer,
+                o.mode,
+                sort.as_deref_mut(),
+                &mut color,
+                &mut zbuf,
+                line_color,
+            );
             if let Err(e) = result {
                 input_error(&format!("{}: {e}", o.model));
             }
