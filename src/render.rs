@@ -704,7 +704,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             if !first && outside_rows(&tri, row0, row1) {
                 continue;
             }
-            if culled(&tri, cull) {
+            // The test of `culled`, written out: through the helper this loop compiles
+            // 8 instructions a face longer on x86-64 (M4 and M0+ do not care).
+            let p = |v: &ScreenVertex| (v.x(), v.y());
+            if cull.drops(signed_area(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
                 st.culled += 1;
                 continue;
             }
