@@ -105,18 +105,20 @@ impl ScreenVertex {
 /// (y down, as [`ScreenVertex`] has it) the same triangle has a negative value: see
 /// [`Facing::of`].
 pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
-    // On 32-bit targets: differences of guard-band coordinates fit i32 (below 2²⁵);
-    // when all four are below 2¹⁵ the products fit too, and a chip without a 64-bit
-    // multiplier (M0+) saves two library calls. (64-bit hosts multiply directly.)
+    // On 32-bit targets: differences of guard-band coordinates fit i32 (below 2²⁵).
     #[cfg(target_pointer_width = "32")]
     {
-        let (dx1, dy1) = (p1.0.wrapping_sub(p0.0), p1.1.wrapping_sub(p0.1));
-        let (dx2, dy2) = (p2.0.wrapping_sub(p0.0), p2.1.wrapping_sub(p0.1));
-        let small = |d: i32| (d as u32).wrapping_add(1 << 15);
-        if small(dx1) | small(dy1) | small(dx2) | small(dy2) < 1 << 16 {
-            return i64::from(dx1 * dy2 - dx2 * dy1);
+        let guard = |v: i32| (v as u32).wrapping_add(GUARD_BAND as u32) <= 2 * GUARD_BAND as u32;
+        if guard(p0.0) && guard(p0.1) && guard(p1.0) && guard(p1.1) && guard(p2.0) && guard(p2.1) {
+            return signed_area_guarded(p0, p1, p2);
         }
     }
+    area_wide(p0, p1, p2)
+}
+
+/// [`signed_area`] in `i64` throughout.
+#[inline(always)]
+fn area_wide(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
     let (dx1, dy1) = (
         i64::from(p1.0) - i64::from(p0.0),
         i64::from(p1.1) - i64::from(p0.1),
@@ -126,6 +128,44 @@ pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
         i64::from(p2.1) - i64::from(p0.1),
     );
     dx1 * dy2 - dx2 * dy1
+}
+
+/// [`signed_area`] for vertices inside the guard band (every coordinate difference
+/// below 2²⁵, so it fits `i32`).
+#[inline(always)]
+pub(crate) fn signed_area_guarded(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
+    if cfg!(not(target_pointer_width = "32")) {
+        // 64-bit registers: the general form is as cheap.
+        return area_wide(p0, p1, p2);
+    }
+    let d = [
+        p1.0.wrapping_sub(p0.0),
+        p1.1.wrapping_sub(p0.1),
+        p2.0.wrapping_sub(p0.0),
+        p2.1.wrapping_sub(p0.1),
+    ];
+    if crate::fixed::ARMV6M {
+        if let Some(a) = area_short(d) {
+            return a;
+        }
+    }
+    area_narrow(d)
+}
+
+/// The area from the differences `[dx1, dy1, dx2, dy2]`: one `SMULL` each on a
+/// Cortex-M3/M4.
+#[inline(always)]
+fn area_narrow([dx1, dy1, dx2, dy2]: [i32; 4]) -> i64 {
+    i64::from(dx1) * i64::from(dy2) - i64::from(dx2) * i64::from(dy1)
+}
+
+/// [`area_narrow`] in `i32` when all four differences are below 2¹⁵ (so the products
+/// fit): on a chip without a 64-bit multiplier (ARMv6-M) two library calls fewer.
+#[inline(always)]
+fn area_short([dx1, dy1, dx2, dy2]: [i32; 4]) -> Option<i64> {
+    let small = |d: i32| (d as u32).wrapping_add(1 << 15);
+    (small(dx1) | small(dy1) | small(dx2) | small(dy2) < 1 << 16)
+        .then(|| i64::from(dx1 * dy2 - dx2 * dy1))
 }
 
 /// Which way a triangle faces.
@@ -723,6 +763,37 @@ mod tests {
 
     fn v(x: i32, y: i32, z: u16) -> ScreenVertex {
         ScreenVertex::from_pixels(x, y, z).unwrap()
+    }
+
+    #[test]
+    fn guarded_area_is_the_wide_area_up_to_the_guard_band() {
+        let g = GUARD_BAND;
+        let cases = [
+            ((1, 3), (5, 5), (2, 7)),
+            ((-g, -g), (g, -g), (g, g)),
+            ((g, g), (-g, g), (-g, -g)),
+            ((-g, g), (g, -g), (0, 0)),
+            ((0, 0), (1 << 15, 0), (0, (1 << 15) - 1)),
+            ((-(1 << 15), 0), (1 << 15, 1), (3, -(1 << 15))),
+        ];
+        for (a, b, c) in cases {
+            let wide = area_wide(a, b, c);
+            assert_eq!(signed_area_guarded(a, b, c), wide, "{a:?} {b:?} {c:?}");
+            assert_eq!(signed_area(a, b, c), wide);
+            assert_eq!(signed_area_guarded(b, c, a), wide);
+            // The 32-bit targets' forms.
+            let d = [b.0 - a.0, b.1 - a.1, c.0 - a.0, c.1 - a.1];
+            assert_eq!(area_narrow(d), wide);
+            let short = d.iter().all(|&d| (-(1 << 15)..1 << 15).contains(&d));
+            assert_eq!(area_short(d), short.then_some(wide));
+        }
+        assert_eq!(area_wide((-g, -g), (g, -g), (g, g)), 1 << 50);
+        // Outside the guard band the public form stays exact.
+        let m = i32::MAX;
+        assert_eq!(
+            signed_area((0, 0), (m, 0), (0, m)),
+            i64::from(m) * i64::from(m)
+        );
     }
 
     #[test]
