@@ -700,17 +700,17 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 continue;
             }
             st.triangles_in += 1;
-            let tri = [a.screen, b.screen, c.screen];
-            if !first && outside_rows(&tri, row0, row1) {
+            if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
                 continue;
             }
             // The test of `culled`, written out: through the helper this loop compiles
             // 8 instructions a face longer on x86-64 (M4 and M0+ do not care).
-            let p = |v: &ScreenVertex| (v.x(), v.y());
-            if cull.drops(signed_area_guarded(p(&tri[0]), p(&tri[1]), p(&tri[2]))) {
+            let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
+            if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
                 st.culled += 1;
                 continue;
             }
+            let tri = [a.screen, b.screen, c.screen];
             st.drawn += 1;
             let color = match flat {
                 Some(c) => c,
