@@ -162,42 +162,136 @@ pub(crate) fn fill_flat_buffered<C: PixelColor>(
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
-    let stats = SpanStats::default();
-    if clip.is_empty() {
-        return stats;
-    }
-    if zbuf.geometry() == frame.geometry() {
-        let (w, _, first_row) = zbuf.geometry();
-        let write = zbuf.write_enabled();
-        let test = zbuf.test();
-        let mut b = Buffers {
-            zdata: zbuf.data_mut(),
-            cdata: frame.data_mut(),
-            width: usize::from(w),
-            first_row,
-            clip: *clip,
-        };
-        let done = match test {
-            DepthTest::Less => fill_small(&mut b, tri, color, write, |f, s| f < s),
-            DepthTest::LessEqual => fill_small(&mut b, tri, color, write, |f, s| f <= s),
-            DepthTest::Greater => fill_small(&mut b, tri, color, write, |f, s| f > s),
-            DepthTest::Equal => fill_small(&mut b, tri, color, write, |f, s| f == s),
-            DepthTest::Always => fill_small(&mut b, tri, color, write, |_, _| true),
-            DepthTest::Never => Some((0, 0)),
-        };
-        if let Some((tested, written)) = done {
-            return SpanStats {
-                pixels_tested: tested,
-                pixels_written: written,
-                runs: 0,
+    FlatTarget::new(frame, zbuf, clip).fill(tri, color)
+}
+
+/// A colour buffer and a Z-buffer borrowed for a run of flat triangles: what
+/// [`fill_flat_buffered`] works out about them (geometry, depth test, clip) is worked
+/// out once, not per triangle.
+pub(crate) enum FlatTarget<'a, 'z, 'c, C> {
+    /// Same geometry: one index serves both buffers.
+    Fused {
+        b: Buffers<'a, 'a, C>,
+        test: DepthTest,
+        write: bool,
+    },
+    /// Different geometries (or nothing to draw when `clip` is empty).
+    Split {
+        frame: &'a mut ColorBuffer<'c, C>,
+        zbuf: &'a mut ZBuffer<'z>,
+        clip: Clip,
+    },
+}
+
+impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
+    pub(crate) fn new(
+        frame: &'a mut ColorBuffer<'c, C>,
+        zbuf: &'a mut ZBuffer<'z>,
+        clip: &Clip,
+    ) -> Self {
+        if clip.is_empty() || zbuf.geometry() != frame.geometry() {
+            return FlatTarget::Split {
+                frame,
+                zbuf,
+                clip: *clip,
             };
         }
+        let (w, _, first_row) = zbuf.geometry();
+        let (test, write) = (zbuf.test(), zbuf.write_enabled());
+        FlatTarget::Fused {
+            b: Buffers {
+                zdata: zbuf.data_mut(),
+                cdata: frame.data_mut(),
+                width: usize::from(w),
+                first_row,
+                clip: *clip,
+            },
+            test,
+            write,
+        }
+    }
+
+    /// Fill one triangle in `color`.
+    pub(crate) fn fill(&mut self, tri: &[ScreenVertex; 3], color: C) -> SpanStats {
+        match self {
+            FlatTarget::Fused { b, test, write } => fill_fused(b, *test, *write, tri, color),
+            FlatTarget::Split { frame, zbuf, clip } => fill_split(frame, zbuf, clip, tri, color),
+        }
+    }
+}
+
+/// [`FlatTarget::fill`] into buffers of the same geometry.
+fn fill_fused<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    test: DepthTest,
+    write: bool,
+    tri: &[ScreenVertex; 3],
+    color: C,
+) -> SpanStats {
+    let done = match test {
+        DepthTest::Less => fill_small(b, tri, color, write, |f, s| f < s),
+        DepthTest::LessEqual => fill_small(b, tri, color, write, |f, s| f <= s),
+        DepthTest::Greater => fill_small(b, tri, color, write, |f, s| f > s),
+        DepthTest::Equal => fill_small(b, tri, color, write, |f, s| f == s),
+        DepthTest::Always => fill_small(b, tri, color, write, |_, _| true),
+        DepthTest::Never => Some((0, 0)),
+    };
+    if let Some((tested, written)) = done {
+        return SpanStats {
+            pixels_tested: tested,
+            pixels_written: written,
+            runs: 0,
+        };
     }
     let Some(setup) = Setup::new(tri) else {
-        return stats;
+        return SpanStats::default();
     };
     let Some((rows, dz)) = DepthRows::new(tri, &setup) else {
-        return stats;
+        return SpanStats::default();
+    };
+    let rows = (&setup, &rows, dz, &b.clip);
+    let (w, first_row) = (b.width, b.first_row);
+    let (zdata, cdata) = (&mut *b.zdata, &mut *b.cdata);
+    match test {
+        DepthTest::Less => {
+            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| f < s)
+        }
+        DepthTest::LessEqual => {
+            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| {
+                f <= s
+            })
+        }
+        DepthTest::Greater => {
+            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| f > s)
+        }
+        DepthTest::Equal => {
+            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| {
+                f == s
+            })
+        }
+        DepthTest::Always => {
+            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |_, _| true)
+        }
+        DepthTest::Never => SpanStats::default(),
+    }
+}
+
+/// [`FlatTarget::fill`] into buffers of different geometries.
+fn fill_split<C: PixelColor>(
+    frame: &mut ColorBuffer<'_, C>,
+    zbuf: &mut ZBuffer<'_>,
+    clip: &Clip,
+    tri: &[ScreenVertex; 3],
+    color: C,
+) -> SpanStats {
+    if clip.is_empty() {
+        return SpanStats::default();
+    }
+    let Some(setup) = Setup::new(tri) else {
+        return SpanStats::default();
+    };
+    let Some((rows, dz)) = DepthRows::new(tri, &setup) else {
+        return SpanStats::default();
     };
     let write = zbuf.write_enabled();
     let rows = (&setup, &rows, dz, clip);
@@ -207,11 +301,41 @@ pub(crate) fn fill_flat_buffered<C: PixelColor>(
         DepthTest::Greater => flat_rows(frame, zbuf, rows, write, color, |f, s| f > s),
         DepthTest::Equal => flat_rows(frame, zbuf, rows, write, color, |f, s| f == s),
         DepthTest::Always => flat_rows(frame, zbuf, rows, write, color, |_, _| true),
-        DepthTest::Never => stats,
+        DepthTest::Never => SpanStats::default(),
     }
 }
 
-/// The row loop of [`fill_flat_buffered`] for one depth test.
+/// The row loop of [`fill_fused`] for one depth test: one index serves both buffers.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn flat_rows_fused<C: Copy>(
+    zdata: &mut [u16],
+    cdata: &mut [C],
+    w: usize,
+    first_row: i32,
+    (setup, rows, dz, clip): (&Setup, &DepthRows, u32, &Clip),
+    write: bool,
+    color: C,
+    pass: impl Fn(u16, u16) -> bool,
+) -> SpanStats {
+    let mut stats = SpanStats::default();
+    let mut spans = setup.spans(clip);
+    while let Some((y, x0, x1)) = spans.next_span() {
+        let acc = rows.at(x0, y);
+        let start = (y - first_row) as usize * w + x0 as usize;
+        let end = start + (x1 - x0) as usize;
+        let (Some(zrow), Some(crow)) = (zdata.get_mut(start..end), cdata.get_mut(start..end))
+        else {
+            continue;
+        };
+        let failed = flat_span(zrow, crow, acc, dz, color, write, &pass);
+        stats.pixels_tested += (x1 - x0) as u32;
+        stats.pixels_written += (x1 - x0) as u32 - failed;
+    }
+    stats
+}
+
+/// The row loop of [`fill_split`] for one depth test.
 #[inline(always)]
 fn flat_rows<C: PixelColor>(
     frame: &mut ColorBuffer<'_, C>,
@@ -223,25 +347,6 @@ fn flat_rows<C: PixelColor>(
 ) -> SpanStats {
     let mut stats = SpanStats::default();
     let mut spans = setup.spans(clip);
-    let (zgeom, cgeom) = (zbuf.geometry(), frame.geometry());
-    if zgeom == cgeom {
-        // The usual case: both buffers cover the same rows, so one index serves both.
-        let (w, first_row) = (zgeom.0 as usize, zgeom.2);
-        let (zdata, cdata) = (zbuf.data_mut(), frame.data_mut());
-        while let Some((y, x0, x1)) = spans.next_span() {
-            let acc = rows.at(x0, y);
-            let start = (y - first_row) as usize * w + x0 as usize;
-            let end = start + (x1 - x0) as usize;
-            let (Some(zrow), Some(crow)) = (zdata.get_mut(start..end), cdata.get_mut(start..end))
-            else {
-                continue;
-            };
-            let failed = flat_span(zrow, crow, acc, dz, color, write, &pass);
-            stats.pixels_tested += (x1 - x0) as u32;
-            stats.pixels_written += (x1 - x0) as u32 - failed;
-        }
-        return stats;
-    }
     while let Some((y, x0, x1)) = spans.next_span() {
         let acc = rows.at(x0, y);
         let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1)) else {

@@ -12,7 +12,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::camera::{outcode_of, to_f32, FixedTransform, ScreenMap, Transform};
 use crate::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
-use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, SpanStats};
+use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget, SpanStats};
 use crate::line::draw_line;
 use crate::math::Vec3;
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
@@ -668,6 +668,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let Some(cache) = self.cache.as_deref() else {
             return Ok(());
         };
+        let mut target = FlatTarget::new(frame, zbuf, &clip);
         for f in faces {
             let Some(t) = indices.get(f) else { continue };
             let get = |i: u16| {
@@ -687,7 +688,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         core::iter::once(f),
                         |f, mat, tri, _| {
                             let i = if lambert { self.face_light(f) } else { ONE };
-                            more += fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(i, 0, 0));
+                            more += target.fill(tri, mat.shade(i, 0, 0));
                             Ok(())
                         },
                     )
@@ -724,7 +725,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0)
                 }
             };
-            px += fill_flat_buffered(frame, zbuf, &clip, &tri, color);
+            px += target.fill(&tri, color);
         }
         self.count(st);
         self.stats.add_pixels(px);
