@@ -7,7 +7,7 @@
 //! start stepped with one add a row, one index into both buffers, and the two halves of
 //! the triangle walked by two plain loops.
 
-use crate::fixed::{div_floor, SUBPIXEL, SUBPIXEL_BITS};
+use crate::fixed::{div_floor_pair, SUBPIXEL, SUBPIXEL_BITS};
 use crate::raster::{plane_origin, Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
 
 /// Colour and depth rows of the same geometry, and the pixels drawing may touch.
@@ -57,8 +57,11 @@ impl Depth {
         );
         let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
         let bb = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
-        let sx = div_floor(a * i64::from(SUBPIXEL), i64::from(area));
-        let sy = div_floor(bb * i64::from(SUBPIXEL), i64::from(area));
+        let (sx, sy) = div_floor_pair(
+            a * i64::from(SUBPIXEL),
+            bb * i64::from(SUBPIXEL),
+            i64::from(area),
+        );
         let (zlo, zhi) = (
             p0.z().min(p1.z()).min(p2.z()),
             p0.z().max(p1.z()).max(p2.z()),
