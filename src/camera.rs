@@ -3,7 +3,7 @@
 // Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use crate::fixed::{mul_wide, round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
+use crate::fixed::{mul_i64_i32, mul_wide, round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::math::{Mat4, Vec3};
 use crate::raster::ScreenVertex;
 use crate::{Error, MAX_DIMENSION};
@@ -411,7 +411,8 @@ pub(crate) struct ScreenMap {
     ox: f32,
     sy: f32,
     oy: f32,
-    /// The same in integers (1/16 pixel), for the integer projection.
+    /// The same in integers (1/16 pixel), for the integer projection; half_w and
+    /// half_h are at most 8 · 8192 = 2¹⁶ (so they fit `i32`).
     half_w: i64,
     half_h: i64,
     ox_i: i64,
@@ -547,12 +548,12 @@ impl ScreenMap {
             }
         };
         let sx = if wn >= 1 << 30 {
-            self.ox_i + ratio(xn * self.half_w)
+            self.ox_i + ratio(mul_i64_i32(xn, self.half_w as i32))
         } else {
             self.ox_i + (2 * xn * self.half_w + wn).div_euclid(2 * wn)
         };
         let sy = if wn >= 1 << 30 {
-            self.oy_i - ratio(yn * self.half_h)
+            self.oy_i - ratio(mul_i64_i32(yn, self.half_h as i32))
         } else {
             self.oy_i - (2 * yn * self.half_h + wn).div_euclid(2 * wn)
         };
@@ -563,7 +564,7 @@ impl ScreenMap {
         } else {
             (2 * (un << 30) + wn).div_euclid(2 * wn)
         };
-        let sz = ((q30 * 65535 + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH));
+        let sz = ((mul_i64_i32(q30, 65535) + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH));
         Some((0, ScreenVertex::from_raw(sx as i32, sy as i32, sz as u32)))
     }
 

@@ -137,6 +137,34 @@ pub(crate) fn mul_wide(a: u32, b: u32) -> u64 {
     }
 }
 
+/// `a.wrapping_mul(b)`. On ARMv6-M, for `|b| < 2¹⁶` (every use in the rasterizer and
+/// the projection but the widest viewports), in three 32-bit multiplies instead of a
+/// 64-bit library multiply: `a` in 32-bit halves, `b`'s magnitude in 16 bits.
+#[inline]
+pub(crate) fn mul_i64_i32(a: i64, b: i32) -> i64 {
+    let ub = b.unsigned_abs();
+    if !ARMV6M || ub >= 1 << 16 {
+        return a.wrapping_mul(i64::from(b));
+    }
+    mul_small_parts(a, b)
+}
+
+/// The three-multiply form of [`mul_i64_i32`], for `|b| < 2¹⁶`.
+#[inline]
+fn mul_small_parts(a: i64, b: i32) -> i64 {
+    let ub = b.unsigned_abs();
+    let (al, ah) = (a as u32, (a as u64 >> 32) as u32);
+    // al·ub below 2⁴⁸ from two 16×16-bit halves; ah·ub modulo 2³² is all that stays
+    // of the high half modulo 2⁶⁴.
+    let low = (u64::from((al >> 16) * ub) << 16) + u64::from((al & 0xffff) * ub);
+    let p = low.wrapping_add(u64::from(ah.wrapping_mul(ub)) << 32) as i64;
+    if b < 0 {
+        p.wrapping_neg()
+    } else {
+        p
+    }
+}
+
 /// The four-product form of [`mul_wide`].
 #[inline]
 fn mul_wide_parts(a: u32, b: u32) -> u64 {
@@ -260,6 +288,39 @@ mod tests {
             let want = u64::from(a) * u64::from(b);
             assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
             assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+        }
+    }
+
+    #[test]
+    fn small_products_wrap_as_i64_does() {
+        let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut cases = std::vec![];
+        for a in [
+            0i64,
+            1,
+            -1,
+            i64::MAX,
+            i64::MIN,
+            1 << 47,
+            -(1 << 53) + 5,
+            0xffff_ffff,
+        ] {
+            for b in [0i32, 1, -1, 8, -8, 65535, -65535, 65536, i32::MIN, i32::MAX] {
+                cases.push((a, b));
+            }
+        }
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            cases.push((x as i64 >> (x % 17), (x >> 40) as i32 >> (x % 23)));
+        }
+        for (a, b) in cases {
+            let want = a.wrapping_mul(i64::from(b));
+            assert_eq!(mul_i64_i32(a, b), want, "{a} * {b}");
+            if b.unsigned_abs() < 1 << 16 {
+                assert_eq!(mul_small_parts(a, b), want, "{a} * {b}");
+            }
         }
     }
 

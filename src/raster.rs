@@ -8,8 +8,8 @@
 //! share an edge cover each pixel along it exactly once.
 
 use crate::fixed::{
-    div_ceil, div_floor, div_floor_wide, floor_div32, round_f32, sat_i32, GUARD_BAND, MAX_DEPTH,
-    SUBPIXEL, SUBPIXEL_BITS,
+    div_ceil, div_floor, div_floor_wide, floor_div32, mul_i64_i32, round_f32, sat_i32, GUARD_BAND,
+    MAX_DEPTH, SUBPIXEL, SUBPIXEL_BITS,
 };
 use crate::Error;
 
@@ -359,10 +359,7 @@ pub(crate) fn plane_origin(p0: &ScreenVertex, sx: i64, sy: i64) -> u32 {
     let (yi, yf) = (p0.y >> SUBPIXEL_BITS, p0.y & (SUBPIXEL - 1));
     let half = SUBPIXEL / 2;
     // |s| < 2⁵³ on every path that uses this form and |half − f| ≤ 8: below 2⁵⁷.
-    let frac = sx
-        .wrapping_mul(i64::from(half - xf))
-        .wrapping_add(sy.wrapping_mul(i64::from(half - yf)))
-        >> SUBPIXEL_BITS;
+    let frac = mul_i64_i32(sx, half - xf).wrapping_add(mul_i64_i32(sy, half - yf)) >> SUBPIXEL_BITS;
     (frac as u32)
         .wrapping_add(p0.z)
         .wrapping_sub((sx as u32).wrapping_mul(xi as u32))

@@ -7,7 +7,7 @@
 //! start stepped with one add a row, one index into both buffers, and the two halves of
 //! the triangle walked by two plain loops.
 
-use crate::fixed::{div_floor_pair, SUBPIXEL, SUBPIXEL_BITS};
+use crate::fixed::{div_floor_pair, mul_i64_i32, SUBPIXEL, SUBPIXEL_BITS};
 use crate::raster::{plane_origin, Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
 
 /// Colour and depth rows of the same geometry, and the pixels drawing may touch.
@@ -55,8 +55,9 @@ impl Depth {
             i64::from(p1.z()) - i64::from(p0.z()),
             i64::from(p2.z()) - i64::from(p0.z()),
         );
-        let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
-        let bb = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
+        // |dz| < 2³², |dx|, |dy| < 2¹³ (a small triangle): below 2⁴⁶.
+        let a = mul_i64_i32(dz1, dy2) - mul_i64_i32(dz2, dy1);
+        let bb = mul_i64_i32(dz2, dx1) - mul_i64_i32(dz1, dx2);
         let (sx, sy) = div_floor_pair(
             a * i64::from(SUBPIXEL),
             bb * i64::from(SUBPIXEL),
