@@ -210,12 +210,26 @@ pub(crate) fn floor_div32(n: i32, d: i32) -> i32 {
     if ARMV6M {
         return floor_div32_soft(n, d);
     }
+    if cfg!(target_arch = "arm") {
+        // One unsigned division, flipping the bits of n before and after when it is
+        // negative (for n < 0, ⌊n/d⌋ = −⌊(−n − 1)/d⌋ − 1 and −n − 1 = !n): no floor
+        // correction and no signed-overflow check. 13 k instructions less per bunny
+        // frame on a Cortex-M4; 30 k more on x86-64, which keeps the signed form.
+        return floor_div32_flip(n, d);
+    }
     let q = n / d;
     if n % d < 0 {
         q - 1
     } else {
         q
     }
+}
+
+/// [`floor_div32`] by one unsigned division of `n` or `!n`.
+#[inline(always)]
+fn floor_div32_flip(n: i32, d: i32) -> i32 {
+    let m = (n >> 31) as u32; // all ones when n < 0
+    (((n as u32 ^ m) / d as u32) ^ m) as i32
 }
 
 /// [`floor_div32`] through [`udivrem`]. For `n = i32::MIN` the quotient 2³¹ wraps to
@@ -437,6 +451,20 @@ mod tests {
             (i32::MAX, 7),
         ] {
             assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_flip(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
+        }
+        let mut x = 0x853c_49e6_748f_ea9b_u64;
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (n, d) = (
+                (x >> 32) as i32,
+                ((x as u32 & i32::MAX as u32) >> (x % 31)).max(1) as i32,
+            );
+            assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_flip(n, d), n.div_euclid(d), "{n} / {d}");
             assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
         }
         // The 64-bit and two-digit paths agree with plain division.
