@@ -203,7 +203,20 @@ fn rows<C: Copy>(
                 .max(d.lo)
                 .min(d.hi);
             let (s, e) = (base + xa as usize, base + xb as usize);
-            if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
+            if e == s + 1 {
+                // One pixel, the commonest row of a small triangle: no call.
+                if let (Some(zp), Some(cp)) = (b.zdata.get_mut(s), b.cdata.get_mut(s)) {
+                    let z = (acc >> 16) as u16;
+                    *tested += 1;
+                    if pass(z, *zp) {
+                        if write {
+                            *zp = z;
+                        }
+                        *cp = color;
+                        *written += 1;
+                    }
+                }
+            } else if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
                 let n = (xb - xa) as u32;
                 let failed = crate::fill::flat_span(zr, cr, acc, d.sx, color, write, &pass);
                 *tested += n;
