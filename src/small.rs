@@ -216,6 +216,31 @@ fn rows<C: Copy>(
                         *written += 1;
                     }
                 }
+            } else if cfg!(target_arch = "arm") && e == s + 2 {
+                // Two pixels inline too on Arm (38 k instructions less per bunny frame on
+                // a Cortex-M4; 37 k more on x86-64, which calls).
+                if let (Some([z0, z1]), Some([c0, c1])) = (
+                    b.zdata
+                        .get_mut(s..e)
+                        .and_then(|z| <&mut [u16; 2]>::try_from(z).ok()),
+                    b.cdata
+                        .get_mut(s..e)
+                        .and_then(|c| <&mut [C; 2]>::try_from(c).ok()),
+                ) {
+                    *tested += 2;
+                    let mut px = |zp: &mut u16, cp: &mut C, acc: u32| {
+                        let z = (acc >> 16) as u16;
+                        if pass(z, *zp) {
+                            if write {
+                                *zp = z;
+                            }
+                            *cp = color;
+                            *written += 1;
+                        }
+                    };
+                    px(z0, c0, acc);
+                    px(z1, c1, acc.wrapping_add(d.sx));
+                }
             } else if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
                 let n = (xb - xa) as u32;
                 let failed = crate::fill::flat_span(zr, cr, acc, d.sx, color, write, &pass);
