@@ -3,7 +3,9 @@
 // Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use crate::fixed::{mul_i64_i32, mul_wide, round_f32, GUARD_BAND, MAX_DEPTH, SUBPIXEL};
+use crate::fixed::{
+    mul_i64_i32, mul_wide, round_f32, shl64, shr64, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
+};
 use crate::math::{Mat4, Vec3};
 use crate::raster::ScreenVertex;
 use crate::{Error, MAX_DIMENSION};
@@ -159,7 +161,12 @@ impl Clip4 {
         if !(0..=20).contains(&e) {
             return None;
         }
-        Some((i64::from(self.xy[0]) << e, i64::from(self.xy[1]) << e))
+        // e ≤ 20: x and y stay below 2⁵¹.
+        let e = e as u32;
+        Some((
+            shl64(i64::from(self.xy[0]), e),
+            shl64(i64::from(self.xy[1]), e),
+        ))
     }
 
     /// The four coordinates as `f32` in one scale, each rounded once: no 64-bit
@@ -514,13 +521,13 @@ impl ScreenMap {
         // Inside: 1 ≤ w < 2⁴⁵, 0 ≤ z + w ≤ 2w, |x|, |y| ≤ 64w. Shift everything so that
         // w fits 31 bits; the ratios keep 30 bits or more.
         let sh = (64 - w.leading_zeros()).saturating_sub(31);
-        let wn = w >> sh; // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
-                          // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
-        let (xn, yn, un) = (x >> sh, y >> sh, (z + w) >> sh);
-        // One division: r = ⌊2⁶²/wn⌋ (≤ 2³² when wn ≥ 2³⁰; below that the exact
-        // divisions further down run instead). Each quotient n/wn is then n·r/2⁶², formed
-        // from 32-bit halves of n (no 128-bit arithmetic), exact to within one unit of the
-        // result's last place.
+        let wn = shr64(w, sh); // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
+                               // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
+        let (xn, yn, un) = (shr64(x, sh), shr64(y, sh), shr64(z + w, sh)); // sh ≤ 14
+                                                                           // One division: r = ⌊2⁶²/wn⌋ (≤ 2³² when wn ≥ 2³⁰; below that the exact
+                                                                           // divisions further down run instead). Each quotient n/wn is then n·r/2⁶², formed
+                                                                           // from 32-bit halves of n (no 128-bit arithmetic), exact to within one unit of the
+                                                                           // result's last place.
         let r = if wn >= 1 << 30 { recip62(wn as u32) } else { 0 };
         let times_r = |n: u64| -> u64 {
             // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴; with 32×32-bit products

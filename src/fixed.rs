@@ -165,6 +165,49 @@ fn mul_small_parts(a: i64, b: i32) -> i64 {
     }
 }
 
+/// `v << s` (wrapping) for `s < 32`. ARMv6-M shifts 64-bit values by a variable
+/// amount through library calls; this is four 32-bit shifts inline there.
+#[inline]
+pub(crate) fn shl64(v: i64, s: u32) -> i64 {
+    if ARMV6M && s < 32 {
+        shl64_parts(v, s)
+    } else {
+        v.wrapping_shl(s)
+    }
+}
+
+/// `v >> s` (arithmetic) for `s < 32`, as [`shl64`].
+#[inline]
+pub(crate) fn shr64(v: i64, s: u32) -> i64 {
+    if ARMV6M && s < 32 {
+        shr64_parts(v, s)
+    } else {
+        v.wrapping_shr(s)
+    }
+}
+
+/// [`shl64`] from 32-bit halves.
+#[inline]
+fn shl64_parts(v: i64, s: u32) -> i64 {
+    if s == 0 {
+        return v;
+    }
+    let (lo, hi) = (v as u32, (v as u64 >> 32) as u32);
+    let (hi, lo) = ((hi << s) | (lo >> (32 - s)), lo << s);
+    (u64::from(hi) << 32 | u64::from(lo)) as i64
+}
+
+/// [`shr64`] from 32-bit halves.
+#[inline]
+fn shr64_parts(v: i64, s: u32) -> i64 {
+    if s == 0 {
+        return v;
+    }
+    let (lo, hi) = (v as u32, (v >> 32) as i32);
+    let (hi, lo) = (hi >> s, (lo >> s) | ((hi as u32) << (32 - s)));
+    ((hi as u64) << 32 | u64::from(lo)) as i64
+}
+
 /// The four-product form of [`mul_wide`].
 #[inline]
 fn mul_wide_parts(a: u32, b: u32) -> u64 {
@@ -302,6 +345,29 @@ mod tests {
             let want = u64::from(a) * u64::from(b);
             assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
             assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+        }
+    }
+
+    #[test]
+    fn split_shifts_are_shifts() {
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..20_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = x as i64 >> (x % 40);
+            for s in 0..32 {
+                assert_eq!(shl64_parts(v, s), v.wrapping_shl(s), "{v} << {s}");
+                assert_eq!(shr64_parts(v, s), v >> s, "{v} >> {s}");
+                assert_eq!(shl64(v, s), v.wrapping_shl(s));
+                assert_eq!(shr64(v, s), v >> s);
+            }
+        }
+        for v in [0i64, -1, 1, i64::MIN, i64::MAX] {
+            for s in 0..32 {
+                assert_eq!(shl64_parts(v, s), v.wrapping_shl(s));
+                assert_eq!(shr64_parts(v, s), v >> s);
+            }
         }
     }
 
