@@ -225,6 +225,20 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
         }
         let full = Clip::from_rect(area);
         let mut colors = colors.into_iter();
+        if c == full && c.x0 == 0 && c.x1 == i32::from(self.width) {
+            // Whole rows: one contiguous run of the buffer, filled by one zip (which the
+            // compiler turns into a plain indexed copy when the colours come from a
+            // slice, as a band's flush has them).
+            let w = usize::from(self.width);
+            let start = (c.y0 - self.first_row) as usize * w;
+            let end = start + (c.y1 - c.y0) as usize * w;
+            if let Some(run) = self.data.get_mut(start..end) {
+                for (px, col) in run.iter_mut().zip(colors) {
+                    *px = col;
+                }
+            }
+            return Ok(());
+        }
         if c == full {
             for row in self.rows_of(c) {
                 for (px, col) in row.iter_mut().zip(&mut colors) {

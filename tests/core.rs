@@ -539,3 +539,36 @@ fn depth_at_the_ends_of_its_range() {
     }
     assert_eq!(covered, 20);
 }
+
+/// `fill_contiguous` into a colour buffer (here a band of rows 10..13): whole rows, part
+/// rows, areas partly outside and iterators too short or too long all fill exactly the
+/// pixels a pixel-by-pixel reference fills.
+#[test]
+fn color_buffer_fill_contiguous_matches_a_pixel_reference() {
+    use embedded_graphics::{pixelcolor::Gray8, primitives::Rectangle};
+    let (w, rows, first) = (5u32, 3u32, 10i32);
+    let areas = [
+        Rectangle::new(Point::new(0, 10), Size::new(5, 3)),
+        Rectangle::new(Point::new(0, 11), Size::new(5, 1)),
+        Rectangle::new(Point::new(1, 10), Size::new(3, 2)),
+        Rectangle::new(Point::new(-2, 9), Size::new(5, 3)),
+        Rectangle::new(Point::new(0, 12), Size::new(5, 4)),
+        Rectangle::new(Point::new(0, 20), Size::new(5, 1)),
+    ];
+    for area in areas {
+        for len in [0usize, 3, 7, 15, 40] {
+            let mut data = vec![Gray8::new(255); (w * rows) as usize];
+            let mut buf = ColorBuffer::new_band(&mut data, w, rows, first).unwrap();
+            let colors = (0..len).map(|i| Gray8::new(i as u8));
+            buf.fill_contiguous(&area, colors).unwrap();
+            let mut want = vec![Gray8::new(255); (w * rows) as usize];
+            for (i, p) in area.points().enumerate().take(len) {
+                let (x, y) = (p.x, p.y - first);
+                if (0..w as i32).contains(&x) && (0..rows as i32).contains(&y) {
+                    want[(y as u32 * w + x as u32) as usize] = Gray8::new(i as u8);
+                }
+            }
+            assert_eq!(data, want, "{area:?}, {len} colours");
+        }
+    }
+}
