@@ -27,10 +27,18 @@ pub struct BandBuffers<'a, C> {
     bins: &'a mut [u16],
 }
 
-/// Bins: the band of each triangle's top row (a byte each), and the triangles in band
-/// order. A triangle reaching more than two bands, or needing clipping, goes into an
-/// extra last bin that every band visits.
+/// Bins: one chain of triangles per band (those whose top row lies in it, in face
+/// order), and an extra last chain, which every band visits, for triangles reaching more
+/// than two bands or needing clipping. The chains are linked through a `u16` per
+/// triangle; each link also carries, in its top bit, whether the triangle it points to
+/// reaches the next band too ([`NEXT_BAND`]), so that the next band walks the chain above
+/// it and skips the others without looking at them. Layout of the caller's slice: the
+/// chains' heads (bands + 1), their tails (bands + 1), then the links (one a triangle).
 const NOT_DRAWN: u8 = 0xff;
+/// The end of a chain (no link to a triangle is this: triangles number at most 32,767).
+const END: u16 = u16::MAX;
+/// Set in a link to a triangle that reaches the band below its top band.
+const NEXT_BAND: u16 = 1 << 15;
 
 impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// Band buffers for a `width × height` screen drawn `rows` lines at a time.
@@ -73,11 +81,13 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
         self.height.div_ceil(self.rows)
     }
 
-    /// Bin entries needed for a mesh of `triangles` triangles: half a `u16` per
-    /// triangle for its band, one per triangle for the order, one per band (+2).
-    pub fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
-        let bands = height.div_ceil(rows.max(1)) as usize;
-        triangles.div_ceil(2) + bands + 2 + triangles
+    /// Bin entries needed for a mesh of `triangles` triangles: one per triangle, two
+    /// per band and two more. (Meshes of more than 32,767 triangles are drawn without
+    /// bins.)
+    pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
+        let rows = if rows == 0 { 1 } else { rows };
+        let bands = height.div_ceil(rows) as usize;
+        2 * (bands + 1) + triangles
     }
 }
 
@@ -129,25 +139,23 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             crate::zbuffer::fill_fast(color.data_mut(), background);
             zbuf.clear();
             match binned {
-                Some(nt) => {
-                    // Layout of the bins (see `bin`): keys, then nb + 2 bin starts, then the order.
-                    let (_, rest) = bands.bins.split_at(nt.div_ceil(2).min(bands.bins.len()));
-                    let (start, order) = rest.split_at((nb as usize + 2).min(rest.len()));
-                    let bin = |b: usize| -> &[u16] {
-                        let (s, e) = (
-                            start.get(b).copied().unwrap_or(0),
-                            start.get(b + 1).copied().unwrap_or(0),
-                        );
-                        order.get(usize::from(s)..usize::from(e)).unwrap_or(&[])
+                Some(()) => {
+                    // Layout of the bins (see `bin`): heads, tails, links.
+                    let (heads, rest) = bands.bins.split_at(nb as usize + 1);
+                    let links = rest.get(nb as usize + 1..).unwrap_or(&[]);
+                    let chain = |b: usize, only_next: bool| Chain {
+                        links,
+                        at: heads.get(b).copied().unwrap_or(END),
+                        only_next,
                     };
-                    // This band's bin, the one above (triangles reaching two bands) and
-                    // the tall/clipped bin.
-                    let above = if k > 0 { bin(k as usize - 1) } else { &[] };
-                    let faces = above
-                        .iter()
-                        .chain(bin(k as usize))
-                        .chain(bin(nb as usize))
-                        .map(|&f| usize::from(f));
+                    // The triangles of the band above that reach this one, this band's,
+                    // and the tall/clipped chain: the order a whole frame draws them in.
+                    let above = if k > 0 {
+                        chain(k as usize - 1, true)
+                    } else {
+                        chain(usize::MAX, true)
+                    };
+                    let faces = above.chain(chain(k as usize, false)).chain(chain(nb as usize, false));
                     self.draw_listed(&mut color, &mut zbuf, faces)?;
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
@@ -158,8 +166,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         Ok(())
     }
 
-    /// Sort the visible triangles into bins; `Some(triangle count)` when binned.
-    fn bin<C>(&mut self, bands: &mut BandBuffers<'_, C>) -> Result<Option<usize>, Error>
+    /// Sort the visible triangles into bins (see [`NOT_DRAWN`]); `Some(())` when binned.
+    fn bin<C>(&mut self, bands: &mut BandBuffers<'_, C>) -> Result<Option<()>, Error>
     where
         C: PixelColor,
         M: Material<C>,
@@ -177,24 +185,14 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         };
         if !fast
             || nb > 250
-            || nt > usize::from(u16::MAX)
+            || nt >= usize::from(NEXT_BAND)
             || bands.bins.len() < BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows)
         {
             return Ok(None);
         }
-        let (keys, rest) = bands.bins.split_at_mut(nt.div_ceil(2));
-        let (start, order) = rest.split_at_mut(nb + 2);
-        start.fill(0);
-        let key_set = |keys: &mut [u16], f: usize, v: u8| {
-            if let Some(k) = keys.get_mut(f / 2) {
-                let sh = (f % 2) * 8;
-                *k = (*k & !(0xff << sh)) | (u16::from(v) << sh);
-            }
-        };
-        let key_get = |keys: &[u16], f: usize| {
-            keys.get(f / 2)
-                .map_or(NOT_DRAWN, |k| (k >> ((f % 2) * 8)) as u8)
-        };
+        let (heads, rest) = bands.bins.split_at_mut(nb + 1);
+        let (tails, links) = rest.split_at_mut(nb + 1);
+        heads.fill(END);
         let tall = nb as u8;
         let cull = self.options.cull;
         let mut st = FrameStats::default();
@@ -207,10 +205,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             };
             let (a, b, c): (&CachedVertex, &CachedVertex, &CachedVertex) =
                 (get(t[0])?, get(t[1])?, get(t[2])?);
-            let key = if a.code() & b.code() & c.code() != 0 {
+            let (key, next_band) = if a.code() & b.code() & c.code() != 0 {
                 st.triangles_in += 1;
                 st.outside += 1;
-                NOT_DRAWN
+                (NOT_DRAWN, false)
             } else if a.code() | b.code() | c.code() != 0 {
                 // Near a clip plane: drawn by the general path in every band; counted now
                 // as that path counts it (clipped, and the pieces that survive culling).
@@ -219,61 +217,80 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     DrawError::Target(never) => match never {},
                 })?;
                 st.add_geometry(&g);
-                tall
+                (tall, false)
             } else {
                 st.triangles_in += 1;
                 let tri = [a.screen(), b.screen(), c.screen()];
                 let [p, q, r] = tri;
                 if culled(&tri, cull) {
                     st.culled += 1;
-                    NOT_DRAWN
+                    (NOT_DRAWN, false)
                 } else {
                     st.drawn += 1;
                     let ymin = p.y().min(q.y()).min(r.y());
                     let ymax = p.y().max(q.y()).max(r.y());
                     let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
                     if bottom <= 0 || top >= height || top >= bottom {
-                        NOT_DRAWN
+                        (NOT_DRAWN, false)
                     } else {
                         let (tb, bb) = (top.max(0) / rows, (bottom - 1).min(height - 1) / rows);
-                        if bb - tb >= 2 {
-                            tall
-                        } else {
-                            tb as u8
+                        match bb - tb {
+                            0 => (tb as u8, false),
+                            1 => (tb as u8, true),
+                            _ => (tall, false),
                         }
                     }
                 }
             };
-            key_set(keys, f, key);
-            if key != NOT_DRAWN {
-                if let Some(s) = start.get_mut(usize::from(key) + 1) {
-                    *s += 1;
-                }
+            if key == NOT_DRAWN {
+                continue;
             }
-        }
-        let mut sum = 0;
-        for s in start.iter_mut() {
-            sum += *s;
-            *s = sum;
-        }
-        // Place, using start[b] as the running position of bin b, then shift back.
-        for f in 0..nt {
-            let key = key_get(keys, f);
-            if key != NOT_DRAWN {
-                let b = usize::from(key);
-                if let (Some(pos), Some(slot)) = (start.get(b).copied(), start.get_mut(b)) {
-                    *slot = pos + 1;
-                    if let Some(o) = order.get_mut(usize::from(pos)) {
-                        *o = f as u16;
-                    }
+            // Append f to chain `key`: the link to it (the chain's head, or the link of
+            // the chain's last triangle) carries the next-band mark.
+            let (b, link) = (usize::from(key), f as u16 | if next_band { NEXT_BAND } else { 0 });
+            if let (Some(&head), Some(tail)) = (heads.get(b), tails.get_mut(b)) {
+                let slot = if head == END {
+                    heads.get_mut(b)
+                } else {
+                    links.get_mut(usize::from(*tail))
+                };
+                if let Some(slot) = slot {
+                    *slot = link;
                 }
+                *tail = f as u16;
             }
-        }
-        start.rotate_right(1);
-        if let Some(s) = start.first_mut() {
-            *s = 0;
+            if let Some(l) = links.get_mut(f) {
+                *l = END;
+            }
         }
         self.count(st);
-        Ok(Some(nt))
+        Ok(Some(()))
     }
 }
+
+/// The triangles of one bin chain (see [`NOT_DRAWN`]); with `only_next`, only those that
+/// reach the band below.
+struct Chain<'a> {
+    links: &'a [u16],
+    at: u16,
+    only_next: bool,
+}
+
+impl Iterator for Chain<'_> {
+    type Item = usize;
+
+    #[inline]
+    fn next(&mut self) -> Option<usize> {
+        loop {
+            if self.at == END {
+                return None;
+            }
+            let (f, next_band) = (usize::from(self.at & !NEXT_BAND), self.at & NEXT_BAND != 0);
+            self.at = self.links.get(f).copied().unwrap_or(END);
+            if next_band || !self.only_next {
+                return Some(f);
+            }
+        }
+    }
+}
+

@@ -242,7 +242,7 @@ fn main() -> ! {
 }
 
 static mut BAND_PIXELS: [Rgb565; (W * BAND) as usize] = [Rgb565::BLACK; (W * BAND) as usize];
-const BINS: usize = bunny::BUNNY_INDICES.len().div_ceil(2) + (H / BAND) as usize + 3 + bunny::BUNNY_INDICES.len();
+const BINS: usize = BandBuffers::<Rgb565>::bins_needed(bunny::BUNNY_INDICES.len(), H, BAND);
 static mut BINS_BAND: [u16; BINS] = [0; BINS];
 
 fn bins_band() -> &'static mut [u16] {

@@ -41,7 +41,7 @@ const W: u32 = 240;
 const H: u32 = 240;
 const ROWS: u32 = 16;
 const BAND: usize = (W * ROWS) as usize;
-const BINS: usize = bunny::BUNNY_INDICES.len().div_ceil(2) + (H / ROWS) as usize + 3 + bunny::BUNNY_INDICES.len();
+const BINS: usize = BandBuffers::<Rgb565>::bins_needed(bunny::BUNNY_INDICES.len(), H, ROWS);
 
 static mut BAND_COLOR: [Rgb565; BAND] = [Rgb565::BLACK; BAND];
 static mut BAND_DEPTH: [u16; BAND] = [0; BAND];
