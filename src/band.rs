@@ -155,8 +155,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     } else {
                         chain(usize::MAX, true)
                     };
-                    let faces = above.chain(chain(k as usize, false)).chain(chain(nb as usize, false));
-                    self.draw_listed(&mut color, &mut zbuf, faces)?;
+                    // The first two hold only visible triangles that reach this band.
+                    let faces = above.chain(chain(k as usize, false));
+                    self.draw_listed::<_, true>(&mut color, &mut zbuf, faces)?;
+                    self.draw_listed::<_, false>(&mut color, &mut zbuf, chain(nb as usize, false))?;
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
             }

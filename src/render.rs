@@ -498,7 +498,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
 
     /// [`draw_buffer`](Renderer::draw_buffer) for the listed faces of a cached triangle
     /// mesh (the band path; geometry already counted).
-    pub(crate) fn draw_listed<C>(
+    /// With `VISIBLE`, every listed face is known to be unclipped, front-facing (as the
+    /// options cull) and to reach the rows of `frame`: those tests are skipped.
+    pub(crate) fn draw_listed<C, const VISIBLE: bool>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
@@ -510,7 +512,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     {
         match self.mesh.faces {
             Faces::Triangles { indices, materials } => {
-                self.draw_buffer_triangles(frame, zbuf, indices, materials, faces)
+                self.draw_buffer_triangles::<C, VISIBLE>(frame, zbuf, indices, materials, faces)
             }
             Faces::Polygons(_) => self.draw_buffer(frame, zbuf),
         }
@@ -593,7 +595,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         if let (true, Some(_), Faces::Triangles { indices, materials }) =
             (fast, &self.cache, self.mesh.faces)
         {
-            return self.draw_buffer_triangles(frame, zbuf, indices, materials, 0..indices.len());
+            return self.draw_buffer_triangles::<C, false>(frame, zbuf, indices, materials, 0..indices.len());
         }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
@@ -642,7 +644,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
     /// one tight loop over the triangles. Faces near the clip planes go through the
     /// general path.
-    fn draw_buffer_triangles<C>(
+    fn draw_buffer_triangles<C, const VISIBLE: bool>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
@@ -678,7 +680,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 })
             };
             let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
-            if a.code | b.code | c.code != 0 {
+            if !VISIBLE && a.code | b.code | c.code != 0 {
                 // Outside or across a clip plane: the general path (rare).
                 let mut more = SpanStats::default();
                 let g = self
@@ -701,15 +703,17 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 continue;
             }
             st.triangles_in += 1;
-            if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
-                continue;
-            }
-            // The test of `culled`, written out: through the helper this loop compiles
-            // 8 instructions a face longer on x86-64 (M4 and M0+ do not care).
-            let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
-            if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
-                st.culled += 1;
-                continue;
+            if !VISIBLE {
+                if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                    continue;
+                }
+                // The test of `culled`, written out: through the helper this loop
+                // compiles 8 instructions a face longer on x86-64.
+                let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
+                if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
+                    st.culled += 1;
+                    continue;
+                }
             }
             let tri = [a.screen, b.screen, c.screen];
             st.drawn += 1;
