@@ -197,6 +197,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         heads.fill(END);
         let tall = nb as u8;
         let cull = self.options.cull;
+        // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
+        // shift there when `rows` is a power of two.
+        let shift = rows.trailing_zeros();
+        let pow2 = crate::fixed::ARMV6M && rows.count_ones() == 1;
+        let band_of = |row: i32| if pow2 { row >> shift } else { row / rows };
         let mut st = FrameStats::default();
         for (f, t) in indices.iter().enumerate() {
             let get = |i: u16| {
@@ -235,7 +240,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     if bottom <= 0 || top >= height || top >= bottom {
                         (NOT_DRAWN, false)
                     } else {
-                        let (tb, bb) = (top.max(0) / rows, (bottom - 1).min(height - 1) / rows);
+                        let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
                         match bb - tb {
                             0 => (tb as u8, false),
                             1 => (tb as u8, true),
