@@ -254,7 +254,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             }
             // Append f to chain `key`: the link to it (the chain's head, or the link of
             // the chain's last triangle) carries the next-band mark.
-            let (b, link) = (usize::from(key), f as u16 | if next_band { NEXT_BAND } else { 0 });
+            let (b, link) = (
+                usize::from(key),
+                f as u16 | if next_band { NEXT_BAND } else { 0 },
+            );
             if let (Some(&head), Some(tail)) = (heads.get(b), tails.get_mut(b)) {
                 let slot = if head == END {
                     heads.get_mut(b)
@@ -300,4 +303,3 @@ impl Iterator for Chain<'_> {
         }
     }
 }
-

@@ -595,7 +595,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         if let (true, Some(_), Faces::Triangles { indices, materials }) =
             (fast, &self.cache, self.mesh.faces)
         {
-            return self.draw_buffer_triangles::<C, false>(frame, zbuf, indices, materials, 0..indices.len());
+            return self.draw_buffer_triangles::<C, false>(
+                frame,
+                zbuf,
+                indices,
+                materials,
+                0..indices.len(),
+            );
         }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
@@ -702,8 +708,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 px += more;
                 continue;
             }
-            st.triangles_in += 1;
             if !VISIBLE {
+                st.triangles_in += 1;
                 if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
                     continue;
                 }
@@ -716,7 +722,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 }
             }
             let tri = [a.screen, b.screen, c.screen];
-            st.drawn += 1;
+            if !VISIBLE {
+                // (Listed faces were counted by the bin pass.)
+                st.drawn += 1;
+            }
             let color = match flat {
                 Some(c) => c,
                 None => {
