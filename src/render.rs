@@ -677,16 +677,70 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             return Ok(());
         };
         let mut target = FlatTarget::new(frame, zbuf, &clip);
-        for f in faces {
-            let Some(t) = indices.get(f) else { continue };
-            let get = |i: u16| {
-                cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
-                    face: f,
-                    index: usize::from(i),
-                })
+        let shade = |f: usize| -> Result<C, Error> {
+            Ok(match flat {
+                Some(c) => c,
+                None => {
+                    let m = match materials {
+                        crate::mesh::Materials::Uniform(m) => m,
+                        crate::mesh::Materials::PerFace(ms) => {
+                            *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?
+                        }
+                    };
+                    m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0)
+                }
+            })
+        };
+        if VISIBLE {
+            // Listed faces, known to be drawn (see `draw_listed`).
+            for f in faces {
+                let Some(t) = indices.get(f) else { continue };
+                let get = |i: u16| {
+                    cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
+                        face: f,
+                        index: usize::from(i),
+                    })
+                };
+                let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
+                px += target.fill(&[a.screen, b.screen, c.screen], shade(f)?);
+            }
+            self.stats.add_pixels(px);
+            return Ok(());
+        }
+        let mut faces = faces;
+        loop {
+            // The faces up to the next one to draw, in a loop of their own: most are
+            // culled, and without the drawing's calls in it the loop keeps its state in
+            // registers.
+            let next = loop {
+                let Some(f) = faces.next() else { break None };
+                let Some(t) = indices.get(f) else { continue };
+                let get = |i: u16| {
+                    cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
+                        face: f,
+                        index: usize::from(i),
+                    })
+                };
+                let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
+                if a.code | b.code | c.code != 0 {
+                    break Some((f, None));
+                }
+                st.triangles_in += 1;
+                if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                    continue;
+                }
+                // The test of `culled`, written out: through the helper this loop
+                // compiles 8 instructions a face longer on x86-64.
+                let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
+                if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
+                    st.culled += 1;
+                    continue;
+                }
+                st.drawn += 1;
+                break Some((f, Some([a.screen, b.screen, c.screen])));
             };
-            let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
-            if !VISIBLE && a.code | b.code | c.code != 0 {
+            let Some((f, tri)) = next else { break };
+            let Some(tri) = tri else {
                 // Outside or across a clip plane: the general path (rare).
                 let mut more = SpanStats::default();
                 let g = self
@@ -707,38 +761,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 st.add_geometry(&g);
                 px += more;
                 continue;
-            }
-            if !VISIBLE {
-                st.triangles_in += 1;
-                if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
-                    continue;
-                }
-                // The test of `culled`, written out: through the helper this loop
-                // compiles 8 instructions a face longer on x86-64.
-                let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
-                if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
-                    st.culled += 1;
-                    continue;
-                }
-            }
-            let tri = [a.screen, b.screen, c.screen];
-            if !VISIBLE {
-                // (Listed faces were counted by the bin pass.)
-                st.drawn += 1;
-            }
-            let color = match flat {
-                Some(c) => c,
-                None => {
-                    let m = match materials {
-                        crate::mesh::Materials::Uniform(m) => m,
-                        crate::mesh::Materials::PerFace(ms) => {
-                            *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?
-                        }
-                    };
-                    m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0)
-                }
             };
-            px += target.fill(&tri, color);
+            px += target.fill(&tri, shade(f)?);
         }
         self.count(st);
         self.stats.add_pixels(px);
