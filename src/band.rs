@@ -12,7 +12,8 @@
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::mesh::Faces;
-use crate::render::{culled, CachedVertex};
+use crate::raster::signed_area_guarded;
+use crate::render::CachedVertex;
 use crate::shade::{Material, Shading};
 use crate::{ColorBuffer, DrawError, Error, FrameStats, Renderer, ZBuffer, MAX_DIMENSION};
 
@@ -27,15 +28,17 @@ pub struct BandBuffers<'a, C> {
     bins: &'a mut [u16],
 }
 
+/// The end of a bin chain (no link to a triangle is this: triangles number at most
+/// 32,767).
+///
 /// Bins: one chain of triangles per band (those whose top row lies in it, in face
 /// order), and an extra last chain, which every band visits, for triangles reaching more
 /// than two bands or needing clipping. The chains are linked through a `u16` per
 /// triangle; each link also carries, in its top bit, whether the triangle it points to
 /// reaches the next band too ([`NEXT_BAND`]), so that the next band walks the chain above
 /// it and skips the others without looking at them. Layout of the caller's slice: the
-/// chains' heads (bands + 1), their tails (bands + 1), then the links (one a triangle).
-const NOT_DRAWN: u8 = 0xff;
-/// The end of a chain (no link to a triangle is this: triangles number at most 32,767).
+/// chains' tails (bands + 1), the links (one a triangle), then the chains' heads
+/// (bands + 1), so that a head is the link "before" the chain's first triangle.
 const END: u16 = u16::MAX;
 /// Set in a link to a triangle that reaches the band below its top band.
 const NEXT_BAND: u16 = 1 << 15;
@@ -139,26 +142,29 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             crate::zbuffer::fill_fast(color.data_mut(), background);
             zbuf.clear();
             match binned {
-                Some(()) => {
-                    // Layout of the bins (see `bin`): heads, tails, links.
-                    let (heads, rest) = bands.bins.split_at(nb as usize + 1);
-                    let links = rest.get(nb as usize + 1..).unwrap_or(&[]);
-                    let chain = |b: usize, only_next: bool| Chain {
-                        links,
-                        at: heads.get(b).copied().unwrap_or(END),
-                        only_next,
-                    };
+                Some(nt) => {
+                    // Layout of the bins (see `END`): tails, links, heads.
+                    let slots = bands.bins.get(nb as usize + 1..).unwrap_or(&[]);
+                    let links = slots.get(..nt).unwrap_or(&[]);
+                    let heads = slots.get(nt..).unwrap_or(&[]);
+                    let head = |b: usize| heads.get(b).copied().unwrap_or(END);
                     // The triangles of the band above that reach this one, this band's,
                     // and the tall/clipped chain: the order a whole frame draws them in.
-                    let above = if k > 0 {
-                        chain(k as usize - 1, true)
-                    } else {
-                        chain(usize::MAX, true)
+                    let above = Chain::<true> {
+                        links,
+                        at: if k > 0 { head(k as usize - 1) } else { END },
+                    };
+                    let own = Chain::<false> {
+                        links,
+                        at: head(k as usize),
                     };
                     // The first two hold only visible triangles that reach this band.
-                    let faces = above.chain(chain(k as usize, false));
-                    self.draw_listed::<_, true>(&mut color, &mut zbuf, faces)?;
-                    self.draw_listed::<_, false>(&mut color, &mut zbuf, chain(nb as usize, false))?;
+                    self.draw_listed::<_, true>(&mut color, &mut zbuf, above.chain(own))?;
+                    let tall = Chain::<false> {
+                        links,
+                        at: head(nb as usize),
+                    };
+                    self.draw_listed::<_, false>(&mut color, &mut zbuf, tall)?;
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
             }
@@ -168,8 +174,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         Ok(())
     }
 
-    /// Sort the visible triangles into bins (see [`NOT_DRAWN`]); `Some(())` when binned.
-    fn bin<C>(&mut self, bands: &mut BandBuffers<'_, C>) -> Result<Option<()>, Error>
+    /// Sort the visible triangles into bins (see [`END`]); `Some(triangle count)` when
+    /// binned.
+    fn bin<C>(&mut self, bands: &mut BandBuffers<'_, C>) -> Result<Option<usize>, Error>
     where
         C: PixelColor,
         M: Material<C>,
@@ -192,10 +199,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         {
             return Ok(None);
         }
-        let (heads, rest) = bands.bins.split_at_mut(nb + 1);
-        let (tails, links) = rest.split_at_mut(nb + 1);
-        heads.fill(END);
-        let tall = nb as u8;
+        // Tails, then the links (one a triangle) and the heads as one array of slots:
+        // a chain's tail starts at its head's slot, so that appending never asks whether
+        // the chain is empty.
+        let (tails, slots) = bands.bins.split_at_mut(nb + 1);
+        for (b, t) in tails.iter_mut().enumerate() {
+            *t = (nt + b) as u16;
+        }
         let cull = self.options.cull;
         // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
         // shift there when `rows` is a power of two.
@@ -203,90 +213,90 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let pow2 = crate::fixed::ARMV6M && rows.count_ones() == 1;
         let band_of = |row: i32| if pow2 { row >> shift } else { row / rows };
         let mut st = FrameStats::default();
-        for (f, t) in indices.iter().enumerate() {
-            let get = |i: u16| {
-                cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
-                    face: f,
-                    index: usize::from(i),
-                })
-            };
-            let (a, b, c): (&CachedVertex, &CachedVertex, &CachedVertex) =
-                (get(t[0])?, get(t[1])?, get(t[2])?);
-            let (key, next_band) = if a.code() & b.code() & c.code() != 0 {
-                st.triangles_in += 1;
-                st.outside += 1;
-                (NOT_DRAWN, false)
-            } else if a.code() | b.code() | c.code() != 0 {
-                // Near a clip plane: drawn by the general path in every band; counted now
-                // as that path counts it (clipped, and the pieces that survive culling).
-                let g = self.count_one(f).map_err(|e| match e {
-                    DrawError::Input(e) => e,
-                    DrawError::Target(never) => match never {},
-                })?;
-                st.add_geometry(&g);
-                (tall, false)
-            } else {
-                st.triangles_in += 1;
-                let tri = [a.screen(), b.screen(), c.screen()];
-                let [p, q, r] = tri;
-                if culled(&tri, cull) {
-                    st.culled += 1;
-                    (NOT_DRAWN, false)
-                } else {
-                    st.drawn += 1;
-                    let ymin = p.y().min(q.y()).min(r.y());
-                    let ymax = p.y().max(q.y()).max(r.y());
-                    let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
-                    if bottom <= 0 || top >= height || top >= bottom {
-                        (NOT_DRAWN, false)
-                    } else {
-                        let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
-                        match bb - tb {
-                            0 => (tb as u8, false),
-                            1 => (tb as u8, true),
-                            _ => (tall, false),
-                        }
-                    }
-                }
-            };
-            if key == NOT_DRAWN {
-                continue;
-            }
-            // Append f to chain `key`: the link to it (the chain's head, or the link of
-            // the chain's last triangle) carries the next-band mark.
-            let (b, link) = (
-                usize::from(key),
-                f as u16 | if next_band { NEXT_BAND } else { 0 },
-            );
-            if let (Some(&head), Some(tail)) = (heads.get(b), tails.get_mut(b)) {
-                let slot = if head == END {
-                    heads.get_mut(b)
-                } else {
-                    links.get_mut(usize::from(*tail))
-                };
-                if let Some(slot) = slot {
+        let mut append = |b: usize, f: usize, next_band: bool| {
+            let link = f as u16 | if next_band { NEXT_BAND } else { 0 };
+            if let Some(tail) = tails.get_mut(b) {
+                if let Some(slot) = slots.get_mut(usize::from(*tail)) {
                     *slot = link;
                 }
                 *tail = f as u16;
             }
-            if let Some(l) = links.get_mut(f) {
-                *l = END;
+        };
+        let mut faces = indices.iter().enumerate();
+        loop {
+            // All but the faces near a clip plane in a loop of their own, with no call
+            // in it (as in the whole-frame draw).
+            let clipped = loop {
+                let Some((f, t)) = faces.next() else {
+                    break None;
+                };
+                let get = |i: u16| {
+                    cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
+                        face: f,
+                        index: usize::from(i),
+                    })
+                };
+                let (a, b, c): (&CachedVertex, &CachedVertex, &CachedVertex) =
+                    (get(t[0])?, get(t[1])?, get(t[2])?);
+                if a.code() & b.code() & c.code() != 0 {
+                    st.triangles_in += 1;
+                    st.outside += 1;
+                    continue;
+                }
+                if a.code() | b.code() | c.code() != 0 {
+                    break Some(f);
+                }
+                st.triangles_in += 1;
+                let xy = |v: &CachedVertex| (v.screen().x(), v.screen().y());
+                if cull.drops(signed_area_guarded(xy(a), xy(b), xy(c))) {
+                    st.culled += 1;
+                    continue;
+                }
+                st.drawn += 1;
+                let [p, q, r] = [a.screen(), b.screen(), c.screen()];
+                let ymin = p.y().min(q.y()).min(r.y());
+                let ymax = p.y().max(q.y()).max(r.y());
+                let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
+                if bottom <= 0 || top >= height || top >= bottom {
+                    continue;
+                }
+                let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
+                match bb - tb {
+                    0 => append(tb as usize, f, false),
+                    1 => append(tb as usize, f, true),
+                    _ => append(nb, f, false),
+                }
+            };
+            let Some(f) = clipped else { break };
+            // Near a clip plane: drawn by the general path in every band; counted now as
+            // that path counts it (clipped, and the pieces that survive culling).
+            let g = self.count_one(f).map_err(|e| match e {
+                DrawError::Input(e) => e,
+                DrawError::Target(never) => match never {},
+            })?;
+            st.add_geometry(&g);
+            append(nb, f, false);
+        }
+        // End every chain: after its last triangle, or at its head when empty.
+        for b in 0..=nb {
+            if let Some(slot) = tails.get(b).and_then(|&t| slots.get_mut(usize::from(t))) {
+                *slot = END;
             }
         }
         self.count(st);
-        Ok(Some(()))
+        Ok(Some(nt))
     }
 }
 
-/// The triangles of one bin chain (see [`NOT_DRAWN`]); with `only_next`, only those that
-/// reach the band below.
-struct Chain<'a> {
+/// The triangles of one bin chain (see [`END`]); with `ONLY_NEXT`, only those that
+/// reach the band below. A walk always ends: `bin` writes every chain afresh each frame,
+/// in increasing triangle order, and ends it with [`END`].
+struct Chain<'a, const ONLY_NEXT: bool> {
     links: &'a [u16],
     at: u16,
-    only_next: bool,
 }
 
-impl Iterator for Chain<'_> {
+impl<const ONLY_NEXT: bool> Iterator for Chain<'_, ONLY_NEXT> {
     type Item = usize;
 
     #[inline]
@@ -297,7 +307,7 @@ impl Iterator for Chain<'_> {
             }
             let (f, next_band) = (usize::from(self.at & !NEXT_BAND), self.at & NEXT_BAND != 0);
             self.at = self.links.get(f).copied().unwrap_or(END);
-            if next_band || !self.only_next {
+            if next_band || !ONLY_NEXT {
                 return Some(f);
             }
         }

@@ -502,14 +502,18 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
         r.stats()
     };
     for rows in [1, 7, 16, h] {
-        for binned in [false, true] {
+        // No bins, exactly the bins needed, and more (the spare ones unused).
+        for extra in [None, Some(0), Some(37)] {
+            let binned = extra.is_some();
             let mut out = vec![Rgb565::BLUE; (w * h) as usize];
             let mut cb = vec![Rgb565::BLACK; (w * rows) as usize];
             let mut zb = vec![0u16; (w * rows) as usize];
-            let n = if binned {
-                zraster::BandBuffers::<Rgb565>::bins_needed(bunny.indices.len(), h, rows)
-            } else {
-                0
+            let n = match extra {
+                Some(extra) => {
+                    zraster::BandBuffers::<Rgb565>::bins_needed(bunny.indices.len(), h, rows)
+                        + extra
+                }
+                None => 0,
             };
             let mut bins = vec![0u16; n];
             let stats = {
@@ -521,7 +525,7 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
                     .unwrap();
                 r.stats()
             };
-            let what = format!("rows {rows}, binned {binned}");
+            let what = format!("rows {rows}, bins {extra:?}");
             assert_same(&out, &full, &what);
             assert_eq!(
                 (stats.triangles_in, stats.culled, stats.drawn),
