@@ -647,6 +647,40 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         Ok(())
     }
 
+    /// A face near a clip plane in [`draw_buffer_triangles`]: clipped, culled and drawn
+    /// by the general path. Out of line, as it is rare.
+    #[inline(never)]
+    fn draw_clipped_face<C>(
+        &self,
+        target: &mut FlatTarget<'_, '_, '_, C>,
+        clip: &Clip,
+        first: bool,
+        f: usize,
+    ) -> Result<(FrameStats, SpanStats), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let lambert = self.options.shading == Shading::Lambert;
+        let mut more = SpanStats::default();
+        let g = self
+            .for_each_triangle::<core::convert::Infallible>(
+                clip,
+                first,
+                core::iter::once(f),
+                |f, mat, tri, _| {
+                    let i = if lambert { self.face_light(f) } else { ONE };
+                    more += target.fill(tri, mat.shade(i, 0, 0));
+                    Ok(())
+                },
+            )
+            .map_err(|e| match e {
+                DrawError::Input(e) => e,
+                DrawError::Target(never) => match never {},
+            })?;
+        Ok((g, more))
+    }
+
     /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
     /// one tight loop over the triangles. Faces near the clip planes go through the
     /// general path.
@@ -742,22 +776,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let Some((f, tri)) = next else { break };
             let Some(tri) = tri else {
                 // Outside or across a clip plane: the general path (rare).
-                let mut more = SpanStats::default();
-                let g = self
-                    .for_each_triangle::<core::convert::Infallible>(
-                        &clip,
-                        first,
-                        core::iter::once(f),
-                        |f, mat, tri, _| {
-                            let i = if lambert { self.face_light(f) } else { ONE };
-                            more += target.fill(tri, mat.shade(i, 0, 0));
-                            Ok(())
-                        },
-                    )
-                    .map_err(|e| match e {
-                        DrawError::Input(e) => e,
-                        DrawError::Target(never) => match never {},
-                    })?;
+                let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
                 st.add_geometry(&g);
                 px += more;
                 continue;
