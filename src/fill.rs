@@ -410,7 +410,7 @@ fn one_failed(n: &mut u32) {
     *n += 1;
 }
 
-/// [`flat_span_long`]'s loop, four pixels a turn, the depth write decided at compile
+/// [`flat_span_long`]'s loop, two pixels a turn, the depth write decided at compile
 /// time.
 #[inline(always)]
 fn span_x4<C: Copy, const WRITE: bool>(
@@ -434,17 +434,13 @@ fn span_x4<C: Copy, const WRITE: bool>(
         }
     };
     let n = zrow.len().min(crow.len());
-    let (zrow, zrest) = zrow.split_at_mut(n & !3);
-    let (crow, crest) = crow.split_at_mut(n & !3);
-    for (d, c) in zrow.chunks_exact_mut(4).zip(crow.chunks_exact_mut(4)) {
-        if let ([d0, d1, d2, d3], [c0, c1, c2, c3]) = (d, c) {
+    let (zrow, zrest) = zrow.split_at_mut(n & !1);
+    let (crow, crest) = crow.split_at_mut(n & !1);
+    for (d, c) in zrow.chunks_exact_mut(2).zip(crow.chunks_exact_mut(2)) {
+        if let ([d0, d1], [c0, c1]) = (d, c) {
             pixel(d0, c0, acc);
             acc = acc.wrapping_add(dz);
             pixel(d1, c1, acc);
-            acc = acc.wrapping_add(dz);
-            pixel(d2, c2, acc);
-            acc = acc.wrapping_add(dz);
-            pixel(d3, c3, acc);
             acc = acc.wrapping_add(dz);
         }
     }
