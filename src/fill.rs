@@ -373,7 +373,7 @@ pub(crate) fn flat_span<C: Copy>(
     pass: &impl Fn(u16, u16) -> bool,
 ) -> u32 {
     // Rows of small triangles are mostly 1 to 3 pixels: they take a plain loop here,
-    // which needs few registers (a cheap call); longer ones the unrolled loop.
+    // which needs few registers (a cheap call); longer ones the two-a-turn loop.
     if zrow.len() >= LONG_SPAN {
         return flat_span_long(zrow, crow, acc, dz, color, write, pass);
     }
@@ -383,7 +383,7 @@ pub(crate) fn flat_span<C: Copy>(
 /// Spans at least this long take [`flat_span_long`].
 const LONG_SPAN: usize = 8;
 
-/// [`flat_span`] for long spans (the compiler unrolls this loop).
+/// [`flat_span`] for long spans: two pixels a turn, the depth write decided once.
 #[inline(never)]
 fn flat_span_long<C: Copy>(
     zrow: &mut [u16],
@@ -451,8 +451,8 @@ fn span_x4<C: Copy, const WRITE: bool>(
     failed
 }
 
-/// The pixel loop itself, inlined into both [`flat_span`] (kept rolled there) and
-/// [`flat_span_long`] (unrolled there).
+/// The plain pixel loop of [`flat_span`]'s short spans (and the reference the unrolled
+/// loop of [`flat_span_long`] is tested against).
 #[inline(always)]
 fn span_pixels<C: Copy>(
     zrow: &mut [u16],
