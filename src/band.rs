@@ -89,8 +89,8 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// bins.)
     pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
         let rows = if rows == 0 { 1 } else { rows };
-        let bands = height.div_ceil(rows) as usize;
-        2 * (bands + 1) + triangles
+        let bands = height.div_ceil(rows) as usize; // < 2³²
+        triangles.saturating_add(2 * (bands + 1))
     }
 }
 

@@ -540,6 +540,16 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
             }
         }
     }
+    // Bins: one a triangle, two a band and two more; no overflow at the extremes.
+    assert_eq!(
+        zraster::BandBuffers::<Rgb565>::bins_needed(3674, 240, 16),
+        3674 + 32
+    );
+    assert_eq!(zraster::BandBuffers::<Rgb565>::bins_needed(0, 240, 0), 482);
+    assert_eq!(
+        zraster::BandBuffers::<Rgb565>::bins_needed(usize::MAX, 8192, 1),
+        usize::MAX
+    );
     // Wrong sizes are errors.
     let (mut c, mut z, mut b) = (vec![Rgb565::BLACK; 10], vec![0u16; 10], vec![0u16; 0]);
     assert_eq!(
