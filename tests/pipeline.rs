@@ -564,3 +564,52 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
         Some(Error::ZeroSize)
     );
 }
+
+/// With a vertex cache, `draw_buffer` into a whole-frame colour buffer through a band
+/// Z-buffer (different geometries: the fused path's general form) gives the pixels and
+/// depths of `draw`, and touches no row outside the band.
+#[test]
+fn draw_buffer_through_a_band_zbuffer_matches_draw() {
+    let bunny = scenes::Bunny::load();
+    let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
+    let xf = camera(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), 60.0)
+        .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
+    let opts = RenderOptions {
+        shading: Shading::Lambert,
+        ..Default::default()
+    };
+    let (first, rows) = (20i32, 25u32);
+    let run = |buffered: bool| {
+        let mut pixels = vec![Rgb565::BLUE; (W * H) as usize];
+        let mut depth = vec![u16::MAX; (W * rows) as usize];
+        let mut cache = vec![CachedVertex::EMPTY; bunny.positions.len()];
+        {
+            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+            let mut zbuf = ZBuffer::new_band(&mut depth, W, rows, first).unwrap();
+            let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+            if buffered {
+                r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+            } else {
+                r.draw(&mut frame, &mut zbuf).unwrap();
+            }
+        }
+        (pixels, depth)
+    };
+    let (p1, d1) = run(false);
+    let (p2, d2) = run(true);
+    assert_same(&p1, &p2, "band Z-buffer");
+    assert!(d1 == d2, "depth differs");
+    let band = (first as u32 * W) as usize..((first as u32 + rows) * W) as usize;
+    assert!(
+        p2[band.clone()]
+            .iter()
+            .filter(|&&c| c != Rgb565::BLUE)
+            .count()
+            > 100
+    );
+    for (i, c) in p2.iter().enumerate() {
+        if !band.contains(&i) {
+            assert_eq!(*c, Rgb565::BLUE, "pixel {i} outside the band");
+        }
+    }
+}
