@@ -4,7 +4,7 @@
 #![allow(clippy::indexing_slicing)]
 
 use crate::fixed::{
-    mul_i64_i32, mul_wide, round_f32, shl64, shr64, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
+    bits_beyond_31, mul_i64_i32, mul_wide, round_f32, shl64, shr64, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
 };
 use crate::math::{Mat4, Vec3};
 use crate::raster::ScreenVertex;
@@ -523,7 +523,7 @@ impl ScreenMap {
         }
         // Inside: 1 ≤ w < 2⁴⁵, 0 ≤ z + w ≤ 2w, |x|, |y| ≤ 64w. Shift everything so that
         // w fits 31 bits; the ratios keep 30 bits or more.
-        let sh = (64 - w.leading_zeros()).saturating_sub(31);
+        let sh = bits_beyond_31(w);
         let wn = shr64(w, sh); // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
                                // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
         let (xn, yn, un) = (shr64(x, sh), shr64(y, sh), shr64(z + w, sh)); // sh ≤ 14

@@ -186,6 +186,35 @@ pub(crate) fn shr64(v: i64, s: u32) -> i64 {
     }
 }
 
+/// How many bits `w` has beyond 31 (`w ≥ 0`): the right shift that brings it below 2³¹.
+/// On ARMv6-M by comparisons (its leading-zero count is a library call).
+#[inline]
+pub(crate) fn bits_beyond_31(w: i64) -> u32 {
+    if ARMV6M {
+        bits_beyond_31_parts(w)
+    } else {
+        (64 - w.leading_zeros()).saturating_sub(31)
+    }
+}
+
+/// [`bits_beyond_31`] by a binary search over the high half.
+#[inline]
+fn bits_beyond_31_parts(w: i64) -> u32 {
+    let (lo, hi) = (w as u32, (w as u64 >> 32) as u32);
+    if hi == 0 {
+        return lo >> 31;
+    }
+    // 32 + bits(hi) bits in all, bits(x) = b + x after the halvings below.
+    let (mut x, mut b) = (hi, 0);
+    for k in [16, 8, 4, 2, 1] {
+        if x >= 1 << k {
+            x >>= k;
+            b += k;
+        }
+    }
+    1 + b + x
+}
+
 /// [`shl64`] from 32-bit halves.
 #[inline]
 fn shl64_parts(v: i64, s: u32) -> i64 {
@@ -345,6 +374,34 @@ mod tests {
             let want = u64::from(a) * u64::from(b);
             assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
             assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+        }
+    }
+
+    #[test]
+    fn bits_beyond_31_counts_them() {
+        let want = |w: i64| (64 - w.leading_zeros()).saturating_sub(31);
+        let mut cases = std::vec![
+            0i64,
+            1,
+            (1 << 31) - 1,
+            1 << 31,
+            (1 << 32) - 1,
+            1 << 32,
+            i64::MAX
+        ];
+        for k in 0..63 {
+            cases.extend([1i64 << k, (1i64 << k) - 1, (1i64 << k) + 1]);
+        }
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        for _ in 0..100_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            cases.push((x >> 1) as i64 >> (x % 63));
+        }
+        for w in cases {
+            assert_eq!(bits_beyond_31_parts(w), want(w), "{w}");
+            assert_eq!(bits_beyond_31(w), want(w), "{w}");
         }
     }
 
