@@ -18,6 +18,37 @@ use crate::shade::{Intensity, Material};
 use crate::small::{fill_small, Buffers};
 use crate::{ColorBuffer, DepthTest, ZBuffer};
 
+/// `$body` with `$pass` bound to the comparison of depth test `$test`, in one arm per
+/// test so that each gets its own copy of the loop in `$body` (the comparison is a
+/// constant there); `$never` for [`DepthTest::Never`], where nothing passes.
+macro_rules! per_depth_test {
+    ($test:expr, $never:expr, |$pass:ident| $body:expr) => {
+        match $test {
+            DepthTest::Less => {
+                let $pass = |f: u16, s: u16| DepthTest::Less.passes(f, s);
+                $body
+            }
+            DepthTest::LessEqual => {
+                let $pass = |f: u16, s: u16| DepthTest::LessEqual.passes(f, s);
+                $body
+            }
+            DepthTest::Greater => {
+                let $pass = |f: u16, s: u16| DepthTest::Greater.passes(f, s);
+                $body
+            }
+            DepthTest::Equal => {
+                let $pass = |f: u16, s: u16| DepthTest::Equal.passes(f, s);
+                $body
+            }
+            DepthTest::Always => {
+                let $pass = |_: u16, _: u16| true;
+                $body
+            }
+            DepthTest::Never => $never,
+        }
+    };
+}
+
 /// Counts from drawing one or more triangles.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
 pub struct SpanStats {
@@ -233,14 +264,9 @@ fn fill_fused<C: Copy>(
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
-    let done = match test {
-        DepthTest::Less => fill_small(b, tri, color, write, |f, s| f < s),
-        DepthTest::LessEqual => fill_small(b, tri, color, write, |f, s| f <= s),
-        DepthTest::Greater => fill_small(b, tri, color, write, |f, s| f > s),
-        DepthTest::Equal => fill_small(b, tri, color, write, |f, s| f == s),
-        DepthTest::Always => fill_small(b, tri, color, write, |_, _| true),
-        DepthTest::Never => Some((0, 0)),
-    };
+    let done = per_depth_test!(test, Some((0, 0)), |pass| fill_small(
+        b, tri, color, write, pass
+    ));
     if let Some((tested, written)) = done {
         return SpanStats {
             pixels_tested: tested,
@@ -257,28 +283,9 @@ fn fill_fused<C: Copy>(
     let rows = (&setup, &rows, dz, &b.clip);
     let (w, first_row) = (b.width, b.first_row);
     let (zdata, cdata) = (&mut *b.zdata, &mut *b.cdata);
-    match test {
-        DepthTest::Less => {
-            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| f < s)
-        }
-        DepthTest::LessEqual => {
-            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| {
-                f <= s
-            })
-        }
-        DepthTest::Greater => {
-            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| f > s)
-        }
-        DepthTest::Equal => {
-            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |f, s| {
-                f == s
-            })
-        }
-        DepthTest::Always => {
-            flat_rows_fused(zdata, cdata, w, first_row, rows, write, color, |_, _| true)
-        }
-        DepthTest::Never => SpanStats::default(),
-    }
+    per_depth_test!(test, SpanStats::default(), |pass| flat_rows_fused(
+        zdata, cdata, w, first_row, rows, write, color, pass
+    ))
 }
 
 /// [`FlatTarget::fill`] into buffers of different geometries.
@@ -300,14 +307,9 @@ fn fill_split<C: PixelColor>(
     };
     let write = zbuf.write_enabled();
     let rows = (&setup, &rows, dz, clip);
-    match zbuf.test() {
-        DepthTest::Less => flat_rows(frame, zbuf, rows, write, color, |f, s| f < s),
-        DepthTest::LessEqual => flat_rows(frame, zbuf, rows, write, color, |f, s| f <= s),
-        DepthTest::Greater => flat_rows(frame, zbuf, rows, write, color, |f, s| f > s),
-        DepthTest::Equal => flat_rows(frame, zbuf, rows, write, color, |f, s| f == s),
-        DepthTest::Always => flat_rows(frame, zbuf, rows, write, color, |_, _| true),
-        DepthTest::Never => SpanStats::default(),
-    }
+    per_depth_test!(zbuf.test(), SpanStats::default(), |pass| flat_rows(
+        frame, zbuf, rows, write, color, pass
+    ))
 }
 
 /// The row loop of [`fill_fused`] for one depth test: one index serves both buffers.
@@ -521,16 +523,9 @@ pub(crate) fn depth_runs<E>(
         return Ok(stats);
     };
     let write = zbuf.write_enabled();
-    match zbuf.test() {
-        DepthTest::Less => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f < s, run),
-        DepthTest::LessEqual => {
-            depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f <= s, run)
-        }
-        DepthTest::Greater => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f > s, run),
-        DepthTest::Equal => depth_rows(zbuf, &setup, &rows, dz, clip, write, |f, s| f == s, run),
-        DepthTest::Always => depth_rows(zbuf, &setup, &rows, dz, clip, write, |_, _| true, run),
-        DepthTest::Never => Ok(stats),
-    }
+    per_depth_test!(zbuf.test(), Ok(stats), |pass| depth_rows(
+        zbuf, &setup, &rows, dz, clip, write, pass, run
+    ))
 }
 
 /// The row loop of [`depth_runs`] for one depth test.
