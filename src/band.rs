@@ -13,7 +13,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::mesh::Faces;
 use crate::raster::signed_area_guarded;
-use crate::render::CachedVertex;
+use crate::render::{cached_triangle, CachedVertex};
 use crate::shade::{Material, Shading};
 use crate::{ColorBuffer, DrawError, Error, FrameStats, Renderer, ZBuffer, MAX_DIMENSION};
 
@@ -230,14 +230,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 let Some((f, t)) = faces.next() else {
                     break None;
                 };
-                let get = |i: u16| {
-                    cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
-                        face: f,
-                        index: usize::from(i),
-                    })
-                };
-                let (a, b, c): (&CachedVertex, &CachedVertex, &CachedVertex) =
-                    (get(t[0])?, get(t[1])?, get(t[2])?);
+                let [a, b, c] = cached_triangle(cache, f, t)?;
                 if a.code() & b.code() & c.code() != 0 {
                     st.triangles_in += 1;
                     st.outside += 1;

@@ -115,6 +115,23 @@ fn outside_rows(tri: &[ScreenVertex; 3], row0: i32, row1: i32) -> bool {
     ymax + 8 < row0 || ymin + 8 > row1
 }
 
+/// The cached vertices of triangle `f` (indices `t`), or the error naming the index
+/// the cache does not hold.
+#[inline(always)]
+pub(crate) fn cached_triangle<'c>(
+    cache: &'c [CachedVertex],
+    f: usize,
+    t: &[u16; 3],
+) -> Result<[&'c CachedVertex; 3], Error> {
+    let get = |i: u16| {
+        cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
+            face: f,
+            index: usize::from(i),
+        })
+    };
+    Ok([get(t[0])?, get(t[1])?, get(t[2])?])
+}
+
 /// Whether `cull` drops `tri`.
 #[inline(always)]
 pub(crate) fn culled(tri: &[ScreenVertex; 3], cull: Cull) -> bool {
@@ -731,13 +748,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             // Listed faces, known to be drawn (see `draw_listed`).
             for f in faces {
                 let Some(t) = indices.get(f) else { continue };
-                let get = |i: u16| {
-                    cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
-                        face: f,
-                        index: usize::from(i),
-                    })
-                };
-                let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
+                let [a, b, c] = cached_triangle(cache, f, t)?;
                 px += target.fill(&[a.screen, b.screen, c.screen], shade(f)?);
             }
             self.stats.add_pixels(px);
@@ -751,13 +762,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let next = loop {
                 let Some(f) = faces.next() else { break None };
                 let Some(t) = indices.get(f) else { continue };
-                let get = |i: u16| {
-                    cache.get(usize::from(i)).ok_or(Error::IndexOutOfRange {
-                        face: f,
-                        index: usize::from(i),
-                    })
-                };
-                let (a, b, c) = (get(t[0])?, get(t[1])?, get(t[2])?);
+                let [a, b, c] = cached_triangle(cache, f, t)?;
                 if a.code | b.code | c.code != 0 {
                     break Some((f, None));
                 }
