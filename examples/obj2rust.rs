@@ -27,11 +27,7 @@ fn convert(src: &str, name: &str) -> Result<String, String> {
         return Err("no faces".into());
     }
     let q = quantize(&obj.positions, true);
-    let indices: Vec<[u16; 3]> = obj
-        .triangles
-        .iter()
-        .map(|t| t.vertices.map(|v| v as u16))
-        .collect();
+    let indices = obj.triangle_indices();
     let mesh = Mesh::triangles(&q.positions, q.scale, &indices, Rgb888::new(255, 255, 255));
     let mut fnorm = vec![[0i16; 3]; indices.len()];
     let mut vnorm = vec![[0i16; 3]; q.positions.len()];

@@ -303,11 +303,7 @@ fn main() {
         input_error(&format!("{}: no faces", o.model));
     }
     let q = quantize(&obj.positions, true);
-    let indices: Vec<[u16; 3]> = obj
-        .triangles
-        .iter()
-        .map(|t| t.vertices.map(|v| v as u16))
-        .collect();
+    let indices = obj.triangle_indices();
     let materials: Vec<Kd> = obj
         .triangles
         .iter()

@@ -250,11 +250,7 @@ pub fn obj(data: &[u8]) {
         return;
     }
     let q = zraster_obj::quantize(&model.positions, true);
-    let indices: Vec<[u16; 3]> = model
-        .triangles
-        .iter()
-        .map(|t| t.vertices.map(|v| v as u16))
-        .collect();
+    let indices = model.triangle_indices();
     let mesh = Mesh::triangles(&q.positions, q.scale, &indices, Rgb888::WHITE);
     let Ok(vp) = Viewport::new(48, 32) else {
         return;

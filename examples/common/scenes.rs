@@ -289,11 +289,7 @@ impl Bunny {
     pub fn load() -> Bunny {
         let obj = parse_obj(BUNNY_OBJ, |_| None).expect("bunny.obj");
         let q = quantize(&obj.positions, true);
-        let indices: Vec<[u16; 3]> = obj
-            .triangles
-            .iter()
-            .map(|t| t.vertices.map(|v| v as u16))
-            .collect();
+        let indices = obj.triangle_indices();
         let mut b = Bunny {
             fit: Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit_scale(&obj.positions)),
             face_normals: vec![[0; 3]; indices.len()],

@@ -43,6 +43,17 @@ pub struct ObjModel {
     pub warnings: Vec<String>,
 }
 
+impl ObjModel {
+    /// The triangles' vertex indices as `u16`, the form of a zraster triangle list (the
+    /// reader accepts at most [`MAX_VERTICES`] = 2¹⁶ vertices, so every index fits).
+    pub fn triangle_indices(&self) -> Vec<[u16; 3]> {
+        self.triangles
+            .iter()
+            .map(|t| t.vertices.map(|v| v as u16))
+            .collect()
+    }
+}
+
 /// A reading error, with the (1-based) line it was found on.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ObjError {
@@ -327,6 +338,7 @@ mod tests {
         assert_eq!(m.positions.len(), 4);
         let t: Vec<[u32; 3]> = m.triangles.iter().map(|t| t.vertices).collect();
         assert_eq!(t, [[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(m.triangle_indices(), [[0u16, 1, 2], [0, 2, 3]]);
     }
 
     #[test]
