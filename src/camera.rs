@@ -228,20 +228,8 @@ impl FixedTransform {
                 "degenerate or overflowing transform",
             ));
         }
-        // The largest power of two k with m·2^k ≤ mlim and t·2^k ≤ tlim.
-        let exponent = |m: f64, t: f64, mlim: f64, tlim: f64| {
-            let fits = |k: i32| m * pow2_f64(k) <= mlim && t * pow2_f64(k) <= tlim;
-            let mut k = 0i32;
-            while k < 1000 && fits(k + 1) {
-                k += 1;
-            }
-            while k > -1000 && !fits(k) {
-                k -= 1;
-            }
-            k
-        };
-        let kxy = exponent(mxy, txy, 16383.0, (1u32 << 29) as f64);
-        let kzw = exponent(
+        let kxy = fit_exponent(mxy, txy, 16383.0, (1u32 << 29) as f64);
+        let kzw = fit_exponent(
             mzw,
             tzw,
             ((1u64 << 27) - (1 << 14)) as f64,
@@ -339,6 +327,35 @@ const RECIP_TABLE: [u16; 256] = {
     }
     t
 };
+
+/// The largest power of two k in ±1000 with m·2^k ≤ mlim and t·2^k ≤ tlim (−1000 if
+/// none), for non-negative m, t. `fits` only turns false as k grows, so the search may
+/// start anywhere: it starts one below the guess from the binary exponents and so takes a
+/// step or two (each a pair of soft-float products on an MCU) instead of tens.
+fn fit_exponent(m: f64, t: f64, mlim: f64, tlim: f64) -> i32 {
+    let fits = |k: i32| m * pow2_f64(k) <= mlim && t * pow2_f64(k) <= tlim;
+    let room = |v: f64, lim: f64| {
+        if v > 0.0 {
+            ilog2_f64(lim) - ilog2_f64(v) - 1
+        } else {
+            i32::MAX
+        }
+    };
+    let mut k = room(m, mlim).min(room(t, tlim)).clamp(-1000, 1000);
+    while k < 1000 && fits(k + 1) {
+        k += 1;
+    }
+    while k > -1000 && !fits(k) {
+        k -= 1;
+    }
+    k
+}
+
+/// The binary exponent of a positive, finite `f64` (⌊log₂ v⌋ for normal numbers; −1023
+/// for subnormals, which only makes the search above start higher).
+fn ilog2_f64(v: f64) -> i32 {
+    ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023
+}
 
 /// 2^k as `f64`.
 fn pow2_f64(k: i32) -> f64 {
@@ -728,6 +745,61 @@ mod tests {
             FixedTransform::new(&Mat4::IDENTITY, f32::INFINITY),
             Err(Error::NotFinite)
         );
+    }
+
+    #[test]
+    fn fit_exponent_matches_the_search_from_zero() {
+        // The search as it was: from k = 0, one step at a time.
+        let reference = |m: f64, t: f64, mlim: f64, tlim: f64| {
+            let fits = |k: i32| m * pow2_f64(k) <= mlim && t * pow2_f64(k) <= tlim;
+            let mut k = 0i32;
+            while k < 1000 && fits(k + 1) {
+                k += 1;
+            }
+            while k > -1000 && !fits(k) {
+                k -= 1;
+            }
+            k
+        };
+        let mut seed = 0x2545_f491u32;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        };
+        let lims = [
+            (16383.0, (1u32 << 29) as f64),
+            (((1u64 << 27) - (1 << 14)) as f64, (1u64 << 43) as f64),
+        ];
+        let mut values = std::vec![
+            0.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            1e-300,
+            1.0,
+            16383.0,
+            16384.0,
+            1e300,
+            f64::MAX,
+        ];
+        for _ in 0..2000 {
+            // Mantissas at and near powers of two, across a wide exponent range.
+            let e = (next() % 200) as i32 - 100;
+            let mant = [1.0, 1.0 + f64::EPSILON, 2.0 - f64::EPSILON, 1.5][(next() % 4) as usize];
+            values.push(mant * pow2_f64(e));
+            values.push(f64::from(next()) / f64::from(next().max(1)));
+        }
+        for (i, &m) in values.iter().enumerate() {
+            let t = values[(i * 7 + 3) % values.len()];
+            for &(mlim, tlim) in &lims {
+                assert_eq!(
+                    fit_exponent(m, t, mlim, tlim),
+                    reference(m, t, mlim, tlim),
+                    "{m:e} {t:e}"
+                );
+            }
+        }
     }
 
     #[test]
