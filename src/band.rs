@@ -132,6 +132,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let nb = bands.bands();
         let binned = self.bin(bands)?;
         let (w, rows) = (bands.width, bands.rows);
+        let mut carry = ColorCarry::new(background);
         for k in 0..nb {
             let y0 = k * rows;
             let n = rows.min(bands.height - y0);
@@ -159,12 +160,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         at: head(k as usize),
                     };
                     // The first two hold only visible triangles that reach this band.
-                    self.draw_listed::<_, true>(&mut color, &mut zbuf, above.chain(own))?;
+                    self.draw_band_faces(&mut color, &mut zbuf, above.chain(own), &mut carry)?;
                     let tall = Chain::<false> {
                         links,
                         at: head(nb as usize),
                     };
-                    self.draw_listed::<_, false>(&mut color, &mut zbuf, tall)?;
+                    self.draw_listed(&mut color, &mut zbuf, tall.map(|(f, _)| f))?;
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
             }
@@ -281,28 +282,128 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 }
 
-/// The triangles of one bin chain (see [`END`]); with `ONLY_NEXT`, only those that
-/// reach the band below. A walk always ends: `bin` writes every chain afresh each frame,
-/// in increasing triangle order, and ends it with [`END`].
+/// The triangles of one bin chain (see [`END`]), each with what it does with the
+/// colours carried between bands; with `ONLY_NEXT`, only those that reach the band
+/// below (walked from that band: they take their colours). A walk always ends: `bin`
+/// writes every chain afresh each frame, in increasing triangle order, and ends it with
+/// [`END`].
 struct Chain<'a, const ONLY_NEXT: bool> {
     links: &'a [u16],
     at: u16,
 }
 
 impl<const ONLY_NEXT: bool> Iterator for Chain<'_, ONLY_NEXT> {
-    type Item = usize;
+    type Item = (usize, Carry);
 
     #[inline]
-    fn next(&mut self) -> Option<usize> {
+    fn next(&mut self) -> Option<(usize, Carry)> {
         loop {
             if self.at == END {
                 return None;
             }
             let (f, next_band) = (usize::from(self.at & !NEXT_BAND), self.at & NEXT_BAND != 0);
             self.at = self.links.get(f).copied().unwrap_or(END);
-            if next_band || !ONLY_NEXT {
-                return Some(f);
+            if ONLY_NEXT {
+                if next_band {
+                    return Some((f, Carry::Take));
+                }
+            } else {
+                return Some((f, if next_band { Carry::Keep } else { Carry::No }));
             }
+        }
+    }
+}
+
+/// What a band's listed face does with the [`ColorCarry`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Carry {
+    /// Nothing: the face lies in this band alone (or is drawn in every band it meets).
+    No,
+    /// The face continues into the band below: keep its colour for it.
+    Keep,
+    /// The face came from the band above: take the colour kept there.
+    Take,
+}
+
+/// How many colours [`ColorCarry`] holds; faces beyond it are lit again.
+const CARRY: usize = 64;
+
+/// The colours of the faces that reach into the band below, kept for it. That band
+/// walks them first and in the same order (the chain of the band above, its two-band
+/// faces only), so a queue read from its start serves, and the faces of its own chain
+/// may then write over what has been read. Lighting such a face again would cost some
+/// 70 instructions on a Cortex-M4.
+pub(crate) struct ColorCarry<C> {
+    colors: [C; CARRY],
+    /// Colours the band above kept; how many this band has taken; how many it keeps.
+    filled: usize,
+    taken: usize,
+    kept: usize,
+}
+
+impl<C: Copy> ColorCarry<C> {
+    pub(crate) fn new(fill: C) -> Self {
+        ColorCarry {
+            colors: [fill; CARRY],
+            filled: 0,
+            taken: 0,
+            kept: 0,
+        }
+    }
+
+    /// A new band: what the band before kept is what this one takes.
+    pub(crate) fn start_band(&mut self) {
+        self.filled = self.kept;
+        self.taken = 0;
+        self.kept = 0;
+    }
+
+    /// The next carried colour, `None` past what was kept.
+    #[inline]
+    pub(crate) fn take(&mut self) -> Option<C> {
+        let i = self.taken;
+        self.taken += 1;
+        if i < self.filled {
+            self.colors.get(i).copied()
+        } else {
+            None
+        }
+    }
+
+    /// Keep `c` for the band below (dropped when full: that face is lit again there).
+    #[inline]
+    pub(crate) fn keep(&mut self, c: C) {
+        if let Some(slot) = self.colors.get_mut(self.kept) {
+            *slot = c;
+            self.kept += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The band below takes the kept colours in order; past the capacity it gets
+    /// `None` (and lights those faces again), never another face's colour.
+    #[test]
+    fn carried_colours_come_back_in_order_up_to_the_capacity() {
+        let mut carry = ColorCarry::new(0u16);
+        for kept in [0, 1, CARRY - 1, CARRY, CARRY + 5] {
+            carry.start_band();
+            // This band takes what the one before kept (checked below), then keeps its own.
+            for i in 0..kept {
+                carry.keep(i as u16 + 100);
+            }
+            carry.start_band();
+            for i in 0..kept + 3 {
+                let want = (i < kept.min(CARRY)).then_some(i as u16 + 100);
+                assert_eq!(carry.take(), want, "kept {kept}, take {i}");
+            }
+            // What this band keeps overwrites what it took, from the start.
+            carry.keep(7);
+            carry.start_band();
+            assert_eq!((carry.take(), carry.take()), (Some(7), None));
         }
     }
 }

@@ -10,6 +10,7 @@
 
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
+use crate::band::{Carry, ColorCarry};
 use crate::camera::{outcode_of, to_f32, FixedTransform, ScreenMap, Transform};
 use crate::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
 use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget, SpanStats};
@@ -517,9 +518,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
 
     /// [`draw_buffer`](Renderer::draw_buffer) for the listed faces of a cached triangle
     /// mesh (the band path; geometry already counted).
-    /// With `VISIBLE`, every listed face is known to be unclipped, front-facing (as the
-    /// options cull) and to reach the rows of `frame`: those tests are skipped.
-    pub(crate) fn draw_listed<C, const VISIBLE: bool>(
+    pub(crate) fn draw_listed<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
@@ -531,10 +530,92 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     {
         match self.mesh.faces {
             Faces::Triangles { indices, materials } => {
-                self.draw_buffer_triangles::<C, VISIBLE>(frame, zbuf, indices, materials, faces)
+                self.draw_buffer_triangles(frame, zbuf, indices, materials, faces)
             }
             Faces::Polygons(_) => self.draw_buffer(frame, zbuf),
         }
+    }
+
+    /// Draw a band's listed faces of a cached triangle mesh, each known to be unclipped,
+    /// front-facing (as the options cull) and to reach the rows of `frame`, so those
+    /// tests are skipped. Colours pass between bands through `carry` as each face's
+    /// [`Carry`] says.
+    pub(crate) fn draw_band_faces<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        faces: impl Iterator<Item = (usize, Carry)>,
+        carry: &mut ColorCarry<C>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let Faces::Triangles { indices, materials } = self.mesh.faces else {
+            return self.draw_buffer(frame, zbuf);
+        };
+        let Some(cache) = self.cache.as_deref() else {
+            return Ok(());
+        };
+        let clip = clip_of(frame, zbuf);
+        let lambert = self.options.shading == Shading::Lambert;
+        let flat = self.flat_color(materials, lambert);
+        let mut target = FlatTarget::new(frame, zbuf, &clip);
+        let mut px = SpanStats::default();
+        carry.start_band();
+        for (f, how) in faces {
+            let Some(t) = indices.get(f) else { continue };
+            let [a, b, c] = cached_triangle(cache, f, t)?;
+            let color = match (flat, how) {
+                (Some(c), _) => c,
+                (None, Carry::Take) => match carry.take() {
+                    Some(c) => c,
+                    None => self.face_color(materials, lambert, f)?,
+                },
+                (None, Carry::Keep) => {
+                    let c = self.face_color(materials, lambert, f)?;
+                    carry.keep(c);
+                    c
+                }
+                (None, Carry::No) => self.face_color(materials, lambert, f)?,
+            };
+            px += target.fill(&[a.screen, b.screen, c.screen], color);
+        }
+        self.stats.add_pixels(px);
+        Ok(())
+    }
+
+    /// The one colour of every face when it does not depend on the face (a uniform
+    /// material, unlit).
+    fn flat_color<C>(&self, materials: crate::mesh::Materials<'m, M>, lambert: bool) -> Option<C>
+    where
+        M: Material<C>,
+    {
+        match materials {
+            crate::mesh::Materials::Uniform(m) if !lambert => Some(m.shade(ONE, 0, 0)),
+            _ => None,
+        }
+    }
+
+    /// Face `f`'s flat colour: its material, lit by the face's Lambert intensity (or
+    /// unlit).
+    #[inline(always)]
+    fn face_color<C>(
+        &self,
+        materials: crate::mesh::Materials<'m, M>,
+        lambert: bool,
+        f: usize,
+    ) -> Result<C, Error>
+    where
+        M: Material<C>,
+    {
+        let m = match materials {
+            crate::mesh::Materials::Uniform(m) => m,
+            crate::mesh::Materials::PerFace(ms) => {
+                *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?
+            }
+        };
+        Ok(m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0))
     }
 
     /// Record the geometry counts of a frame (taken once, by its first pass).
@@ -614,13 +695,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         if let (true, Some(_), Faces::Triangles { indices, materials }) =
             (fast, &self.cache, self.mesh.faces)
         {
-            return self.draw_buffer_triangles::<C, false>(
-                frame,
-                zbuf,
-                indices,
-                materials,
-                0..indices.len(),
-            );
+            return self.draw_buffer_triangles(frame, zbuf, indices, materials, 0..indices.len());
         }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
@@ -703,7 +778,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
     /// one tight loop over the triangles. Faces near the clip planes go through the
     /// general path.
-    fn draw_buffer_triangles<C, const VISIBLE: bool>(
+    fn draw_buffer_triangles<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
@@ -722,38 +797,17 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
         let mut st = FrameStats::default();
         let mut px = SpanStats::default();
-        let flat = match materials {
-            crate::mesh::Materials::Uniform(m) if !lambert => Some(m.shade(ONE, 0, 0)),
-            _ => None,
-        };
+        let flat = self.flat_color(materials, lambert);
         let Some(cache) = self.cache.as_deref() else {
             return Ok(());
         };
         let mut target = FlatTarget::new(frame, zbuf, &clip);
         let shade = |f: usize| -> Result<C, Error> {
-            Ok(match flat {
-                Some(c) => c,
-                None => {
-                    let m = match materials {
-                        crate::mesh::Materials::Uniform(m) => m,
-                        crate::mesh::Materials::PerFace(ms) => {
-                            *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?
-                        }
-                    };
-                    m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0)
-                }
-            })
-        };
-        if VISIBLE {
-            // Listed faces, known to be drawn (see `draw_listed`).
-            for f in faces {
-                let Some(t) = indices.get(f) else { continue };
-                let [a, b, c] = cached_triangle(cache, f, t)?;
-                px += target.fill(&[a.screen, b.screen, c.screen], shade(f)?);
+            match flat {
+                Some(c) => Ok(c),
+                None => self.face_color(materials, lambert, f),
             }
-            self.stats.add_pixels(px);
-            return Ok(());
-        }
+        };
         let mut faces = faces;
         loop {
             // The faces up to the next one to draw, in a loop of their own: most are
