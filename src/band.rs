@@ -165,7 +165,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         links,
                         at: head(nb as usize),
                     };
-                    self.draw_listed(&mut color, &mut zbuf, tall.map(|(f, _)| f))?;
+                    if tall.at != END {
+                        self.draw_listed(&mut color, &mut zbuf, tall.map(|(f, _)| f))?;
+                    }
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
             }
