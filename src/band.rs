@@ -225,6 +225,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 *tail = f as u16;
             }
         };
+        let (mut n_clipped, mut outside, mut culled) = (0usize, 0u32, 0u32);
         let mut faces = indices.iter().enumerate();
         loop {
             // All but the faces near a clip plane in a loop of their own, with no call
@@ -234,21 +235,20 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     break None;
                 };
                 let [a, b, c] = cached_triangle(cache, f, t)?;
+                // Counted here: faces outside and culled. The others not sent to the
+                // general path below are drawn; all are counted in after the loop.
                 if a.code() & b.code() & c.code() != 0 {
-                    st.triangles_in += 1;
-                    st.outside += 1;
+                    outside += 1;
                     continue;
                 }
                 if a.code() | b.code() | c.code() != 0 {
                     break Some(f);
                 }
-                st.triangles_in += 1;
                 let xy = |v: &CachedVertex| (v.screen().x(), v.screen().y());
                 if cull.drops(signed_area_guarded(xy(a), xy(b), xy(c))) {
-                    st.culled += 1;
+                    culled += 1;
                     continue;
                 }
-                st.drawn += 1;
                 let [p, q, r] = [a.screen(), b.screen(), c.screen()];
                 let ymin = p.y().min(q.y()).min(r.y());
                 let ymax = p.y().max(q.y()).max(r.y());
@@ -271,8 +271,14 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 DrawError::Target(never) => match never {},
             })?;
             st.add_geometry(&g);
+            n_clipped += 1;
             append(nb, f, false);
         }
+        let unclipped = (nt - n_clipped) as u32; // nt < 2¹⁵
+        st.triangles_in += unclipped;
+        st.outside += outside;
+        st.culled += culled;
+        st.drawn += unclipped - outside - culled;
         // End every chain: after its last triangle, or at its head when empty.
         for b in 0..=nb {
             if let Some(slot) = tails.get(b).and_then(|&t| slots.get_mut(usize::from(t))) {

@@ -475,16 +475,31 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
     let bunny = scenes::Bunny::load();
     let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
     let (w, h) = (96u32, 70u32);
-    let xf = Transform::perspective(
-        Vec3::new(0.0, 0.0, 1.6),
-        Vec3::default(),
-        60.0,
-        0.1,
-        10.0,
-        Viewport::new(w, h).unwrap(),
-    )
-    .unwrap()
-    .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
+    // In the middle; and across the left edge and the near plane, so that faces are
+    // outside, clipped, culled and drawn.
+    for (eye, target) in [
+        (Vec3::new(0.0, 0.0, 1.6), Vec3::default()),
+        (Vec3::new(0.25, 0.0, 0.35), Vec3::new(0.25, 0.0, 0.0)),
+    ] {
+        let s = banded_against_whole(&mesh, &bunny, eye, target, w, h);
+        assert!(s.drawn > 0 && s.pixels_written > 500, "{s:?}");
+        if eye.z < 1.0 {
+            assert!(s.outside > 0 && s.clipped > 0 && s.culled > 0, "{s:?}");
+        }
+    }
+}
+
+fn banded_against_whole(
+    mesh: &Mesh<'_, Rgb888>,
+    bunny: &scenes::Bunny,
+    eye: Vec3,
+    target: Vec3,
+    w: u32,
+    h: u32,
+) -> FrameStats {
+    let xf = Transform::perspective(eye, target, 60.0, 0.1, 10.0, Viewport::new(w, h).unwrap())
+        .unwrap()
+        .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
     let opts = RenderOptions {
         shading: Shading::Lambert,
         ..Default::default()
@@ -563,6 +578,7 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
         zraster::BandBuffers::new(&mut c, &mut z, 0, 3, 9, &mut b).err(),
         Some(Error::ZeroSize)
     );
+    full_stats
 }
 
 /// With a vertex cache, `draw_buffer` into a whole-frame colour buffer through a band
