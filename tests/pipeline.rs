@@ -512,7 +512,7 @@ fn banded_against_whole(
         let mut frame = ColorBuffer::new(&mut full, w, h).unwrap();
         let mut zbuf = ZBuffer::new(&mut depth, w, h).unwrap();
         zbuf.clear();
-        let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+        let mut r = Renderer::with_cache(mesh, &xf, opts, &mut cache).unwrap();
         r.draw_buffer(&mut frame, &mut zbuf).unwrap();
         r.stats()
     };
@@ -535,7 +535,7 @@ fn banded_against_whole(
                 let mut display = ColorBuffer::new(&mut out, w, h).unwrap();
                 let mut bands =
                     zraster::BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
-                let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+                let mut r = Renderer::with_cache(mesh, &xf, opts, &mut cache).unwrap();
                 r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
                     .unwrap();
                 r.stats()
