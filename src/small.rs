@@ -7,7 +7,7 @@
 //! start stepped with one add a row, one index into both buffers, and the two halves of
 //! the triangle walked by two plain loops.
 
-use crate::fixed::{div_floor_pair, mul_i64_i32, SUBPIXEL, SUBPIXEL_BITS};
+use crate::fixed::{div_floor_pair, mul_i64_i32, ARMV6M, SUBPIXEL, SUBPIXEL_BITS};
 use crate::raster::{plane_origin, Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
 
 /// Colour and depth rows of the same geometry, and the pixels drawing may touch.
@@ -51,13 +51,13 @@ impl Depth {
         if area == 0 {
             return None;
         }
-        let (dz1, dz2) = (
-            i64::from(p1.z()) - i64::from(p0.z()),
-            i64::from(p2.z()) - i64::from(p0.z()),
-        );
-        // |dz| < 2³², |dx|, |dy| < 2¹³ (a small triangle): below 2⁴⁶.
-        let a = mul_i64_i32(dz1, dy2) - mul_i64_i32(dz2, dy1);
-        let bb = mul_i64_i32(dz2, dx1) - mul_i64_i32(dz1, dx2);
+        // On Arm with SMLAL the offset form (14 k instructions a bunny frame less on a
+        // Cortex-M4, 14 k more on x86-64).
+        let (a, bb) = if cfg!(target_arch = "arm") && !ARMV6M {
+            numerators_offset(tri, [dx1, dy1, dx2, dy2])
+        } else {
+            numerators_diff(tri, [dx1, dy1, dx2, dy2])
+        };
         let (sx, sy) = div_floor_pair(
             a * i64::from(SUBPIXEL),
             bb * i64::from(SUBPIXEL),
@@ -75,6 +75,37 @@ impl Depth {
             hi: zhi + DEPTH_BIAS,
         })
     }
+}
+
+/// The depth plane's numerators a = Δz1·dy2 − Δz2·dy1 and b = Δz2·dx1 − Δz1·dx2 of a
+/// small triangle (Δzᵢ = zᵢ − z0, below 2³² in magnitude; |dx|, |dy| < 2¹³: both below
+/// 2⁴⁶), from the differences.
+#[inline(always)]
+fn numerators_diff(tri: &[ScreenVertex; 3], [dx1, dy1, dx2, dy2]: [i32; 4]) -> (i64, i64) {
+    let [p0, p1, p2] = tri;
+    let (dz1, dz2) = (
+        i64::from(p1.z()) - i64::from(p0.z()),
+        i64::from(p2.z()) - i64::from(p0.z()),
+    );
+    (
+        mul_i64_i32(dz1, dy2) - mul_i64_i32(dz2, dy1),
+        mul_i64_i32(dz2, dx1) - mul_i64_i32(dz1, dx2),
+    )
+}
+
+/// [`numerators_diff`] in 32×32 → 64-bit multiply-accumulates (one instruction each on
+/// a Cortex-M3/M4): expanded, a = z0·(dy1 − dy2) + z1·dy2 − z2·dy1, whose coefficients
+/// sum to zero, so each z may be taken as the `i32` z − 2³¹ (the offsets cancel). Each
+/// product is below 2¹⁴·2³¹, the sums below 2⁴⁷. Likewise b.
+#[inline(always)]
+fn numerators_offset(tri: &[ScreenVertex; 3], [dx1, dy1, dx2, dy2]: [i32; 4]) -> (i64, i64) {
+    let zc = |v: &ScreenVertex| (v.z() ^ 1 << 31) as i32;
+    let [z0, z1, z2] = tri.each_ref().map(zc);
+    let m = |c: i32, z: i32| i64::from(c) * i64::from(z);
+    (
+        m(dy1 - dy2, z0) + m(dy2, z1) - m(dy1, z2),
+        m(dx2 - dx1, z0) + m(dx1, z2) - m(dx2, z1),
+    )
 }
 
 /// Fill `tri` if it is small (extents below 512 pixels); `None` means "not for this
@@ -250,5 +281,57 @@ fn rows<C: Copy>(
         }
         row_z = row_z.wrapping_add(d.sy);
         base += b.width;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The two forms of the plane numerators agree, at the ends of their ranges and on
+    /// random small triangles.
+    #[test]
+    fn plane_numerator_forms_agree() {
+        let mut x = 0x2545_f491_u32;
+        let mut rnd = move || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        };
+        let edge_z = [0, 1, 1 << 31, u32::MAX >> 1, crate::fixed::MAX_DEPTH];
+        let edge_d = [-(SMALL - 1), -1, 0, 1, SMALL - 1];
+        for i in 0..200_000u32 {
+            let mut zs = [0u32; 3];
+            for (k, z) in zs.iter_mut().enumerate() {
+                *z = if i % 4 == 0 {
+                    edge_z[(i as usize / 4 + k) % 5]
+                } else {
+                    rnd() % (crate::fixed::MAX_DEPTH + 1)
+                };
+            }
+            let mut ds = [0i32; 4];
+            for (k, d) in ds.iter_mut().enumerate() {
+                *d = if i % 3 == 0 {
+                    edge_d[(i as usize / 3 + k * 7) % 5]
+                } else {
+                    (rnd() % (2 * SMALL as u32 - 1)) as i32 - (SMALL - 1)
+                };
+            }
+            let z = |k: usize| zs[k];
+            let d = |k: usize| ds[k];
+            let (dx1, dy1, dx2, dy2) = (d(0), d(1), d(2), d(3));
+            let tri = [
+                ScreenVertex::from_raw(0, 0, z(0)),
+                ScreenVertex::from_raw(dx1, dy1, z(1)),
+                ScreenVertex::from_raw(dx2, dy2, z(2)),
+            ];
+            let d4 = [dx1, dy1, dx2, dy2];
+            assert_eq!(
+                numerators_offset(&tri, d4),
+                numerators_diff(&tri, d4),
+                "{tri:?}"
+            );
+        }
     }
 }
