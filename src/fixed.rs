@@ -108,7 +108,7 @@ fn div_floor_pair_recip(n1: i64, n2: i64, d: i64) -> Option<(i64, i64)> {
         return None;
     }
     let d32 = d as u32;
-    let r = u32::MAX / d32; // ⌊(2³² − 1)/d⌋
+    let r = recip32_small(d32); // ⌊(2³² − 1)/d⌋
     let one = |n: i64, m: u64| {
         let (q1, r1) = divrem_by_recip((m >> 16) as u32, d32, r);
         let (q0, r0) = divrem_by_recip((r1 << 16) | (m as u32 & 0xffff), d32, r); // r1 < 2¹⁶
@@ -124,6 +124,55 @@ fn div_floor_pair_recip(n1: i64, n2: i64, d: i64) -> Option<(i64, i64)> {
     };
     Some((one(n1, m1), one(n2, m2)))
 }
+
+/// ⌊(2³² − 1)/d⌋ for 1 ≤ d < 2¹⁶ without a division instruction (on ARMv6-M the
+/// library division costs about 200 instructions, this about 70): a guess below 2³²/d
+/// from a table of d's leading 8 bits (relative error under 2⁻⁸), two Newton steps
+/// from below (2⁻¹⁶, then within a unit or two), and an exact fix-up by the remainder.
+#[inline]
+pub(crate) fn recip32_small(d: u32) -> u32 {
+    if d == 0 || d >= 1 << 16 {
+        return u32::MAX / d.max(1);
+    }
+    // dn = d·2^s in [2¹⁵, 2¹⁶), by comparisons (ARMv6-M has no leading-zero count).
+    let (mut dn, mut s) = (d, 0);
+    for k in [8, 4, 2, 1] {
+        if dn < 1 << (16 - k) {
+            dn <<= k;
+            s += k;
+        }
+    }
+    // 2³²/d = 2^(s + 1) · 2³¹/dn, and the table holds 2²⁴ over the top of dn's range,
+    // a little below 2¹⁵ · 2³¹/dn: so the guess x is below 2³²/d (and 2³²).
+    let i = ((dn >> 7) & 0xff) as usize;
+    let mut x = u32::from(RECIP16.get(i).copied().unwrap_or(0x8000)) << (s + 1);
+    for _ in 0..2 {
+        // e = 2³² − d·x > 0 (d·x < 2³², so the wrapping product is exact); x·e/2³²
+        // is less than 2³²/d − x, so x stays below 2³²/d.
+        let e = d.wrapping_mul(x).wrapping_neg();
+        x += (mul_wide(x, e) >> 32) as u32;
+    }
+    // x ≤ ⌊(2³² − 1)/d⌋ (x < 2³²/d), so the remainder below is exact and never negative.
+    let mut rem = u32::MAX - x.wrapping_mul(d);
+    while rem >= d {
+        x += 1;
+        rem -= d;
+    }
+    x
+}
+
+/// ⌊2²⁴ / (257 + i)⌋: 2²⁴ over the top of the i-th of 256 equal parts of [2⁸, 2⁹) (dn's
+/// leading 8 bits read as 256 + i), which is below 2¹⁶ · 2⁸/top. Worked out at compile
+/// time.
+const RECIP16: [u16; 256] = {
+    let mut t = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = ((1u32 << 24) / (257 + i as u32)) as u16;
+        i += 1;
+    }
+    t
+};
 
 /// `(x / d, x % d)` given `r = ⌊(2³² − 1)/d⌋`, `d > 0`: `x·r/2³²` is at most `x/d` and
 /// less than 3 below it, so the remainder is never negative and at most three steps
@@ -525,6 +574,15 @@ mod tests {
             let d = if next() % 2 == 0 { d } else { -d };
             assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
         }
+    }
+
+    #[test]
+    fn small_reciprocal_is_exact_for_every_divisor() {
+        for d in 1..1u32 << 16 {
+            assert_eq!(recip32_small(d), u32::MAX / d, "d = {d}");
+        }
+        assert_eq!(recip32_small(1 << 16), u32::MAX >> 16);
+        assert_eq!(recip32_small(0), u32::MAX);
     }
 
     #[test]
