@@ -164,6 +164,7 @@ pub(crate) fn recip32_small(d: u32) -> u32 {
 /// ⌊2²⁴ / (257 + i)⌋: 2²⁴ over the top of the i-th of 256 equal parts of [2⁸, 2⁹) (dn's
 /// leading 8 bits read as 256 + i), which is below 2¹⁶ · 2⁸/top. Worked out at compile
 /// time.
+#[allow(clippy::indexing_slicing)] // evaluated at compile time: a bad index fails the build
 const RECIP16: [u16; 256] = {
     let mut t = [0u16; 256];
     let mut i = 0;
