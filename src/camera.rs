@@ -642,12 +642,9 @@ mod tests {
                 }
             }
         }
-        let mut x = 0x2545_f491_u32;
+        let mut rnd = crate::testing::xorshift32(0x2545_f491);
         for _ in 0..100_000 {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            check((1 << 30) | (x >> 2));
+            check((1 << 30) | (rnd() >> 2));
         }
     }
     use crate::math::radians;
@@ -761,13 +758,7 @@ mod tests {
             }
             k
         };
-        let mut seed = 0x2545_f491u32;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        };
+        let mut next = crate::testing::xorshift32(0x2545_f491);
         let lims = [
             (16383.0, (1u32 << 29) as f64),
             (((1u64 << 27) - (1 << 14)) as f64, (1u64 << 43) as f64),

@@ -597,13 +597,7 @@ mod tests {
     /// the plain loop, for every length, with and without depth writes.
     #[test]
     fn long_span_loop_matches_the_plain_one() {
-        let mut x = 0x9e37_79b9_u32;
-        let mut rnd = move || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut rnd = crate::testing::xorshift32(0x9e37_79b9);
         for len in 0..41 {
             for write in [true, false] {
                 let depth: std::vec::Vec<u16> = (0..len).map(|_| rnd() as u16).collect();

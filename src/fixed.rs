@@ -475,11 +475,9 @@ mod tests {
         for k in 0..63 {
             cases.extend([1i64 << k, (1i64 << k) - 1, (1i64 << k) + 1]);
         }
-        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
         for _ in 0..100_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = next();
             cases.push((x >> 1) as i64 >> (x % 63));
         }
         for w in cases {
@@ -490,11 +488,9 @@ mod tests {
 
     #[test]
     fn split_shifts_are_shifts() {
-        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
         for _ in 0..20_000 {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
+            let x = next();
             let v = x as i64 >> (x % 40);
             for s in 0..32 {
                 assert_eq!(shl64_parts(v, s), v.wrapping_shl(s), "{v} << {s}");
@@ -574,18 +570,12 @@ mod tests {
                 assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
             }
         }
-        let mut x = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
         for _ in 0..300_000 {
             let v = next();
             let n = ((v >> 12) as i64) >> (v % 48); // |n| < 2⁵¹
             let d = (((next() % (1 << 18)) as i64 + 1) >> (next() % 18)).max(1);
-            let d = if next() % 2 == 0 { d } else { -d };
+            let d = if next().is_multiple_of(2) { d } else { -d };
             assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
         }
     }
@@ -639,16 +629,10 @@ mod tests {
                 }
             }
         }
-        let mut x = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
         for _ in 0..200_000 {
             let d = (next() % 65535) as i64 + 1;
-            let d = if next() % 2 == 0 { d } else { -d };
+            let d = if next().is_multiple_of(2) { d } else { -d };
             let n = |v: u64| ((v >> 16) as i64) >> (v % 40); // |n| < 2⁴⁸
             check(n(next()), n(next()), d);
         }

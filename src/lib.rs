@@ -71,6 +71,8 @@ mod render;
 pub mod shade;
 mod small;
 mod target;
+#[cfg(test)]
+mod testing;
 mod zbuffer;
 
 pub use band::BandBuffers;

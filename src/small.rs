@@ -292,13 +292,7 @@ mod tests {
     /// random small triangles.
     #[test]
     fn plane_numerator_forms_agree() {
-        let mut x = 0x2545_f491_u32;
-        let mut rnd = move || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x
-        };
+        let mut rnd = crate::testing::xorshift32(0x2545_f491);
         let edge_z = [0, 1, 1 << 31, u32::MAX >> 1, crate::fixed::MAX_DEPTH];
         let edge_d = [-(SMALL - 1), -1, 0, 1, SMALL - 1];
         for i in 0..200_000u32 {
