@@ -64,17 +64,24 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     n.div_euclid(d)
 }
 
-/// `(⌊n₁ / d⌋, ⌊n₂ / d⌋)` for `d ≠ 0`, exactly as [`div_floor`] gives them. On
-/// ARMv6-M, which has no divide instruction, when `|d| < 2¹⁶` and both `|n| < 2⁴⁸` (the
-/// depth slopes of every small triangle): one division for a reciprocal of `d`, then
-/// each 16-bit digit of the two long divisions by a multiply and at most three
-/// corrections, instead of four library divisions. Elsewhere two [`div_floor`]s.
+/// `(⌊n₁ / d⌋, ⌊n₂ / d⌋)` for `d ≠ 0`, exactly as [`div_floor`] gives them: by the
+/// divide instruction on 64-bit hosts; on ARMv6-M, which has no divide instruction,
+/// when `|d| < 2¹⁶` and both `|n| < 2⁴⁸` (the depth slopes of every small triangle),
+/// by a reciprocal of `d` and each 16-bit digit of the two long divisions by a multiply
+/// and at most three corrections, instead of four library divisions; elsewhere by two
+/// [`div_floor_signless`]s.
 #[inline]
 pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
     if ARMV6M {
         if let Some(q) = div_floor_pair_recip(n1, n2, d) {
             return q;
         }
+    }
+    if cfg!(target_pointer_width = "64") {
+        // A 64-bit divide instruction (x86-64, AArch64): one each, where the digit
+        // method takes about 20 instructions (51 k a bunny frame on x86-64).
+        let (n1, n2, d) = if d < 0 { (-n1, -n2, -d) } else { (n1, n2, d) };
+        return (n1.div_euclid(d), n2.div_euclid(d));
     }
     (div_floor_signless(n1, d), div_floor_signless(n2, d))
 }
