@@ -193,7 +193,8 @@ pub(crate) fn fill_flat_buffered<C: PixelColor>(
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
-    FlatTarget::new(frame, zbuf, clip).fill(tri, color)
+    let [a, b, c] = tri;
+    FlatTarget::new(frame, zbuf, clip).fill([a, b, c], color)
 }
 
 /// A colour buffer and a Z-buffer borrowed for a run of flat triangles: what
@@ -243,7 +244,8 @@ impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
     }
 
     /// Fill one triangle in `color`.
-    pub(crate) fn fill(&mut self, tri: &[ScreenVertex; 3], color: C) -> SpanStats {
+    pub(crate) fn fill(&mut self, [a, b, c]: [&ScreenVertex; 3], color: C) -> SpanStats {
+        let tri = &[*a, *b, *c];
         match self {
             FlatTarget::Fused { b, test, write } => fill_fused(b, *test, *write, tri, color),
             FlatTarget::Split { frame, zbuf, clip } => fill_split(frame, zbuf, clip, tri, color),

@@ -578,7 +578,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 }
                 (None, Carry::No) => self.face_color(materials, lambert, f)?,
             };
-            px += target.fill(&[a.screen, b.screen, c.screen], color);
+            px += target.fill([&a.screen, &b.screen, &c.screen], color);
         }
         self.stats.add_pixels(px);
         Ok(())
@@ -763,7 +763,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 core::iter::once(f),
                 |f, mat, tri, _| {
                     let i = if lambert { self.face_light(f) } else { ONE };
-                    more += target.fill(tri, mat.shade(i, 0, 0));
+                    let [a, b, c] = tri;
+                    more += target.fill([a, b, c], mat.shade(i, 0, 0));
                     Ok(())
                 },
             )
@@ -831,7 +832,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     continue;
                 }
                 st.drawn += 1;
-                break Some((f, Some([a.screen, b.screen, c.screen])));
+                break Some((f, Some([&a.screen, &b.screen, &c.screen])));
             };
             let Some((f, tri)) = next else { break };
             let Some(tri) = tri else {
@@ -841,7 +842,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 px += more;
                 continue;
             };
-            px += target.fill(&tri, shade(f)?);
+            px += target.fill(tri, shade(f)?);
         }
         self.count(st);
         self.stats.add_pixels(px);
