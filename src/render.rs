@@ -776,8 +776,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 
     /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
-    /// one tight loop over the triangles. Faces near the clip planes go through the
-    /// general path.
+    /// one tight loop over the triangles, instantiated for each way of colouring a face
+    /// (one colour; one material, lit; a material per face), so that the loop does not
+    /// ask which it is for every face. Faces near the clip planes go through the general
+    /// path.
     fn draw_buffer_triangles<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
@@ -790,24 +792,49 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         C: PixelColor,
         M: Material<C>,
     {
+        let lambert = self.options.shading == Shading::Lambert;
+        let (st, px) = match (self.flat_color(materials, lambert), materials) {
+            (Some(c), _) => self.cull_and_fill(frame, zbuf, indices, faces, |_| Ok(c))?,
+            // A uniform material without one colour for all is lit.
+            (None, crate::mesh::Materials::Uniform(m)) => {
+                self.cull_and_fill(frame, zbuf, indices, faces, |f| {
+                    Ok(m.shade(self.face_light(f), 0, 0))
+                })?
+            }
+            (None, _) => self.cull_and_fill(frame, zbuf, indices, faces, |f| {
+                self.face_color(materials, lambert, f)
+            })?,
+        };
+        self.count(st);
+        self.stats.add_pixels(px);
+        Ok(())
+    }
+
+    /// The loop of [`draw_buffer_triangles`](Renderer::draw_buffer_triangles), with the
+    /// faces' colours from `shade`; returns the geometry and pixel counts.
+    #[inline(always)]
+    fn cull_and_fill<C>(
+        &self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        indices: &'m [[u16; 3]],
+        faces: impl Iterator<Item = usize>,
+        shade: impl Fn(usize) -> Result<C, Error>,
+    ) -> Result<(FrameStats, SpanStats), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
         let clip = clip_of(frame, zbuf);
         let first = !self.counted;
         let cull = self.options.cull;
-        let lambert = self.options.shading == Shading::Lambert;
         let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
         let mut st = FrameStats::default();
         let mut px = SpanStats::default();
-        let flat = self.flat_color(materials, lambert);
         let Some(cache) = self.cache.as_deref() else {
-            return Ok(());
+            return Ok((st, px));
         };
         let mut target = FlatTarget::new(frame, zbuf, &clip);
-        let shade = |f: usize| -> Result<C, Error> {
-            match flat {
-                Some(c) => Ok(c),
-                None => self.face_color(materials, lambert, f),
-            }
-        };
         let mut faces = faces;
         loop {
             // The faces up to the next one to draw, in a loop of their own: most are
@@ -844,9 +871,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             };
             px += target.fill(tri, shade(f)?);
         }
-        self.count(st);
-        self.stats.add_pixels(px);
-        Ok(())
+        Ok((st, px))
     }
 
     /// Draw by depth sorting (the painter's algorithm of the seeds): faces sorted by the
