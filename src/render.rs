@@ -553,35 +553,65 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let Faces::Triangles { indices, materials } = self.mesh.faces else {
             return self.draw_buffer(frame, zbuf);
         };
+        let lambert = self.options.shading == Shading::Lambert;
+        carry.start_band();
+        // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
+        let px = match (self.flat_color(materials, lambert), materials) {
+            (Some(c), _) => self.band_loop(frame, zbuf, indices, faces, carry, |_| Ok(c))?,
+            (None, crate::mesh::Materials::Uniform(m)) => {
+                self.band_loop(frame, zbuf, indices, faces, carry, |f| {
+                    Ok(m.shade(self.face_light(f), 0, 0))
+                })?
+            }
+            (None, _) => self.band_loop(frame, zbuf, indices, faces, carry, |f| {
+                self.face_color(materials, lambert, f)
+            })?,
+        };
+        self.stats.add_pixels(px);
+        Ok(())
+    }
+
+    /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
+    /// colours from `shade` unless carried; returns the pixel counts.
+    #[inline(always)]
+    fn band_loop<C>(
+        &self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        indices: &'m [[u16; 3]],
+        faces: impl Iterator<Item = (usize, Carry)>,
+        carry: &mut ColorCarry<C>,
+        shade: impl Fn(usize) -> Result<C, Error>,
+    ) -> Result<SpanStats, Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let mut px = SpanStats::default();
         let Some(cache) = self.cache.as_deref() else {
-            return Ok(());
+            return Ok(px);
         };
         let clip = clip_of(frame, zbuf);
-        let lambert = self.options.shading == Shading::Lambert;
-        let flat = self.flat_color(materials, lambert);
         let mut target = FlatTarget::new(frame, zbuf, &clip);
-        let mut px = SpanStats::default();
-        carry.start_band();
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
             let [a, b, c] = cached_triangle(cache, f, t)?;
-            let color = match (flat, how) {
-                (Some(c), _) => c,
-                (None, Carry::Take) => match carry.take() {
-                    Some(c) => c,
-                    None => self.face_color(materials, lambert, f)?,
-                },
-                (None, Carry::Keep) => {
-                    let c = self.face_color(materials, lambert, f)?;
-                    carry.keep(c);
-                    c
-                }
-                (None, Carry::No) => self.face_color(materials, lambert, f)?,
+            // One call of `shade` (so that it is inlined): carried, or worked out.
+            let carried = if how == Carry::Take {
+                carry.take()
+            } else {
+                None
             };
+            let color = match carried {
+                Some(c) => c,
+                None => shade(f)?,
+            };
+            if how == Carry::Keep {
+                carry.keep(color);
+            }
             px += target.fill([&a.screen, &b.screen, &c.screen], color);
         }
-        self.stats.add_pixels(px);
-        Ok(())
+        Ok(px)
     }
 
     /// The one colour of every face when it does not depend on the face (a uniform
