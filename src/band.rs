@@ -151,22 +151,19 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     let head = |b: usize| heads.get(b).copied().unwrap_or(END);
                     // The triangles of the band above that reach this one, this band's,
                     // and the tall/clipped chain: the order a whole frame draws them in.
-                    let above = Chain::<true> {
+                    let faces = BandFaces {
                         links,
-                        at: if k > 0 { head(k as usize - 1) } else { END },
-                    };
-                    let own = Chain::<false> {
-                        links,
-                        at: head(k as usize),
+                        above: if k > 0 { head(k as usize - 1) } else { END },
+                        own: head(k as usize),
                     };
                     // The first two hold only visible triangles that reach this band.
-                    self.draw_band_faces(&mut color, &mut zbuf, above.chain(own), &mut carry)?;
-                    let tall = Chain::<false> {
+                    self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
+                    let tall = Chain {
                         links,
                         at: head(nb as usize),
                     };
                     if tall.at != END {
-                        self.draw_listed(&mut color, &mut zbuf, tall.map(|(f, _)| f))?;
+                        self.draw_listed(&mut color, &mut zbuf, tall)?;
                     }
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
@@ -290,35 +287,61 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 }
 
-/// The triangles of one bin chain (see [`END`]), each with what it does with the
-/// colours carried between bands; with `ONLY_NEXT`, only those that reach the band
-/// below (walked from that band: they take their colours). A walk always ends: `bin`
-/// writes every chain afresh each frame, in increasing triangle order, and ends it with
+/// The triangles of one bin chain (see [`END`]): a walk always ends, as `bin` writes
+/// every chain afresh each frame, in increasing triangle order, and ends it with
 /// [`END`].
-struct Chain<'a, const ONLY_NEXT: bool> {
+struct Chain<'a> {
     links: &'a [u16],
     at: u16,
 }
 
-impl<const ONLY_NEXT: bool> Iterator for Chain<'_, ONLY_NEXT> {
+impl Iterator for Chain<'_> {
+    type Item = usize;
+
+    #[inline]
+    fn next(&mut self) -> Option<usize> {
+        if self.at == END {
+            return None;
+        }
+        let f = usize::from(self.at & !NEXT_BAND);
+        self.at = self.links.get(f).copied().unwrap_or(END);
+        Some(f)
+    }
+}
+
+/// A band's own faces, after those of the band above that reach into it (only those
+/// of that chain marked [`NEXT_BAND`]), each with what it does with the colours carried
+/// between bands. (One iterator rather than two chained: a test a face less.)
+struct BandFaces<'a> {
+    links: &'a [u16],
+    above: u16,
+    own: u16,
+}
+
+impl Iterator for BandFaces<'_> {
     type Item = (usize, Carry);
 
     #[inline]
     fn next(&mut self) -> Option<(usize, Carry)> {
-        loop {
-            if self.at == END {
-                return None;
-            }
-            let (f, next_band) = (usize::from(self.at & !NEXT_BAND), self.at & NEXT_BAND != 0);
-            self.at = self.links.get(f).copied().unwrap_or(END);
-            if ONLY_NEXT {
-                if next_band {
-                    return Some((f, Carry::Take));
-                }
-            } else {
-                return Some((f, if next_band { Carry::Keep } else { Carry::No }));
+        while self.above != END {
+            let (f, next_band) = (
+                usize::from(self.above & !NEXT_BAND),
+                self.above & NEXT_BAND != 0,
+            );
+            self.above = self.links.get(f).copied().unwrap_or(END);
+            if next_band {
+                return Some((f, Carry::Take));
             }
         }
+        if self.own == END {
+            return None;
+        }
+        let (f, next_band) = (
+            usize::from(self.own & !NEXT_BAND),
+            self.own & NEXT_BAND != 0,
+        );
+        self.own = self.links.get(f).copied().unwrap_or(END);
+        Some((f, if next_band { Carry::Keep } else { Carry::No }))
     }
 }
 
