@@ -29,19 +29,17 @@ pub struct BandBuffers<'a, C> {
 }
 
 /// The end of a bin chain (no link to a triangle is this: triangles number at most
-/// 32,767).
+/// 65,534).
 ///
-/// Bins: one chain of triangles per band (those whose top row lies in it, in face
-/// order), and an extra last chain, which every band visits, for triangles reaching more
-/// than two bands or needing clipping. The chains are linked through a `u16` per
-/// triangle; each link also carries, in its top bit, whether the triangle it points to
-/// reaches the next band too ([`NEXT_BAND`]), so that the next band walks the chain above
-/// it and skips the others without looking at them. Layout of the caller's slice: the
-/// chains' tails (bands + 1), the links (one a triangle), then the chains' heads
-/// (bands + 1), so that a head is the link "before" the chain's first triangle.
+/// Bins: two chains of triangles per band, those whose top row lies in it and that
+/// reach the next band too, and those that do not (each in face order); and an extra
+/// last chain, which every band visits, for triangles reaching more than two bands or
+/// needing clipping. So a band draws the first chain of the band above, then its own
+/// two, without looking at any triangle that does not reach it. The chains are linked
+/// through a `u16` per triangle. Layout of the caller's slice: the chains' tails
+/// (2 · bands + 1), the links (one a triangle), then the chains' heads
+/// (2 · bands + 1), so that a head is the link "before" the chain's first triangle.
 const END: u16 = u16::MAX;
-/// Set in a link to a triangle that reaches the band below its top band.
-const NEXT_BAND: u16 = 1 << 15;
 
 impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// Band buffers for a `width × height` screen drawn `rows` lines at a time.
@@ -84,13 +82,13 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
         self.height.div_ceil(self.rows)
     }
 
-    /// Bin entries needed for a mesh of `triangles` triangles: one per triangle, two
-    /// per band and two more. (Meshes of more than 32,767 triangles are drawn without
+    /// Bin entries needed for a mesh of `triangles` triangles: one per triangle, four
+    /// per band and two more. (Meshes of more than 65,534 triangles are drawn without
     /// bins.)
     pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
         let rows = if rows == 0 { 1 } else { rows };
         let bands = height.div_ceil(rows) as usize; // < 2³²
-        triangles.saturating_add(2 * (bands + 1))
+        triangles.saturating_add(2 * (2 * bands + 1))
     }
 }
 
@@ -145,22 +143,25 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             match binned {
                 Some(nt) => {
                     // Layout of the bins (see `END`): tails, links, heads.
-                    let slots = bands.bins.get(nb as usize + 1..).unwrap_or(&[]);
+                    let chains = 2 * nb as usize + 1;
+                    let slots = bands.bins.get(chains..).unwrap_or(&[]);
                     let links = slots.get(..nt).unwrap_or(&[]);
                     let heads = slots.get(nt..).unwrap_or(&[]);
-                    let head = |b: usize| heads.get(b).copied().unwrap_or(END);
-                    // The triangles of the band above that reach this one, this band's,
-                    // and the tall/clipped chain: the order a whole frame draws them in.
+                    let head = |c: usize| heads.get(c).copied().unwrap_or(END);
+                    let k = k as usize;
+                    // The triangles of the band above that reach this one, this band's
+                    // (those reaching the next band first), then the tall/clipped chain.
                     let faces = BandFaces {
                         links,
-                        above: if k > 0 { head(k as usize - 1) } else { END },
-                        own: head(k as usize),
+                        above: if k > 0 { head(2 * k - 2) } else { END },
+                        next: head(2 * k),
+                        own: head(2 * k + 1),
                     };
-                    // The first two hold only visible triangles that reach this band.
+                    // The first three hold only visible triangles that reach this band.
                     self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
                     let tall = Chain {
                         links,
-                        at: head(nb as usize),
+                        at: head(chains - 1),
                     };
                     if tall.at != END {
                         self.draw_listed(&mut color, &mut zbuf, tall)?;
@@ -192,9 +193,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let Some(cache) = self.cache.as_deref() else {
             return Ok(None);
         };
+        let chains = 2 * nb + 1;
+        // Slot numbers (below `nt + chains`) and triangle numbers fit u16.
         if !fast
             || nb > 250
-            || nt >= usize::from(NEXT_BAND)
+            || nt + chains > usize::from(END)
             || bands.bins.len() < BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows)
         {
             return Ok(None);
@@ -202,9 +205,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         // Tails, then the links (one a triangle) and the heads as one array of slots:
         // a chain's tail starts at its head's slot, so that appending never asks whether
         // the chain is empty.
-        let (tails, slots) = bands.bins.split_at_mut(nb + 1);
-        for (b, t) in tails.iter_mut().enumerate() {
-            *t = (nt + b) as u16;
+        let (tails, slots) = bands.bins.split_at_mut(chains);
+        for (c, t) in tails.iter_mut().enumerate() {
+            *t = (nt + c) as u16;
         }
         let cull = self.options.cull;
         // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
@@ -213,11 +216,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let pow2 = crate::fixed::ARMV6M && rows.count_ones() == 1;
         let band_of = |row: i32| if pow2 { row >> shift } else { row / rows };
         let mut st = FrameStats::default();
-        let mut append = |b: usize, f: usize, next_band: bool| {
-            let link = f as u16 | if next_band { NEXT_BAND } else { 0 };
-            if let Some(tail) = tails.get_mut(b) {
+        let mut append = |c: usize, f: usize| {
+            if let Some(tail) = tails.get_mut(c) {
                 if let Some(slot) = slots.get_mut(usize::from(*tail)) {
-                    *slot = link;
+                    *slot = f as u16;
                 }
                 *tail = f as u16;
             }
@@ -255,9 +257,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 }
                 let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
                 match bb - tb {
-                    0 => append(tb as usize, f, false),
-                    1 => append(tb as usize, f, true),
-                    _ => append(nb, f, false),
+                    0 => append(2 * tb as usize + 1, f),
+                    1 => append(2 * tb as usize, f),
+                    _ => append(chains - 1, f),
                 }
             };
             let Some(f) = clipped else { break };
@@ -269,7 +271,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             })?;
             st.add_geometry(&g);
             n_clipped += 1;
-            append(nb, f, false);
+            append(chains - 1, f);
         }
         let unclipped = (nt - n_clipped) as u32; // nt < 2¹⁵
         st.triangles_in += unclipped;
@@ -277,8 +279,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         st.culled += culled;
         st.drawn += unclipped - outside - culled;
         // End every chain: after its last triangle, or at its head when empty.
-        for b in 0..=nb {
-            if let Some(slot) = tails.get(b).and_then(|&t| slots.get_mut(usize::from(t))) {
+        for c in 0..chains {
+            if let Some(slot) = tails.get(c).and_then(|&t| slots.get_mut(usize::from(t))) {
                 *slot = END;
             }
         }
@@ -303,18 +305,19 @@ impl Iterator for Chain<'_> {
         if self.at == END {
             return None;
         }
-        let f = usize::from(self.at & !NEXT_BAND);
+        let f = usize::from(self.at);
         self.at = self.links.get(f).copied().unwrap_or(END);
         Some(f)
     }
 }
 
-/// A band's own faces, after those of the band above that reach into it (only those
-/// of that chain marked [`NEXT_BAND`]), each with what it does with the colours carried
-/// between bands. (One iterator rather than two chained: a test a face less.)
+/// A band's faces: those of the band above that reach into it, then its own that
+/// reach the band below, then its other own ones, each with what it does with the
+/// colours carried between bands.
 struct BandFaces<'a> {
     links: &'a [u16],
     above: u16,
+    next: u16,
     own: u16,
 }
 
@@ -323,25 +326,18 @@ impl Iterator for BandFaces<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<(usize, Carry)> {
-        while self.above != END {
-            let (f, next_band) = (
-                usize::from(self.above & !NEXT_BAND),
-                self.above & NEXT_BAND != 0,
-            );
-            self.above = self.links.get(f).copied().unwrap_or(END);
-            if next_band {
-                return Some((f, Carry::Take));
-            }
-        }
-        if self.own == END {
+        let (at, how) = if self.above != END {
+            (&mut self.above, Carry::Take)
+        } else if self.next != END {
+            (&mut self.next, Carry::Keep)
+        } else if self.own != END {
+            (&mut self.own, Carry::No)
+        } else {
             return None;
-        }
-        let (f, next_band) = (
-            usize::from(self.own & !NEXT_BAND),
-            self.own & NEXT_BAND != 0,
-        );
-        self.own = self.links.get(f).copied().unwrap_or(END);
-        Some((f, if next_band { Carry::Keep } else { Carry::No }))
+        };
+        let f = usize::from(*at);
+        *at = self.links.get(f).copied().unwrap_or(END);
+        Some((f, how))
     }
 }
 

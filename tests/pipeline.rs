@@ -555,12 +555,12 @@ fn banded_against_whole(
             }
         }
     }
-    // Bins: one a triangle, two a band and two more; no overflow at the extremes.
+    // Bins: one a triangle, four a band and two more; no overflow at the extremes.
     assert_eq!(
         zraster::BandBuffers::<Rgb565>::bins_needed(3674, 240, 16),
-        3674 + 32
+        3674 + 62
     );
-    assert_eq!(zraster::BandBuffers::<Rgb565>::bins_needed(0, 240, 0), 482);
+    assert_eq!(zraster::BandBuffers::<Rgb565>::bins_needed(0, 240, 0), 962);
     assert_eq!(
         zraster::BandBuffers::<Rgb565>::bins_needed(usize::MAX, 8192, 1),
         usize::MAX
