@@ -151,12 +151,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     let k = k as usize;
                     // The triangles of the band above that reach this one, this band's
                     // (those reaching the next band first), then the tall/clipped chain.
-                    let faces = BandFaces {
-                        links,
-                        above: if k > 0 { head(2 * k - 2) } else { END },
-                        next: head(2 * k),
-                        own: head(2 * k + 1),
-                    };
+                    let above = if k > 0 { head(2 * k - 2) } else { END };
+                    let faces = BandFaces::new(links, above, head(2 * k), head(2 * k + 1));
                     // The first three hold only visible triangles that reach this band.
                     self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
                     let tall = Chain {
@@ -313,12 +309,25 @@ impl Iterator for Chain<'_> {
 
 /// A band's faces: those of the band above that reach into it, then its own that
 /// reach the band below, then its other own ones, each with what it does with the
-/// colours carried between bands.
+/// colours carried between bands. (One cursor and a phase, which stay in registers.)
 struct BandFaces<'a> {
     links: &'a [u16],
-    above: u16,
+    at: u16,
+    phase: Carry,
     next: u16,
     own: u16,
+}
+
+impl<'a> BandFaces<'a> {
+    fn new(links: &'a [u16], above: u16, next: u16, own: u16) -> Self {
+        BandFaces {
+            links,
+            at: above,
+            phase: Carry::Take,
+            next,
+            own,
+        }
+    }
 }
 
 impl Iterator for BandFaces<'_> {
@@ -326,18 +335,16 @@ impl Iterator for BandFaces<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<(usize, Carry)> {
-        let (at, how) = if self.above != END {
-            (&mut self.above, Carry::Take)
-        } else if self.next != END {
-            (&mut self.next, Carry::Keep)
-        } else if self.own != END {
-            (&mut self.own, Carry::No)
-        } else {
-            return None;
-        };
-        let f = usize::from(*at);
-        *at = self.links.get(f).copied().unwrap_or(END);
-        Some((f, how))
+        while self.at == END {
+            (self.at, self.phase) = match self.phase {
+                Carry::Take => (self.next, Carry::Keep),
+                Carry::Keep => (self.own, Carry::No),
+                Carry::No => return None,
+            };
+        }
+        let f = usize::from(self.at);
+        self.at = self.links.get(f).copied().unwrap_or(END);
+        Some((f, self.phase))
     }
 }
 
