@@ -21,6 +21,30 @@ use crate::raster::{signed_area, signed_area_guarded, Clip, Plane, ScreenVertex}
 use crate::shade::{Intensity, Light, Material, Shading, ONE};
 use crate::{ColorBuffer, DrawError, Error, ZBuffer};
 
+/// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
+/// for the renderer's materials and shading, in one arm for each way of colouring (one
+/// colour for all; a uniform material, lit; a material per face), so that the loop in
+/// `$body` is instantiated for each and does not ask which it is for every face.
+macro_rules! per_colouring {
+    ($r:expr, $materials:expr, $lambert:expr, |$shade:ident| $body:expr) => {
+        match ($r.flat_color($materials, $lambert), $materials) {
+            (Some(c), _) => {
+                let $shade = |_: usize| Ok(c);
+                $body
+            }
+            // A uniform material without one colour for all is lit.
+            (None, crate::mesh::Materials::Uniform(m)) => {
+                let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
+                $body
+            }
+            (None, _) => {
+                let $shade = |f: usize| $r.face_color($materials, $lambert, f);
+                $body
+            }
+        }
+    };
+}
+
 /// Which faces are dropped before rasterization, by their winding on screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Cull {
@@ -556,17 +580,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let lambert = self.options.shading == Shading::Lambert;
         carry.start_band();
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
-        let px = match (self.flat_color(materials, lambert), materials) {
-            (Some(c), _) => self.band_loop(frame, zbuf, indices, faces, carry, |_| Ok(c))?,
-            (None, crate::mesh::Materials::Uniform(m)) => {
-                self.band_loop(frame, zbuf, indices, faces, carry, |f| {
-                    Ok(m.shade(self.face_light(f), 0, 0))
-                })?
-            }
-            (None, _) => self.band_loop(frame, zbuf, indices, faces, carry, |f| {
-                self.face_color(materials, lambert, f)
-            })?,
-        };
+        let px = per_colouring!(self, materials, lambert, |shade| {
+            self.band_loop(frame, zbuf, indices, faces, carry, shade)?
+        });
         self.stats.add_pixels(px);
         Ok(())
     }
@@ -823,18 +839,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         M: Material<C>,
     {
         let lambert = self.options.shading == Shading::Lambert;
-        let (st, px) = match (self.flat_color(materials, lambert), materials) {
-            (Some(c), _) => self.cull_and_fill(frame, zbuf, indices, faces, |_| Ok(c))?,
-            // A uniform material without one colour for all is lit.
-            (None, crate::mesh::Materials::Uniform(m)) => {
-                self.cull_and_fill(frame, zbuf, indices, faces, |f| {
-                    Ok(m.shade(self.face_light(f), 0, 0))
-                })?
-            }
-            (None, _) => self.cull_and_fill(frame, zbuf, indices, faces, |f| {
-                self.face_color(materials, lambert, f)
-            })?,
-        };
+        let (st, px) = per_colouring!(self, materials, lambert, |shade| {
+            self.cull_and_fill(frame, zbuf, indices, faces, shade)?
+        });
         self.count(st);
         self.stats.add_pixels(px);
         Ok(())
