@@ -421,13 +421,16 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 
     /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29
-    /// and at most 2²⁹ in magnitude (two unit vectors), so it fits `i32`.
+    /// and at most 2²⁹ in magnitude (two unit vectors), so it fits `i32`. Ambient and
+    /// diffuse are Q15 within ±2: the product is below 2⁴⁶ (in `i64`), the diffuse term
+    /// then within ±2¹⁶ and the sum within ±2¹⁷, so the sum and its clamp fit `i32`
+    /// (one saturating instruction on a Cortex-M3/M4).
     #[inline]
     fn lambert_q14(&self, n: &[i16; 3]) -> Intensity {
         let ([lx, ly, lz], amb, diff) = self.light_q;
         let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
-        let i = amb + ((diff * i64::from(dot.max(0)) + (1 << 28)) >> 29);
-        i.clamp(0, i64::from(u16::MAX)) as u16
+        let term = ((diff * i64::from(dot.max(0)) + (1 << 28)) >> 29) as i32;
+        (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
     }
 
     /// Face `f`'s vertex list, checked.
