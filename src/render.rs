@@ -628,7 +628,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            px += target.fill([&a.screen, &b.screen, &c.screen], color);
+            px.add_counts(target.fill([&a.screen, &b.screen, &c.screen], color));
         }
         Ok(px)
     }
@@ -909,7 +909,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 px += more;
                 continue;
             };
-            px += target.fill(tri, shade(f)?);
+            px.add_counts(target.fill(tri, shade(f)?));
         }
         Ok((st, px))
     }
