@@ -131,6 +131,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let binned = self.bin(bands)?;
         let (w, rows) = (bands.width, bands.rows);
         let mut carry = ColorCarry::new(background);
+        // Whether the depth band is still as cleared: no triangle was drawn into the
+        // band before (its chains were empty; `after` only reads depth). Skipping the
+        // clear then saves a `memset` of the band (about 3,800 instructions for 320×16 on a
+        // Cortex-M4) for every empty band but the first.
+        let mut depth_clear = false;
         for k in 0..nb {
             let y0 = k * rows;
             let n = rows.min(bands.height - y0);
@@ -139,7 +144,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
             let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
             crate::zbuffer::fill_fast(color.data_mut(), background);
-            zbuf.clear();
+            if !depth_clear {
+                zbuf.clear();
+            }
+            depth_clear = false;
             match binned {
                 Some(nt) => {
                     // Layout of the bins (see `END`): tails, links, heads.
@@ -152,13 +160,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     // The triangles of the band above that reach this one, this band's
                     // (those reaching the next band first), then the tall/clipped chain.
                     let above = if k > 0 { head(2 * k - 2) } else { END };
-                    let faces = BandFaces::new(links, above, head(2 * k), head(2 * k + 1));
+                    let (next, own, tall) = (head(2 * k), head(2 * k + 1), head(chains - 1));
+                    depth_clear = above == END && next == END && own == END && tall == END;
+                    let faces = BandFaces::new(links, above, next, own);
                     // The first three hold only visible triangles that reach this band.
                     self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
-                    let tall = Chain {
-                        links,
-                        at: head(chains - 1),
-                    };
+                    let tall = Chain { links, at: tall };
                     if tall.at != END {
                         self.draw_listed(&mut color, &mut zbuf, tall)?;
                     }
