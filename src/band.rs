@@ -110,13 +110,29 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         D: DrawTarget,
         M: Material<D::Color>,
     {
-        self.draw_banded_with(display, bands, background, |_, _| {})
+        self.draw_bands::<D, false>(display, bands, background, |_, _| {})
     }
 
     /// [`draw_banded`](Renderer::draw_banded), calling `after(band, depth)` for each
     /// band once it is drawn and before it is sent: to draw an overlay into it, or to
     /// look at its depth.
     pub fn draw_banded_with<D>(
+        &mut self,
+        display: &mut D,
+        bands: &mut BandBuffers<'_, D::Color>,
+        background: D::Color,
+        after: impl FnMut(&mut ColorBuffer<'_, D::Color>, &ZBuffer<'_>),
+    ) -> Result<(), DrawError<D::Error>>
+    where
+        D: DrawTarget,
+        M: Material<D::Color>,
+    {
+        self.draw_bands::<D, true>(display, bands, background, after)
+    }
+
+    /// [`draw_banded_with`](Renderer::draw_banded_with); `OVERLAY` when `after` may draw
+    /// into the colour band.
+    fn draw_bands<D, const OVERLAY: bool>(
         &mut self,
         display: &mut D,
         bands: &mut BandBuffers<'_, D::Color>,
@@ -131,11 +147,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let binned = self.bin(bands)?;
         let (w, rows) = (bands.width, bands.rows);
         let mut carry = ColorCarry::new(background);
-        // Whether the depth band is still as cleared: no triangle was drawn into the
-        // band before (its chains were empty; `after` only reads depth). Skipping the
-        // clear then saves a `memset` of the band (about 3,800 instructions for 320×16 on a
-        // Cortex-M4) for every empty band but the first.
-        let mut depth_clear = false;
+        // Whether the band buffers are still as cleared: no triangle was drawn into the
+        // band before (its chains were empty), nor, for the colours, an overlay (`after`
+        // only reads depth). Each clear skipped saves a `memset` of the band (about
+        // 3,800 instructions for 320×16 on a Cortex-M4) for every empty band but the
+        // first.
+        let mut untouched = false;
         for k in 0..nb {
             let y0 = k * rows;
             let n = rows.min(bands.height - y0);
@@ -143,11 +160,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             // band uses the front of them.
             let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
             let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
-            crate::zbuffer::fill_fast(color.data_mut(), background);
-            if !depth_clear {
+            if !untouched || OVERLAY {
+                crate::zbuffer::fill_fast(color.data_mut(), background);
+            }
+            if !untouched {
                 zbuf.clear();
             }
-            depth_clear = false;
+            untouched = false;
             match binned {
                 Some(nt) => {
                     // Layout of the bins (see `END`): tails, links, heads.
@@ -161,7 +180,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     // (those reaching the next band first), then the tall/clipped chain.
                     let above = if k > 0 { head(2 * k - 2) } else { END };
                     let (next, own, tall) = (head(2 * k), head(2 * k + 1), head(chains - 1));
-                    depth_clear = above == END && next == END && own == END && tall == END;
+                    untouched = above == END && next == END && own == END && tall == END;
                     let faces = BandFaces::new(links, above, next, own);
                     // The first three hold only visible triangles that reach this band.
                     self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;

@@ -489,6 +489,65 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
     }
 }
 
+/// Bands no triangle reaches are not cleared again, unless an overlay may have drawn
+/// into the band: a pixel drawn after the first band only must not show in the next.
+#[test]
+fn an_overlay_does_not_leak_into_the_empty_bands_below() {
+    let bunny = scenes::Bunny::load();
+    let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
+    let (w, h, rows) = (96u32, 70u32, 7u32);
+    let xf = Transform::perspective(
+        Vec3::new(0.0, 0.0, 1.6),
+        Vec3::default(),
+        60.0,
+        0.1,
+        10.0,
+        Viewport::new(w, h).unwrap(),
+    )
+    .unwrap()
+    .with_model(bunny.fit);
+    let mut cache = vec![CachedVertex::EMPTY; bunny.positions.len()];
+    let draw = |cache: &mut [CachedVertex], overlay: bool| {
+        let mut out = vec![Rgb565::BLUE; (w * h) as usize];
+        let (mut cb, mut zb) = (
+            vec![Rgb565::BLACK; (w * rows) as usize],
+            vec![0u16; (w * rows) as usize],
+        );
+        let mut bins =
+            vec![0u16; zraster::BandBuffers::<Rgb565>::bins_needed(bunny.indices.len(), h, rows)];
+        let mut bands = zraster::BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
+        let mut r = Renderer::with_cache(&mesh, &xf, RenderOptions::default(), cache).unwrap();
+        let mut display = ColorBuffer::new(&mut out, w, h).unwrap();
+        if overlay {
+            r.draw_banded_with(&mut display, &mut bands, Rgb565::BLACK, |band, depth| {
+                if depth.first_row() == 0 {
+                    Pixel(Point::new(3, 1), Rgb565::RED).draw(band).unwrap();
+                }
+            })
+            .unwrap();
+        } else {
+            r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+                .unwrap();
+        }
+        out
+    };
+    let plain = draw(&mut cache, false);
+    let with = draw(&mut cache, true);
+    // The first bands are empty (the bunny sits in the middle), and the drawing is there.
+    assert!(plain[..(w * 2 * rows) as usize]
+        .iter()
+        .all(|&c| c == Rgb565::BLACK));
+    assert!(plain.iter().filter(|&&c| c != Rgb565::BLACK).count() > 500);
+    for (i, (&a, &b)) in plain.iter().zip(&with).enumerate() {
+        let want = if i == (w + 3) as usize {
+            Rgb565::RED
+        } else {
+            a
+        };
+        assert_eq!(b, want, "pixel ({}, {})", i as u32 % w, i as u32 / w);
+    }
+}
+
 fn banded_against_whole(
     mesh: &Mesh<'_, Rgb888>,
     bunny: &scenes::Bunny,
