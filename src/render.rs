@@ -331,15 +331,20 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut r = Self::new(mesh, xf, options)?;
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
-        let gouraud = options.shading == Shading::Gouraud;
-        for (i, (p, slot)) in mesh.positions.iter().zip(cache.iter_mut()).enumerate() {
+        // Positions first, vertex lights (Gouraud only) in a pass of their own: the
+        // projection loop then does not ask for each vertex which shading it is.
+        for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
             let (code, screen) = r.map.project_fixed(&r.fixed.apply(p));
-            let light = if gouraud { r.vertex_light(i) } else { ONE };
             *slot = CachedVertex {
                 screen,
                 code,
-                light,
+                light: ONE,
             };
+        }
+        if options.shading == Shading::Gouraud {
+            for (i, slot) in cache.iter_mut().enumerate() {
+                slot.light = r.vertex_light(i);
+            }
         }
         r.cache = Some(cache);
         Ok(r)
