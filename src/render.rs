@@ -434,7 +434,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     fn lambert_q14(&self, n: &[i16; 3]) -> Intensity {
         let ([lx, ly, lz], amb, diff) = self.light_q;
         let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
-        let term = ((diff * i64::from(dot.max(0)) + (1 << 28)) >> 29) as i32;
+        // |diff| ≤ 2¹⁶: on ARMv6-M three 32-bit multiplies instead of a library call.
+        let product = crate::fixed::mul_i64_i32(i64::from(dot.max(0)), diff as i32);
+        let term = ((product + (1 << 28)) >> 29) as i32;
         (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
     }
 
