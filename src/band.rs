@@ -295,7 +295,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             n_clipped += 1;
             append(chains - 1, f);
         }
-        let unclipped = (nt - n_clipped) as u32; // nt < 2¹⁵
+        let unclipped = (nt - n_clipped) as u32; // nt < 2¹⁶
         st.triangles_in += unclipped;
         st.outside += outside;
         st.culled += culled;
