@@ -12,59 +12,29 @@
 #[allow(dead_code, clippy::all)]
 #[path = "../bench/mcu/src/bunny.rs"]
 mod bunny;
+#[allow(dead_code)] // the benchmarks need no checksum
+#[path = "../bench/mcu/src/scene.rs"]
+mod scene;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use std::hint::black_box;
 use zraster::{
     camera::{Transform, Viewport},
-    math::{radians, Mat4, Vec3},
-    mesh::{Faces, Materials, CUBE},
-    shade::Shading,
+    math::Vec3,
+    mesh::CUBE,
     BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ScreenVertex, ZBuffer,
 };
 
-const W: u32 = 320;
-const H: u32 = 240;
-
-fn bunny_scene() -> (
-    zraster::mesh::Mesh<'static, Rgb888>,
-    Transform,
-    RenderOptions,
-) {
-    let mut mesh = bunny::BUNNY_MESH;
-    mesh.faces = Faces::Triangles {
-        indices: &bunny::BUNNY_INDICES,
-        materials: Materials::Uniform(Rgb888::new(255, 204, 153)),
-    };
-    let fit = bunny::BUNNY_FIT;
-    let xf = Transform::perspective(
-        Vec3::new(0.0, 0.0, 1.6),
-        Vec3::new(0.0, 0.0, 0.6),
-        60.0,
-        0.1,
-        10.0,
-        Viewport::new(W, H).unwrap(),
-    )
-    .unwrap()
-    .with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)));
-    (
-        mesh,
-        xf,
-        RenderOptions {
-            shading: Shading::Lambert,
-            ..Default::default()
-        },
-    )
-}
+use scene::{H, W};
 
 fn benches(c: &mut Criterion) {
     let n = (W * H) as usize;
     let mut pixels = vec![Rgb565::BLACK; n];
     let mut depth = vec![0u16; n];
     let mut cache = vec![CachedVertex::EMPTY; bunny::BUNNY_POSITIONS.len()];
-    let (mesh, xf, opts) = bunny_scene();
+    let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
 
     c.bench_function("bunny-320", |b| {
         b.iter(|| {

@@ -5,58 +5,20 @@
 
 #[path = "../bench/mcu/src/bunny.rs"]
 mod bunny;
+#[path = "../bench/mcu/src/scene.rs"]
+mod scene;
 
-use embedded_graphics::pixelcolor::{raw::RawU16, Rgb565, Rgb888};
+use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use zraster::{
-    camera::{Transform, Viewport},
-    math::{radians, Mat4, Vec3},
-    mesh::{Faces, Materials, Mesh},
-    shade::Shading,
-    BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
-};
+use scene::{checksum, H, W};
+use zraster::{BandBuffers, CachedVertex, ColorBuffer, Renderer, ZBuffer};
 
 /// FNV-1a over the frame's Rgb565 values, as the firmware computes it.
 const BENCH_CHECKSUM: u32 = 0xfb19_6b71;
 
-const W: u32 = 320;
-const H: u32 = 240;
-
-fn checksum(pixels: &[Rgb565]) -> u32 {
-    pixels.iter().fold(0x811c_9dc5u32, |h, p| {
-        (h ^ u32::from(RawU16::from(*p).into_inner())).wrapping_mul(0x0100_0193)
-    })
-}
-
-fn scene() -> (Mesh<'static, Rgb888>, Transform) {
-    let mut mesh = bunny::BUNNY_MESH;
-    mesh.faces = Faces::Triangles {
-        indices: &bunny::BUNNY_INDICES,
-        materials: Materials::Uniform(Rgb888::new(255, 204, 153)),
-    };
-    let vp = Viewport::new(W, H).unwrap();
-    let cam = Transform::perspective(
-        Vec3::new(0.0, 0.0, 1.6),
-        Vec3::new(0.0, 0.0, 0.6),
-        60.0,
-        0.1,
-        10.0,
-        vp,
-    )
-    .unwrap();
-    let fit = bunny::BUNNY_FIT;
-    let xf =
-        cam.with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)));
-    (mesh, xf)
-}
-
 #[test]
 fn the_bench_frame_has_the_bench_checksum() {
-    let (mesh, xf) = scene();
-    let opts = RenderOptions {
-        shading: Shading::Lambert,
-        ..Default::default()
-    };
+    let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
     let mut cache = vec![CachedVertex::default(); bunny::BUNNY_POSITIONS.len()];
     let mut pixels = vec![Rgb565::BLACK; (W * H) as usize];
     let mut depth = vec![u16::MAX; (W * H) as usize];

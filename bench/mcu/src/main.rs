@@ -8,6 +8,7 @@
 #![no_main]
 
 mod bunny;
+mod scene;
 
 use core::ptr::{addr_of, addr_of_mut, read_volatile, write_volatile};
 
@@ -15,16 +16,14 @@ use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use panic_semihosting as _;
+use scene::{checksum, H, W};
 use zraster::{
     camera::{Transform, Viewport},
-    math::{radians, Mat4, Vec3},
-    mesh::{Mesh, CUBE},
-    shade::Shading,
+    math::Vec3,
+    mesh::CUBE,
     BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
 };
 
-const W: u32 = 320;
-const H: u32 = 240;
 const BAND: u32 = 16;
 const N: usize = (W * H) as usize;
 
@@ -105,23 +104,6 @@ fn stack_high_water() -> usize {
     }
 }
 
-fn bunny_xf() -> Transform {
-    let vp = Viewport::new(W, H).unwrap();
-    let cam = Transform::perspective(Vec3::new(0.0, 0.0, 1.6), Vec3::new(0.0, 0.0, 0.6), 60.0, 0.1, 10.0, vp).unwrap();
-    let fit = bunny::BUNNY_FIT;
-    cam.with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)))
-}
-
-fn bunny_mesh() -> Mesh<'static, embedded_graphics::pixelcolor::Rgb888> {
-    let mut m = bunny::BUNNY_MESH;
-    // --color 1,0.8,0.6
-    m.faces = zraster::mesh::Faces::Triangles {
-        indices: &bunny::BUNNY_INDICES,
-        materials: zraster::mesh::Materials::Uniform(embedded_graphics::pixelcolor::Rgb888::new(255, 204, 153)),
-    };
-    m
-}
-
 /// A 320×240 display that accepts the bands and drops them.
 struct Sink;
 
@@ -144,11 +126,6 @@ impl DrawTarget for Sink {
     }
 }
 
-/// A checksum of the frame, to show every build draws the same picture.
-fn checksum(pixels: &[Rgb565]) -> u32 {
-    pixels.iter().fold(0x811c_9dc5u32, |h, p| (h ^ u32::from(p.into_storage())).wrapping_mul(0x0100_0193))
-}
-
 #[entry]
 fn main() -> ! {
     paint_stack();
@@ -165,9 +142,7 @@ fn main() -> ! {
         r.draw_buffer(&mut frame, &mut zbuf).unwrap();
         debug::exit(debug::EXIT_SUCCESS);
     }
-    let opts = RenderOptions { shading: Shading::Lambert, ..Default::default() };
-    let mesh = bunny_mesh();
-    let xf = bunny_xf();
+    let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
 
     // ---- bunny-320, full frame.
     let (_, clear) = measure(|| {
