@@ -42,16 +42,15 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     let m = n.unsigned_abs();
     if d < 1 << 16 && m < 1 << 48 {
         let d32 = d as u32;
-        let hi = (m >> 16) as u32; // < 2³²
-                                   // The high digit is usually a few bits: cheap by shift and subtract.
-        let (q1, r1) = if ARMV6M {
-            udivrem(hi, d32)
-        } else {
-            (hi / d32, hi % d32)
-        };
-        let lo = (r1 << 16) | (m as u32 & 0xffff); // r1 < d < 2¹⁶: fits
-        let (q0, r0) = (lo / d32, lo % d32);
-        let q = (u64::from(q1) << 16 | u64::from(q0)) as i64;
+        // On ARMv6-M by shift and subtract (the digits are usually a few bits).
+        let (q, r0) = by_digits(m, |x| {
+            if ARMV6M {
+                udivrem(x, d32)
+            } else {
+                (x / d32, x % d32)
+            }
+        });
+        let q = q as i64;
         // Truncated |n| / d; floor for negative n rounds away from zero when inexact.
         return if n >= 0 {
             q
@@ -98,10 +97,7 @@ fn div_floor_signless(n: i64, d: i64) -> i64 {
     let m = (n ^ sign) as u64;
     if d > 0 && d < 1 << 16 && m < 1 << 48 {
         let d32 = d as u32;
-        let (hi, lo) = ((m >> 16) as u32, m as u32 & 0xffff); // hi < 2³²
-        let (q1, r1) = (hi / d32, hi % d32);
-        let q0 = ((r1 << 16) | lo) / d32; // r1 < d < 2¹⁶: fits
-        return (u64::from(q1) << 16 | u64::from(q0)) as i64 ^ sign;
+        return by_digits(m, |x| (x / d32, x % d32)).0 as i64 ^ sign;
     }
     div_floor(n, d)
 }
@@ -117,9 +113,8 @@ fn div_floor_pair_recip(n1: i64, n2: i64, d: i64) -> Option<(i64, i64)> {
     let d32 = d as u32;
     let r = recip32_small(d32); // ⌊(2³² − 1)/d⌋
     let one = |n: i64, m: u64| {
-        let (q1, r1) = divrem_by_recip((m >> 16) as u32, d32, r);
-        let (q0, r0) = divrem_by_recip((r1 << 16) | (m as u32 & 0xffff), d32, r); // r1 < 2¹⁶
-        let q = (u64::from(q1) << 16 | u64::from(q0)) as i64;
+        let (q, r0) = by_digits(m, |x| divrem_by_recip(x, d32, r));
+        let q = q as i64;
         // Truncated |n| / d; floor for negative n rounds away from zero when inexact.
         if n >= 0 {
             q
@@ -130,6 +125,17 @@ fn div_floor_pair_recip(n1: i64, n2: i64, d: i64) -> Option<(i64, i64)> {
         }
     };
     Some((one(n1, m1), one(n2, m2)))
+}
+
+/// `(m / d, m % d)` for `m < 2⁴⁸` and `d < 2¹⁶`, as two 16-bit digits of long division,
+/// each by `divrem` (`x ↦ (x / d, x % d)` for a 32-bit `x`): the first digit divides
+/// `m / 2¹⁶` (below 2³²), the second its remainder (below `d`) times 2¹⁶ plus the low 16
+/// bits, which fits 32 bits.
+#[inline(always)]
+fn by_digits(m: u64, divrem: impl Fn(u32) -> (u32, u32)) -> (u64, u32) {
+    let (q1, r1) = divrem((m >> 16) as u32);
+    let (q0, r0) = divrem((r1 << 16) | (m as u32 & 0xffff));
+    (u64::from(q1) << 16 | u64::from(q0), r0)
 }
 
 /// ⌊(2³² − 1)/d⌋ for 1 ≤ d < 2¹⁶ without a division instruction (on ARMv6-M the
