@@ -335,10 +335,10 @@ impl Iterator for Chain<'_> {
 
 /// A band's faces: those of the band above that reach into it, then its own that
 /// reach the band below, then its other own ones, each with what it does with the
-/// colours carried between bands. (One cursor and a phase, which stay in registers.)
+/// colours carried between bands. (One chain cursor and a phase, which stay in
+/// registers.)
 struct BandFaces<'a> {
-    links: &'a [u16],
-    at: u16,
+    chain: Chain<'a>,
     phase: Carry,
     next: u16,
     own: u16,
@@ -347,8 +347,7 @@ struct BandFaces<'a> {
 impl<'a> BandFaces<'a> {
     fn new(links: &'a [u16], above: u16, next: u16, own: u16) -> Self {
         BandFaces {
-            links,
-            at: above,
+            chain: Chain { links, at: above },
             phase: Carry::Take,
             next,
             own,
@@ -361,16 +360,14 @@ impl Iterator for BandFaces<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<(usize, Carry)> {
-        while self.at == END {
-            (self.at, self.phase) = match self.phase {
+        while self.chain.at == END {
+            (self.chain.at, self.phase) = match self.phase {
                 Carry::Take => (self.next, Carry::Keep),
                 Carry::Keep => (self.own, Carry::No),
                 Carry::No => return None,
             };
         }
-        let f = usize::from(self.at);
-        self.at = self.links.get(f).copied().unwrap_or(END);
-        Some((f, self.phase))
+        self.chain.next().map(|f| (f, self.phase))
     }
 }
 
