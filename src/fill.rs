@@ -204,8 +204,7 @@ pub(crate) fn fill_flat_buffered<C: PixelColor>(
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
-    let [a, b, c] = tri;
-    FlatTarget::new(frame, zbuf, clip).fill([a, b, c], color)
+    FlatTarget::new(frame, zbuf, clip).fill(tri.each_ref(), color)
 }
 
 /// A colour buffer and a Z-buffer borrowed for a run of flat triangles: what
@@ -415,9 +414,9 @@ fn flat_span_long<C: Copy>(
     pass: &impl Fn(u16, u16) -> bool,
 ) -> u32 {
     if write {
-        span_x4::<C, true>(zrow, crow, acc, dz, color, pass)
+        span_x2::<C, true>(zrow, crow, acc, dz, color, pass)
     } else {
-        span_x4::<C, false>(zrow, crow, acc, dz, color, pass)
+        span_x2::<C, false>(zrow, crow, acc, dz, color, pass)
     }
 }
 
@@ -433,7 +432,7 @@ fn one_failed(n: &mut u32) {
 /// [`flat_span_long`]'s loop, two pixels a turn, the depth write decided at compile
 /// time.
 #[inline(always)]
-fn span_x4<C: Copy, const WRITE: bool>(
+fn span_x2<C: Copy, const WRITE: bool>(
     zrow: &mut [u16],
     crow: &mut [C],
     mut acc: u32,

@@ -819,8 +819,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 core::iter::once(f),
                 |f, mat, tri, _| {
                     let i = if lambert { self.face_light(f) } else { ONE };
-                    let [a, b, c] = tri;
-                    more += target.fill([a, b, c], mat.shade(i, 0, 0));
+                    more += target.fill(tri.each_ref(), mat.shade(i, 0, 0));
                     Ok(())
                 },
             )
