@@ -177,17 +177,15 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     let head = |c: usize| heads.get(c).copied().unwrap_or(END);
                     let k = k as usize;
                     // The triangles of the band above that reach this one, this band's
-                    // (those reaching the next band first), then the tall/clipped chain.
+                    // own (those reaching the next band, the others), and the tall or
+                    // clipped ones, merged into face order.
                     let above = if k > 0 { head(2 * k - 2) } else { END };
-                    let (next, own, tall) = (head(2 * k), head(2 * k + 1), head(chains - 1));
-                    untouched = above == END && next == END && own == END && tall == END;
-                    let faces = BandFaces::new(links, above, next, own);
-                    // The first three hold only visible triangles that reach this band.
+                    let faces = BandFaces {
+                        links,
+                        heads: [above, head(2 * k), head(2 * k + 1), head(chains - 1)],
+                    };
+                    untouched = faces.is_empty();
                     self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
-                    let tall = Chain { links, at: tall };
-                    if tall.at != END {
-                        self.draw_listed(&mut color, &mut zbuf, tall)?;
-                    }
                 }
                 None => self.draw_buffer(&mut color, &mut zbuf)?,
             }
@@ -311,47 +309,21 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 }
 
-/// The triangles of one bin chain (see [`END`]): a walk always ends, as `bin` writes
-/// every chain afresh each frame, in increasing triangle order, and ends it with
-/// [`END`].
-struct Chain<'a> {
-    links: &'a [u16],
-    at: u16,
-}
-
-impl Iterator for Chain<'_> {
-    type Item = usize;
-
-    #[inline]
-    fn next(&mut self) -> Option<usize> {
-        if self.at == END {
-            return None;
-        }
-        let f = usize::from(self.at);
-        self.at = self.links.get(f).copied().unwrap_or(END);
-        Some(f)
-    }
-}
-
-/// A band's faces: those of the band above that reach into it, then its own that
-/// reach the band below, then its other own ones, each with what it does with the
-/// colours carried between bands. (One chain cursor and a phase, which stay in
-/// registers.)
+/// A band's faces in face order: four bin chains (see [`END`]), each in increasing
+/// face order, merged. The chains hold the faces of the band above that reach into
+/// this one, this band's own that reach the band below, its other own ones, and the
+/// tall or clipped faces that every band visits. Drawing in face order whatever the
+/// binning keeps ties in depth resolved as in the whole frame. A walk always ends, as
+/// `bin` writes every chain afresh each frame and ends it with [`END`].
 struct BandFaces<'a> {
-    chain: Chain<'a>,
-    phase: Carry,
-    next: u16,
-    own: u16,
+    links: &'a [u16],
+    /// The next face of each chain, [`END`] (larger than any face) when done.
+    heads: [u16; 4],
 }
 
-impl<'a> BandFaces<'a> {
-    fn new(links: &'a [u16], above: u16, next: u16, own: u16) -> Self {
-        BandFaces {
-            chain: Chain { links, at: above },
-            phase: Carry::Take,
-            next,
-            own,
-        }
+impl BandFaces<'_> {
+    fn is_empty(&self) -> bool {
+        self.heads == [END; 4]
     }
 }
 
@@ -360,22 +332,34 @@ impl Iterator for BandFaces<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<(usize, Carry)> {
-        while self.chain.at == END {
-            (self.chain.at, self.phase) = match self.phase {
-                Carry::Take => (self.next, Carry::Keep),
-                Carry::Keep => (self.own, Carry::No),
-                Carry::No => return None,
-            };
+        // The chain with the lowest next face; no two chains hold the same face.
+        let [a, b, c, d] = self.heads;
+        let (ab, kab) = if b < a { (b, 1) } else { (a, 0) };
+        let (cd, kcd) = if d < c { (d, 3) } else { (c, 2) };
+        let (f, k) = if cd < ab { (cd, kcd) } else { (ab, kab) };
+        if f == END {
+            return None;
         }
-        self.chain.next().map(|f| (f, self.phase))
+        let link = self.links.get(usize::from(f)).copied().unwrap_or(END);
+        let (slot, how) = match k {
+            0 => (&mut self.heads[0], Carry::Take),
+            1 => (&mut self.heads[1], Carry::Keep),
+            2 => (&mut self.heads[2], Carry::No),
+            _ => (&mut self.heads[3], Carry::Tall),
+        };
+        *slot = link;
+        Some((usize::from(f), how))
     }
 }
 
 /// What a band's listed face does with the [`ColorCarry`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Carry {
-    /// Nothing: the face lies in this band alone (or is drawn in every band it meets).
+    /// Nothing: the face lies in this band alone.
     No,
+    /// Nothing either: a tall or clipped face, drawn in every band it meets (and tested
+    /// against the band's rows and clip planes there).
+    Tall,
     /// The face continues into the band below: keep its colour for it.
     Keep,
     /// The face came from the band above: take the colour kept there.
@@ -386,12 +370,14 @@ pub(crate) enum Carry {
 const CARRY: usize = 64;
 
 /// The colours of the faces that reach into the band below, kept for it. That band
-/// walks them first and in the same order (the chain of the band above, its two-band
-/// faces only), so a queue read from its start serves, and the faces of its own chain
-/// may then write over what has been read. Lighting such a face again would cost some
-/// 70 instructions on a Cortex-M4.
+/// walks them in the same order (the chain of the band above, in face order), so a
+/// queue read from its start serves. Its own faces are merged in among them, so what
+/// it keeps goes into the other half of the store, not over colours not yet taken.
+/// Lighting such a face again would cost some 70 instructions on a Cortex-M4.
 pub(crate) struct ColorCarry<C> {
-    colors: [C; CARRY],
+    colors: [[C; CARRY]; 2],
+    /// The half this band reads (what the band above kept); it keeps into the other.
+    read: usize,
     /// Colours the band above kept; how many this band has taken; how many it keeps.
     filled: usize,
     taken: usize,
@@ -401,7 +387,8 @@ pub(crate) struct ColorCarry<C> {
 impl<C: Copy> ColorCarry<C> {
     pub(crate) fn new(fill: C) -> Self {
         ColorCarry {
-            colors: [fill; CARRY],
+            colors: [[fill; CARRY]; 2],
+            read: 0,
             filled: 0,
             taken: 0,
             kept: 0,
@@ -410,6 +397,7 @@ impl<C: Copy> ColorCarry<C> {
 
     /// A new band: what the band before kept is what this one takes.
     pub(crate) fn start_band(&mut self) {
+        self.read ^= 1;
         self.filled = self.kept;
         self.taken = 0;
         self.kept = 0;
@@ -421,7 +409,7 @@ impl<C: Copy> ColorCarry<C> {
         let i = self.taken;
         self.taken += 1;
         if i < self.filled {
-            self.colors.get(i).copied()
+            self.colors.get(self.read)?.get(i).copied()
         } else {
             None
         }
@@ -430,7 +418,8 @@ impl<C: Copy> ColorCarry<C> {
     /// Keep `c` for the band below (dropped when full: that face is lit again there).
     #[inline]
     pub(crate) fn keep(&mut self, c: C) {
-        if let Some(slot) = self.colors.get_mut(self.kept) {
+        let half = self.colors.get_mut(self.read ^ 1);
+        if let Some(slot) = half.and_then(|h| h.get_mut(self.kept)) {
             *slot = c;
             self.kept += 1;
         }
@@ -457,10 +446,21 @@ mod tests {
                 let want = (i < kept.min(CARRY)).then_some(i as u16 + 100);
                 assert_eq!(carry.take(), want, "kept {kept}, take {i}");
             }
-            // What this band keeps overwrites what it took, from the start.
+            // What this band keeps goes to the band below, whatever it took.
             carry.keep(7);
             carry.start_band();
             assert_eq!((carry.take(), carry.take()), (Some(7), None));
         }
+        // Keeping does not overwrite colours this band has still to take.
+        carry.start_band();
+        carry.keep(1);
+        carry.keep(2);
+        carry.start_band();
+        assert_eq!(carry.take(), Some(1));
+        carry.keep(30);
+        carry.keep(40);
+        assert_eq!(carry.take(), Some(2));
+        carry.start_band();
+        assert_eq!((carry.take(), carry.take()), (Some(30), Some(40)));
     }
 }

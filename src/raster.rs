@@ -515,6 +515,16 @@ impl Clip {
     pub(crate) fn is_empty(&self) -> bool {
         self.x0 >= self.x1 || self.y0 >= self.y1
     }
+
+    /// The first and last row in 1/16 pixel, saturated: rows beyond ±2²⁷ pixels lie far
+    /// outside the guard band either way.
+    #[inline]
+    pub(crate) fn subpixel_rows(&self) -> (i32, i32) {
+        (
+            self.y0.saturating_mul(SUBPIXEL),
+            self.y1.saturating_mul(SUBPIXEL),
+        )
+    }
 }
 
 /// One edge walked downward: at each row, `x` is the first pixel whose centre lies on

@@ -463,7 +463,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     ) -> Result<FrameStats, DrawError<E>> {
         let mut st = FrameStats::default();
         let cull = self.options.cull;
-        let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
+        let (row0, row1) = clip.subpixel_rows();
         for f in faces {
             let (vs, mat) = self.face(f)?;
             for (i0, i1, i2) in fan(vs) {
@@ -549,30 +549,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.for_each_triangle(&clip, true, core::iter::once(f), |_, _, _, _| Ok(()))
     }
 
-    /// [`draw_buffer`](Renderer::draw_buffer) for the listed faces of a cached triangle
-    /// mesh (the band path; geometry already counted).
-    pub(crate) fn draw_listed<C>(
-        &mut self,
-        frame: &mut ColorBuffer<'_, C>,
-        zbuf: &mut ZBuffer<'_>,
-        faces: impl Iterator<Item = usize>,
-    ) -> Result<(), Error>
-    where
-        C: PixelColor,
-        M: Material<C>,
-    {
-        match self.mesh.faces {
-            Faces::Triangles { indices, materials } => {
-                self.draw_buffer_triangles(frame, zbuf, indices, materials, faces)
-            }
-            Faces::Polygons(_) => self.draw_buffer(frame, zbuf),
-        }
-    }
-
-    /// Draw a band's listed faces of a cached triangle mesh, each known to be unclipped,
-    /// front-facing (as the options cull) and to reach the rows of `frame`, so those
-    /// tests are skipped. Colours pass between bands through `carry` as each face's
-    /// [`Carry`] says.
+    /// Draw a band's listed faces of a cached triangle mesh, in face order. All but the
+    /// tall ones ([`Carry::Tall`]) are known to be unclipped, front-facing (as the
+    /// options cull) and to reach the rows of `frame`, so those tests are skipped for
+    /// them. Colours pass between bands through `carry` as each face's [`Carry`] says.
     pub(crate) fn draw_band_faces<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
@@ -618,10 +598,23 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             return Ok(px);
         };
         let clip = clip_of(frame, zbuf);
+        let (row0, row1) = clip.subpixel_rows();
         let mut target = FlatTarget::new(frame, zbuf, &clip);
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
             let [a, b, c] = cached_triangle(cache, f, t)?;
+            let tri = [&a.screen, &b.screen, &c.screen];
+            if how == Carry::Tall {
+                // Drawn in every band: clipped by the general path, or skipped when it
+                // does not reach this band's rows.
+                if a.code | b.code | c.code != 0 {
+                    px += self.draw_clipped_face(&mut target, &clip, false, f)?.1;
+                    continue;
+                }
+                if outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                    continue;
+                }
+            }
             // One call of `shade` (so that it is inlined): carried, or worked out.
             let carried = if how == Carry::Take {
                 carry.take()
@@ -635,7 +628,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            px.add_counts(target.fill([&a.screen, &b.screen, &c.screen], color));
+            px.add_counts(target.fill(tri, color));
         }
         Ok(px)
     }
@@ -874,7 +867,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let clip = clip_of(frame, zbuf);
         let first = !self.counted;
         let cull = self.options.cull;
-        let (row0, row1) = (clip.y0 * 16, clip.y1 * 16);
+        let (row0, row1) = clip.subpixel_rows();
         let mut st = FrameStats::default();
         let mut px = SpanStats::default();
         let Some(cache) = self.cache.as_deref() else {
