@@ -35,8 +35,12 @@ impl Viewport {
         if width == 0 || height == 0 {
             return Err(Error::ZeroSize);
         }
-        let lim = MAX_DIMENSION as i32;
-        if width > MAX_DIMENSION || height > MAX_DIMENSION || x.abs() > lim || y.abs() > lim {
+        let lim = MAX_DIMENSION;
+        if width > MAX_DIMENSION
+            || height > MAX_DIMENSION
+            || x.unsigned_abs() > lim
+            || y.unsigned_abs() > lim
+        {
             return Err(Error::TooLarge);
         }
         Ok(Viewport {

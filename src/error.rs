@@ -81,7 +81,11 @@ impl core::error::Error for Error {}
 /// An error from a drawing call: either the input was wrong or the display failed.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DrawError<E> {
-    /// The input was rejected before anything was drawn.
+    /// The input was rejected. Parameters (transform, light, buffer sizes) are checked
+    /// before anything is drawn; a face table is checked as it is walked, so the faces
+    /// before the one named by the error may already be drawn. Call
+    /// [`Mesh::validate`](crate::mesh::Mesh::validate) once, when the mesh is built, to
+    /// rule that out.
     Input(Error),
     /// The draw target returned an error.
     Target(E),

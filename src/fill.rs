@@ -60,17 +60,6 @@ pub struct SpanStats {
     pub runs: u32,
 }
 
-impl SpanStats {
-    /// Add the pixel counts of `o`, which has no runs (a fill into buffers): one add
-    /// fewer a triangle.
-    #[inline(always)]
-    pub(crate) fn add_counts(&mut self, o: SpanStats) {
-        debug_assert_eq!(o.runs, 0);
-        self.pixels_tested += o.pixels_tested;
-        self.pixels_written += o.pixels_written;
-    }
-}
-
 impl AddAssign for SpanStats {
     fn add_assign(&mut self, o: SpanStats) {
         self.pixels_tested += o.pixels_tested;

@@ -99,13 +99,13 @@ pub struct FrameStats {
     pub clipped: u32,
     /// Triangles handed to the rasterizer (pieces of clipped ones included).
     pub drawn: u32,
-    /// Pixels depth-tested.
-    pub pixels_tested: u32,
+    /// Pixels depth-tested (64 bits: overdraw at large sizes passes 2³²).
+    pub pixels_tested: u64,
     /// Pixels written.
-    pub pixels_written: u32,
+    pub pixels_written: u64,
     /// Runs handed to the draw target (the fused path of
     /// [`Renderer::draw_buffer`] writes pixels directly and hands over none).
-    pub runs: u32,
+    pub runs: u64,
 }
 
 impl FrameStats {
@@ -125,9 +125,15 @@ impl FrameStats {
     }
 
     fn add_pixels(&mut self, s: SpanStats) {
-        self.pixels_tested += s.pixels_tested;
-        self.pixels_written += s.pixels_written;
-        self.runs += s.runs;
+        self.add_fill(s);
+        self.runs += u64::from(s.runs);
+    }
+
+    /// Add the pixel counts of `s`, which has no runs (a fill into buffers).
+    #[inline(always)]
+    fn add_fill(&mut self, s: SpanStats) {
+        self.pixels_tested += u64::from(s.pixels_tested);
+        self.pixels_written += u64::from(s.pixels_written);
     }
 }
 
@@ -573,7 +579,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let px = per_colouring!(self, materials, lambert, |shade| {
             self.band_loop(frame, zbuf, indices, faces, carry, shade)?
         });
-        self.stats.add_pixels(px);
+        self.stats.add_pixel_counts(&px);
         Ok(())
     }
 
@@ -588,12 +594,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         faces: impl Iterator<Item = (usize, Carry)>,
         carry: &mut ColorCarry<C>,
         shade: impl Fn(usize) -> Result<C, Error>,
-    ) -> Result<SpanStats, Error>
+    ) -> Result<FrameStats, Error>
     where
         C: PixelColor,
         M: Material<C>,
     {
-        let mut px = SpanStats::default();
+        let mut px = FrameStats::default();
         let Some(cache) = self.cache.as_deref() else {
             return Ok(px);
         };
@@ -608,7 +614,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 // Drawn in every band: clipped by the general path, or skipped when it
                 // does not reach this band's rows.
                 if a.code | b.code | c.code != 0 {
-                    px += self.draw_clipped_face(&mut target, &clip, false, f)?.1;
+                    px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
                     continue;
                 }
                 if outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
@@ -628,7 +634,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            px.add_counts(target.fill(tri, color));
+            px.add_fill(target.fill(tri, color));
         }
         Ok(px)
     }
@@ -845,7 +851,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             self.cull_and_fill(frame, zbuf, indices, faces, shade)?
         });
         self.count(st);
-        self.stats.add_pixels(px);
+        self.stats.add_pixel_counts(&px);
         Ok(())
     }
 
@@ -859,7 +865,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         indices: &'m [[u16; 3]],
         faces: impl Iterator<Item = usize>,
         shade: impl Fn(usize) -> Result<C, Error>,
-    ) -> Result<(FrameStats, SpanStats), Error>
+    ) -> Result<(FrameStats, FrameStats), Error>
     where
         C: PixelColor,
         M: Material<C>,
@@ -869,7 +875,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let cull = self.options.cull;
         let (row0, row1) = clip.subpixel_rows();
         let mut st = FrameStats::default();
-        let mut px = SpanStats::default();
+        let mut px = FrameStats::default();
         let Some(cache) = self.cache.as_deref() else {
             return Ok((st, px));
         };
@@ -905,10 +911,10 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 // Outside or across a clip plane: the general path (rare).
                 let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
                 st.add_geometry(&g);
-                px += more;
+                px.add_pixels(more);
                 continue;
             };
-            px.add_counts(target.fill(tri, shade(f)?));
+            px.add_fill(target.fill(tri, shade(f)?));
         }
         Ok((st, px))
     }
@@ -934,7 +940,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         }
         for f in 0..n {
             let (vs, _) = self.face(f)?;
-            let mut sum = 0i64;
+            // In i128: a face may list any number of vertices, each |z| < 2⁴⁵.
+            let mut sum = 0i128;
             for &v in vs {
                 let p = self
                     .mesh
@@ -945,10 +952,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                         index: usize::from(v),
                     })?;
                 // Clip-space z grows with distance from the eye (for both projections).
-                sum += self.fixed.apply(p).zw().0;
+                sum += i128::from(self.fixed.apply(p).zw().0);
             }
-            // |z| < 2⁴⁵ (clip-space scale): dropping 16 bits keeps the order and fits i32.
-            let key = ((sum / vs.len() as i64) >> 16) as i32;
+            // The mean |z| < 2⁴⁵ (clip-space scale): dropping 16 bits keeps the order and
+            // fits i32.
+            let key = ((sum / vs.len() as i128) >> 16) as i32;
             let _ = sort.items.push((key, f as u16));
         }
         // Farthest (largest z) first; equal depths keep the face order.
@@ -995,7 +1003,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             self.for_each_triangle(&clip, first, 0..self.mesh.face_count(), |_, _, tri, _| {
                 let s = depth_runs::<D::Error>(Some(&mut *zbuf), tri, &clip, |_, _, _| Ok(()))
                     .map_err(DrawError::Target)?;
-                pixels.pixels_tested += s.pixels_tested;
+                pixels.pixels_tested += u64::from(s.pixels_tested);
                 Ok(())
             })?;
         self.count(geometry);
@@ -1020,8 +1028,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 {
                     visible = true;
                     if let Some(pl) = Plane::new(&tri, [tri[0].z(), tri[1].z(), tri[2].z()]) {
-                        let slope = (pl.step_x().unsigned_abs() + pl.step_y().unsigned_abs()) >> 16;
-                        bias = bias.max(slope.saturating_add(1).min(u32::from(u16::MAX)) as u16);
+                        // |step| ≤ 2³¹ each: their sum needs 33 bits.
+                        let steep = u64::from(pl.step_x().unsigned_abs())
+                            + u64::from(pl.step_y().unsigned_abs());
+                        let slope = (steep >> 16) + 1;
+                        bias = bias.max(slope.min(u64::from(u16::MAX)) as u16);
                     }
                 }
             }

@@ -9,7 +9,7 @@ use embedded_graphics::{
 
 use crate::error::prefix_mut;
 use crate::raster::Clip;
-use crate::zbuffer::{check_dims, row_span};
+use crate::zbuffer::{band_origin, check_dims, row_span};
 use crate::Error;
 
 /// A frame (or a band of one) of colours in a caller-provided slice.
@@ -56,6 +56,9 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     }
 
     /// A buffer covering screen rows `first_row .. first_row + rows` (a band).
+    ///
+    /// Errors: as [`new`](ColorBuffer::new), and [`Error::OutOfRange`] when the last row
+    /// would lie beyond `i32::MAX`.
     pub fn new_band(
         data: &'a mut [C],
         width: u32,
@@ -63,7 +66,7 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
         first_row: i32,
     ) -> Result<Self, Error> {
         let mut b = Self::new(data, width, rows)?;
-        b.first_row = first_row;
+        b.set_first_row(first_row)?;
         Ok(b)
     }
 
@@ -83,8 +86,11 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     }
 
     /// Move the band to cover rows `first_row .. first_row + rows` (contents kept).
-    pub fn set_first_row(&mut self, first_row: i32) {
-        self.first_row = first_row;
+    ///
+    /// Errors: [`Error::OutOfRange`] when the last row would lie beyond `i32::MAX`.
+    pub fn set_first_row(&mut self, first_row: i32) -> Result<(), Error> {
+        self.first_row = band_origin(first_row, self.rows)?;
+        Ok(())
     }
 
     /// The colour at screen pixel (x, y), `None` outside the buffer.

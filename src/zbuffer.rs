@@ -91,6 +91,9 @@ impl<'a> ZBuffer<'a> {
     }
 
     /// A Z-buffer covering screen rows `first_row .. first_row + rows` (a band).
+    ///
+    /// Errors: as [`new`](ZBuffer::new), and [`Error::OutOfRange`] when the last row
+    /// would lie beyond `i32::MAX`.
     pub fn new_band(
         data: &'a mut [u16],
         width: u32,
@@ -98,7 +101,7 @@ impl<'a> ZBuffer<'a> {
         first_row: i32,
     ) -> Result<Self, Error> {
         let mut z = Self::new(data, width, rows)?;
-        z.first_row = first_row;
+        z.set_first_row(first_row)?;
         Ok(z)
     }
 
@@ -119,8 +122,11 @@ impl<'a> ZBuffer<'a> {
 
     /// Move the band: the buffer now covers rows `first_row .. first_row + rows`.
     /// The contents are kept; call [`clear`](ZBuffer::clear) before drawing the new band.
-    pub fn set_first_row(&mut self, first_row: i32) {
-        self.first_row = first_row;
+    ///
+    /// Errors: [`Error::OutOfRange`] when the last row would lie beyond `i32::MAX`.
+    pub fn set_first_row(&mut self, first_row: i32) -> Result<(), Error> {
+        self.first_row = band_origin(first_row, self.rows)?;
+        Ok(())
     }
 
     /// The depth comparison in use.
@@ -228,6 +234,15 @@ pub(crate) fn row_span<T>(
     }
     let start = r as usize * usize::from(width) + x0 as usize;
     data.get_mut(start..start + (x1 - x0) as usize)
+}
+
+/// `first_row` when rows `first_row .. first_row + rows` all lie in `i32` (so that
+/// bounding boxes and row ranges never overflow), else [`Error::OutOfRange`].
+pub(crate) fn band_origin(first_row: i32, rows: u16) -> Result<i32, Error> {
+    first_row
+        .checked_add(i32::from(rows))
+        .map(|_| first_row)
+        .ok_or(Error::OutOfRange)
 }
 
 /// Validate `width × rows` against [`MAX_DIMENSION`] and a slice length.

@@ -162,7 +162,7 @@ fn culling_counts_on_the_cube() {
             },
         );
         assert_same(&p1, &p2, "culling under the Z-buffer");
-        p1.iter().filter(|&&c| c != Rgb565::BLACK).count() as u32
+        p1.iter().filter(|&&c| c != Rgb565::BLACK).count() as u64
     });
 }
 
