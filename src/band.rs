@@ -149,9 +149,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut carry = ColorCarry::new(background);
         // Whether the band buffers are still as cleared: no triangle was drawn into the
         // band before (its chains were empty), nor, for the colours, an overlay (`after`
-        // only reads depth). Each clear skipped saves a `memset` of the band (about
-        // 3,800 instructions for 320×16 on a Cortex-M4) for every empty band but the
-        // first.
+        // only reads depth): then the band's clear is skipped.
         let mut untouched = false;
         for k in 0..nb {
             let y0 = k * rows;
@@ -161,7 +159,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
             let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
             if !untouched || OVERLAY {
-                crate::zbuffer::fill_fast(color.data_mut(), background);
+                crate::num::fill(color.data_mut(), background);
             }
             if !untouched {
                 zbuf.clear();
@@ -233,7 +231,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
         // shift there when `rows` is a power of two.
         let shift = rows.trailing_zeros();
-        let pow2 = crate::fixed::ARMV6M && rows.count_ones() == 1;
+        let pow2 = crate::num::ARMV6M && rows.count_ones() == 1;
         let band_of = |row: i32| if pow2 { row >> shift } else { row / rows };
         let mut st = FrameStats::default();
         let mut append = |c: usize, f: usize| {

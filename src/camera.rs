@@ -3,10 +3,11 @@
 // Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use crate::fixed::{
-    bits_beyond_31, mul_i64_i32, mul_wide, round_f32, shl64, shr64, GUARD_BAND, MAX_DEPTH, SUBPIXEL,
-};
+use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::math::{Mat4, Vec3};
+use crate::num::{
+    bits_beyond_31, mul_i64_i32, mul_wide, recip62, round_f32, shl64, shr64, INTEGER_PROJECTION,
+};
 use crate::raster::ScreenVertex;
 use crate::{Error, MAX_DIMENSION};
 
@@ -286,52 +287,6 @@ impl FixedTransform {
     }
 }
 
-/// ⌊2⁶² / d⌋. For 2³⁰ < d < 2³¹ (the projection's normal case) without a 64-bit
-/// division, which chips with integer projection lack: a first guess from a table
-/// (9 bits), two Newton steps (18, then about 36 bits) in 32×32-bit products, and a
-/// last step or two to the exact quotient, checked by its remainder. About 140
-/// instructions on a Cortex-M0+, against 330 for bit-by-bit long division. Other `d`
-/// (and 0, taken as 1) go through `u64` division.
-pub(crate) fn recip62(d: u32) -> u64 {
-    if d <= 1 << 30 || d >= 1 << 31 {
-        return (1 << 62) / u64::from(d.max(1));
-    }
-    // d in [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²): guess 2⁶² over the middle of that range.
-    let i = ((d >> 22) & 0xff) as usize;
-    let mut x = u32::from(RECIP_TABLE.get(i).copied().unwrap_or(u16::MAX)) << 16;
-    for _ in 0..2 {
-        // x ← x + x·e/2⁶², e = 2⁶² − d·x: |e| < 2⁵⁴ here, so e/2²⁴ fits 30 bits and
-        // x ≤ 2⁶²/d + 1 < 2³² − 2 after each step (Newton's method for 1/d approaches
-        // from below, and rounding the correction down adds at most 1).
-        let e = (1i64 << 62) - mul_wide(d, x) as i64;
-        let m = (mul_wide(x, (e.unsigned_abs() >> 24) as u32) >> 38) as u32;
-        x = if e >= 0 { x + m } else { x - m };
-    }
-    // Within a few units now: step to the quotient whose remainder lies in [0, d).
-    let mut e = (1i64 << 62) - mul_wide(d, x) as i64;
-    while e < 0 {
-        x -= 1;
-        e += i64::from(d);
-    }
-    while e >= i64::from(d) {
-        x += 1;
-        e -= i64::from(d);
-    }
-    u64::from(x)
-}
-
-/// ⌊2⁴¹ / (513 + 2i)⌋ / 2¹⁶: 2⁶² over the middle of [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²),
-/// to 16 bits. Worked out at compile time.
-const RECIP_TABLE: [u16; 256] = {
-    let mut t = [0u16; 256];
-    let mut i = 0;
-    while i < 256 {
-        t[i] = (((1u64 << 41) / (513 + 2 * i as u64)) >> 16) as u16;
-        i += 1;
-    }
-    t
-};
-
 /// The largest power of two k in ±1000 with m·2^k ≤ mlim and t·2^k ≤ tlim (−1000 if
 /// none), for non-negative m, t. `fits` only turns false as k grows, so the search may
 /// start anywhere: it starts one below the guess from the binary exponents and so takes a
@@ -446,14 +401,6 @@ pub(crate) struct ScreenMap {
     ox_i: i64,
     oy_i: i64,
 }
-
-/// Targets without hardware floating point project in integers: a soft-float divide
-/// and its conversions cost thousands of instructions a vertex on a Cortex-M0+.
-#[cfg(all(target_arch = "arm", not(target_abi = "eabihf")))]
-pub(crate) const INTEGER_PROJECTION: bool = true;
-/// Targets with hardware floating point project in `f32`.
-#[cfg(not(all(target_arch = "arm", not(target_abi = "eabihf"))))]
-pub(crate) const INTEGER_PROJECTION: bool = false;
 
 /// 65535 · 65536 / 2: window depth (z_ndc + 1)/2 in 16.16 of 0..=65535.
 const DEPTH_HALF: f32 = 65535.0 * 32768.0;

@@ -252,12 +252,9 @@ impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
     }
 }
 
-/// [`FlatTarget::fill`] into buffers of the same geometry. Inlined into it (one call a
-/// triangle less) except on ARMv6-M, where that measured worse.
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    inline(always)
-)]
+/// [`FlatTarget::fill`] into buffers of the same geometry; inlined into it (one call a
+/// triangle less) except on ARMv6-M (see docs/tuning.md).
+#[cfg_attr(not(zraster_armv6m), inline(always))]
 fn fill_fused<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
     test: DepthTest,

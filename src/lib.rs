@@ -66,6 +66,7 @@ pub mod fixed;
 mod line;
 pub mod math;
 pub mod mesh;
+mod num;
 mod raster;
 mod render;
 pub mod shade;

@@ -7,7 +7,8 @@ use embedded_graphics::{
 };
 
 use crate::fill::SpanStats;
-use crate::fixed::{div_floor, SUBPIXEL, SUBPIXEL_BITS};
+use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
+use crate::num::div_floor;
 use crate::raster::{Clip, ScreenVertex};
 use crate::ZBuffer;
 

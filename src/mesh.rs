@@ -289,7 +289,7 @@ fn face_normal_raw<M: Copy>(mesh: &Mesh<'_, M>, vs: &[u16]) -> Option<Vec3> {
 
 /// A unit vector in Q14.
 pub(crate) fn quantize_normal(n: Vec3) -> [i16; 3] {
-    let q = |v: f32| crate::fixed::round_f32(v.clamp(-1.0, 1.0) * NORMAL_ONE as f32) as i16;
+    let q = |v: f32| crate::num::round_f32(v.clamp(-1.0, 1.0) * NORMAL_ONE as f32) as i16;
     [q(n.x), q(n.y), q(n.z)]
 }
 

@@ -7,9 +7,9 @@
 //! centre against the three edge functions with the top-left rule, so triangles that
 //! share an edge cover each pixel along it exactly once.
 
-use crate::fixed::{
-    div_ceil, div_floor, div_floor_wide, floor_div32, mul_i64_i32, round_f32, sat_i32, GUARD_BAND,
-    MAX_DEPTH, SUBPIXEL, SUBPIXEL_BITS,
+use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL, SUBPIXEL_BITS};
+use crate::num::{
+    div_ceil, div_floor, div_floor_wide, floor_div32, mul_i64_i32, round_f32, sat_i32,
 };
 use crate::Error;
 
@@ -106,7 +106,7 @@ impl ScreenVertex {
 /// [`Facing::of`].
 pub fn signed_area(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
     // On 32-bit targets: differences of guard-band coordinates fit i32 (below 2²⁵).
-    #[cfg(target_pointer_width = "32")]
+    #[cfg(not(zraster_wide))]
     {
         let guard = |v: i32| (v as u32).wrapping_add(GUARD_BAND as u32) <= 2 * GUARD_BAND as u32;
         if guard(p0.0) && guard(p0.1) && guard(p1.0) && guard(p1.1) && guard(p2.0) && guard(p2.1) {
@@ -134,7 +134,7 @@ fn area_wide(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
 /// below 2²⁵, so it fits `i32`).
 #[inline(always)]
 pub(crate) fn signed_area_guarded(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)) -> i64 {
-    if cfg!(not(target_pointer_width = "32")) {
+    if crate::num::WIDE {
         // 64-bit registers: the general form is as cheap.
         return area_wide(p0, p1, p2);
     }
@@ -144,7 +144,7 @@ pub(crate) fn signed_area_guarded(p0: (i32, i32), p1: (i32, i32), p2: (i32, i32)
         p2.0.wrapping_sub(p0.0),
         p2.1.wrapping_sub(p0.1),
     ];
-    if crate::fixed::ARMV6M {
+    if crate::num::ARMV6M {
         if let Some(a) = area_short(d) {
             return a;
         }

@@ -310,11 +310,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             light_model,
             light_q: (
                 [light_model.x, light_model.y, light_model.z]
-                    .map(|c| crate::fixed::round_f32(c * 32768.0)),
-                i64::from(crate::fixed::round_f32(
+                    .map(|c| crate::num::round_f32(c * 32768.0)),
+                i64::from(crate::num::round_f32(
                     options.light.ambient.clamp(-2.0, 2.0) * 32768.0,
                 )),
-                i64::from(crate::fixed::round_f32(
+                i64::from(crate::num::round_f32(
                     options.light.diffuse.clamp(-2.0, 2.0) * 32768.0,
                 )),
             ),
@@ -418,8 +418,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         (f32::from(n[0]) * l.x + f32::from(n[1]) * l.y + f32::from(n[2]) * l.z) / NORMAL_ONE as f32
     }
 
-    /// Lambert light of face `f`. Inlined (13 k instructions less per bunny frame on a
-    /// Cortex-M4, 15 k on an M0+, 7 k on x86-64).
+    /// Lambert light of face `f` (inlined into the face loops).
     #[inline(always)]
     fn face_light(&self, f: usize) -> Intensity {
         match self.mesh.face_normals.and_then(|n| n.get(f)) {
@@ -441,7 +440,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let ([lx, ly, lz], amb, diff) = self.light_q;
         let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
         // |diff| ≤ 2¹⁶: on ARMv6-M three 32-bit multiplies instead of a library call.
-        let product = crate::fixed::mul_i64_i32(i64::from(dot.max(0)), diff as i32);
+        let product = crate::num::mul_i64_i32(i64::from(dot.max(0)), diff as i32);
         let term = ((product + (1 << 28)) >> 29) as i32;
         (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
     }
@@ -896,8 +895,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
                     continue;
                 }
-                // The test of `culled`, written out: through the helper this loop
-                // compiles 8 instructions a face longer on x86-64.
+                // The test of `culled`, written out (the helper's array copy costs).
                 let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
                 if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
                     st.culled += 1;

@@ -100,7 +100,7 @@ fn channel(v: u8, i: Intensity, max: u32) -> u8 {
 /// checks every x against the formula.
 #[inline]
 fn div255(x: u32) -> u32 {
-    if crate::fixed::ARMV6M {
+    if crate::num::ARMV6M {
         div255_shifts(x)
     } else {
         x / 255 // a multiply-high where the chip has one

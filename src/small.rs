@@ -7,7 +7,8 @@
 //! start stepped with one add a row, one index into both buffers, and the two halves of
 //! the triangle walked by two plain loops.
 
-use crate::fixed::{div_floor_pair, mul_i64_i32, ARMV6M, SUBPIXEL, SUBPIXEL_BITS};
+use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
+use crate::num::{div_floor_pair, mul_i64_i32};
 use crate::raster::{plane_origin, Clip, EdgeWalk, ScreenVertex, DEPTH_BIAS, SMALL};
 
 /// Colour and depth rows of the same geometry, and the pixels drawing may touch.
@@ -32,15 +33,10 @@ struct Depth {
 
 impl Depth {
     /// The depth plane, from the first vertex as the general path has it; `None` for a
-    /// zero-area triangle. Out of line on the Cortex-M3/M4/M7 (its 64-bit arithmetic
-    /// would otherwise crowd the registers of the whole setup: 3 k instructions a bunny
-    /// frame more inline, 17 k in bands); inline elsewhere (on ARMv6-M 20 instructions a
-    /// triangle less; on x86-64 24 k a frame less).
-    #[cfg_attr(all(target_arch = "arm", target_has_atomic = "32"), inline(never))]
-    #[cfg_attr(
-        not(all(target_arch = "arm", target_has_atomic = "32")),
-        inline(always)
-    )]
+    /// zero-area triangle. Out of line on the Cortex-M3/M4/M7, where its 64-bit
+    /// arithmetic would crowd the registers of the whole setup; inline elsewhere.
+    #[cfg_attr(zraster_thumb2, inline(never))]
+    #[cfg_attr(not(zraster_thumb2), inline(always))]
     fn new(tri: &[ScreenVertex; 3]) -> Option<Depth> {
         let [p0, p1, p2] = tri;
         let (dx1, dy1) = (p1.x() - p0.x(), p1.y() - p0.y());
@@ -49,9 +45,8 @@ impl Depth {
         if area == 0 {
             return None;
         }
-        // On Arm with SMLAL the offset form (14 k instructions a bunny frame less on a
-        // Cortex-M4, 14 k more on x86-64).
-        let (a, bb) = if cfg!(target_arch = "arm") && !ARMV6M {
+        // With multiply-accumulate (SMLAL) the offset form is the cheaper.
+        let (a, bb) = if crate::num::THUMB2 {
             numerators_offset(tri, [dx1, dy1, dx2, dy2])
         } else {
             numerators_diff(tri, [dx1, dy1, dx2, dy2])
@@ -245,9 +240,8 @@ fn rows<C: Copy>(
                         *written += 1;
                     }
                 }
-            } else if cfg!(target_arch = "arm") && e == s + 2 {
-                // Two pixels inline too on Arm (38 k instructions less per bunny frame on
-                // a Cortex-M4; 37 k more on x86-64, which calls).
+            } else if crate::num::ARM32 && e == s + 2 {
+                // Two pixels inline too on Arm (x86-64 does better calling).
                 if let (Some([z0, z1]), Some([c0, c1])) = (
                     b.zdata
                         .get_mut(s..e)

@@ -268,7 +268,7 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
     }
 
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
-        crate::zbuffer::fill_fast(self.data, color);
+        crate::num::fill(self.data, color);
         Ok(())
     }
 }

@@ -151,7 +151,7 @@ impl<'a> ZBuffer<'a> {
 
     /// Set every entry to [`ZBuffer::FAR`].
     pub fn clear(&mut self) {
-        fill_fast(self.data, Self::FAR);
+        crate::num::fill(self.data, Self::FAR);
     }
 
     /// Set every entry to `depth`.
@@ -203,19 +203,6 @@ impl<'a> ZBuffer<'a> {
             self.first_row.saturating_add(i32::from(self.rows)),
         )
     }
-}
-
-/// `data.fill(value)`, kept a store loop. With a constant value the compiler turns a
-/// fill into `memset`, which on x86-64 glibc is `rep stosb` for large buffers: fast on
-/// the hardware but counted byte by byte by instruction counters, which would hide the
-/// renderer's own figures. Through `black_box` the value is opaque, so the compiler
-/// emits a vectorised store loop instead. Elsewhere (Cortex-M) `memset` is the faster
-/// of the two and stays.
-#[inline]
-pub(crate) fn fill_fast<T: Copy>(data: &mut [T], value: T) {
-    #[cfg(target_arch = "x86_64")]
-    let value = core::hint::black_box(value);
-    data.fill(value);
 }
 
 /// The part of screen row `y` from column `x0` to `x1` (exclusive) in `data`, a buffer

@@ -1,0 +1,33 @@
+//! Capability cfgs for the target-specific code in `src/num/`, decided once here from
+//! the target, so that no other file names an architecture:
+//! - `zraster_armv6m`: 32-bit Arm without a divide instruction or a 32×32→64-bit
+//!   multiply (ARMv6-M: Cortex-M0, M0+, M1), recognised as Arm without 32-bit atomics;
+//! - `zraster_thumb2`: 32-bit Arm with both (ARMv7-M, ARMv8-M mainline: Cortex-M3,
+//!   M4, M7, M33);
+//! - `zraster_soft_float`: 32-bit Arm without hardware floating point, where vertices
+//!   are projected in integers;
+//! - `zraster_wide`: 64-bit registers with a 64-bit divide instruction (x86-64, AArch64).
+fn main() {
+    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide)");
+    println!("cargo::rerun-if-changed=build.rs");
+    let var = |k: &str| std::env::var(k).unwrap_or_default();
+    let arm = var("CARGO_CFG_TARGET_ARCH") == "arm";
+    let atomic32 = var("CARGO_CFG_TARGET_HAS_ATOMIC")
+        .split(',')
+        .any(|w| w == "32");
+    let set = |name: &str, on: bool| {
+        if on {
+            println!("cargo::rustc-cfg={name}");
+        }
+    };
+    set("zraster_armv6m", arm && !atomic32);
+    set("zraster_thumb2", arm && atomic32);
+    set(
+        "zraster_soft_float",
+        arm && var("CARGO_CFG_TARGET_ABI") != "eabihf",
+    );
+    set(
+        "zraster_wide",
+        var("CARGO_CFG_TARGET_POINTER_WIDTH") == "64",
+    );
+}

@@ -1,0 +1,263 @@
+//! Arithmetic for ARMv6-M (Cortex-M0/M0+), which has no divide instruction, no
+//! 32×32→64-bit multiply and only library calls for 64-bit shifts: each function here
+//! builds the operation from 32-bit instructions. Plain Rust, so the host tests check
+//! each against the operation it replaces.
+// Indexing into fixed tables by values masked below their length: it cannot panic.
+#![allow(clippy::indexing_slicing)]
+
+use super::{by_digits, mul_wide};
+
+/// The reciprocal form of [`div_floor_pair`]; `None` outside its range.
+#[inline]
+pub(crate) fn div_floor_pair_recip(n1: i64, n2: i64, d: i64) -> Option<(i64, i64)> {
+    let (n1, n2, d) = if d < 0 { (-n1, -n2, -d) } else { (n1, n2, d) };
+    let (m1, m2) = (n1.unsigned_abs(), n2.unsigned_abs());
+    if d == 0 || d >= 1 << 16 || m1 >= 1 << 48 || m2 >= 1 << 48 {
+        return None;
+    }
+    let d32 = d as u32;
+    let r = recip32_small(d32); // ⌊(2³² − 1)/d⌋
+    let one = |n: i64, m: u64| {
+        let (q, r0) = by_digits(m, |x| divrem_by_recip(x, d32, r));
+        let q = q as i64;
+        // Truncated |n| / d; floor for negative n rounds away from zero when inexact.
+        if n >= 0 {
+            q
+        } else if r0 == 0 {
+            -q
+        } else {
+            -q - 1
+        }
+    };
+    Some((one(n1, m1), one(n2, m2)))
+}
+
+/// ⌊(2³² − 1)/d⌋ for 1 ≤ d < 2¹⁶ without a division instruction (on ARMv6-M the
+/// library division costs about 200 instructions, this about 60): d normalised to
+/// dn = d·2^s in [2¹⁵, 2¹⁶) (s from a table of leading zeros: ARMv6-M has no CLZ), a
+/// guess below 2³²/d from a table of dn's leading 9 bits (relative error under 2⁻⁹),
+/// two Newton steps from below (under 2⁻¹⁸, then exact for every d), and a fix-up by
+/// the remainder that guarantees it. A test checks every d.
+#[inline]
+pub(crate) fn recip32_small(d: u32) -> u32 {
+    if d == 0 || d >= 1 << 16 {
+        return u32::MAX / d.max(1);
+    }
+    let lz8 = |b: u32| u32::from(LEADING_ZEROS8.get(b as usize).copied().unwrap_or(0));
+    let s = if d >= 1 << 8 { lz8(d >> 8) } else { 8 + lz8(d) };
+    let dn = d << s;
+    // 2³²/d = 2^(s + 1) · 2³¹/dn, and the table holds 2²⁵ over the top of dn's part of
+    // [2¹⁵, 2¹⁶), a little below 2¹⁵ · 2³¹/dn: so the guess x is below 2³²/d (and 2³²).
+    let i = ((dn >> 6) & 0x1ff) as usize;
+    let mut x = u32::from(RECIP16.get(i).copied().unwrap_or(0x8000)) << (s + 1);
+    // Each step: e = 2³² − d·x > 0 (d·x < 2³², so the wrapping product is exact), and
+    // x grows by ⌊x·e/2³²⌋, which is less than 2³²/d − x: x stays below 2³²/d.
+    let e = d.wrapping_mul(x).wrapping_neg();
+    x += (mul_wide(x, e) >> 32) as u32;
+    // Now e is about 2³²·2⁻¹⁸ + d (at most 68,736 over all d), and ⌊x·e/2³²⌋ is
+    // ⌊(xh·e + ⌊xl·e/2¹⁶⌋)/2¹⁶⌋ with x = xh·2¹⁶ + xl: two 32-bit products, which stay
+    // below 2³² for every d (xh < 2¹⁶/d; the largest term is 3.2·10⁹). Were one to
+    // wrap, x would only come out lower, and the fix-up below would repair it.
+    let e = d.wrapping_mul(x).wrapping_neg();
+    x += ((x >> 16) * e + (((x & 0xffff) * e) >> 16)) >> 16;
+    // x ≤ ⌊(2³² − 1)/d⌋ (x < 2³²/d), so the remainder below is exact and never negative.
+    let mut rem = u32::MAX - x.wrapping_mul(d);
+    while rem >= d {
+        x += 1;
+        rem -= d;
+    }
+    x
+}
+
+/// ⌊2²⁵ / (513 + i)⌋: 2²⁵ over the top of the i-th of 512 equal parts of [2⁹, 2¹⁰)
+/// (dn's leading 9 bits read as 512 + i), which is below 2¹⁶ · 2⁹/top. Worked out at
+/// compile time.
+#[allow(clippy::indexing_slicing)] // evaluated at compile time: a bad index fails the build
+const RECIP16: [u16; 512] = {
+    let mut t = [0u16; 512];
+    let mut i = 0;
+    while i < 512 {
+        t[i] = ((1u32 << 25) / (513 + i as u32)) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// Leading zeros of a byte (8 for 0).
+#[allow(clippy::indexing_slicing)] // evaluated at compile time: a bad index fails the build
+const LEADING_ZEROS8: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (i as u8).leading_zeros() as u8;
+        i += 1;
+    }
+    t
+};
+
+/// `(x / d, x % d)` given `r = ⌊(2³² − 1)/d⌋`, `d > 0`: `x·r/2³²` is at most `x/d` and
+/// less than 3 below it, so the remainder is never negative and at most three steps
+/// bring it below `d`.
+#[inline(always)]
+pub(crate) fn divrem_by_recip(x: u32, d: u32, r: u32) -> (u32, u32) {
+    let mut q = (mul_wide(x, r) >> 32) as u32;
+    let mut rem = x.wrapping_sub(q.wrapping_mul(d)); // x − q·d, in 0..x
+    while rem >= d {
+        q += 1;
+        rem -= d;
+    }
+    (q, rem)
+}
+
+/// The three-multiply form of [`mul_i64_i32`], for `|b| < 2¹⁶`.
+#[inline]
+pub(crate) fn mul_small_parts(a: i64, b: i32) -> i64 {
+    let ub = b.unsigned_abs();
+    let (al, ah) = (a as u32, (a as u64 >> 32) as u32);
+    // al·ub below 2⁴⁸ from two 16×16-bit halves; ah·ub modulo 2³² is all that stays
+    // of the high half modulo 2⁶⁴.
+    let low = (u64::from((al >> 16) * ub) << 16) + u64::from((al & 0xffff) * ub);
+    let p = low.wrapping_add(u64::from(ah.wrapping_mul(ub)) << 32) as i64;
+    if b < 0 {
+        p.wrapping_neg()
+    } else {
+        p
+    }
+}
+
+/// [`bits_beyond_31`] by a binary search over the high half.
+#[inline]
+pub(crate) fn bits_beyond_31_parts(w: i64) -> u32 {
+    let (lo, hi) = (w as u32, (w as u64 >> 32) as u32);
+    if hi == 0 {
+        return lo >> 31;
+    }
+    // 32 + bits(hi) bits in all, bits(x) = b + x after the halvings below.
+    let (mut x, mut b) = (hi, 0);
+    for k in [16, 8, 4, 2, 1] {
+        if x >= 1 << k {
+            x >>= k;
+            b += k;
+        }
+    }
+    1 + b + x
+}
+
+/// [`shl64`] from 32-bit halves.
+#[inline]
+pub(crate) fn shl64_parts(v: i64, s: u32) -> i64 {
+    if s == 0 {
+        return v;
+    }
+    let (lo, hi) = (v as u32, (v as u64 >> 32) as u32);
+    let (hi, lo) = ((hi << s) | (lo >> (32 - s)), lo << s);
+    (u64::from(hi) << 32 | u64::from(lo)) as i64
+}
+
+/// [`shr64`] from 32-bit halves.
+#[inline]
+pub(crate) fn shr64_parts(v: i64, s: u32) -> i64 {
+    if s == 0 {
+        return v;
+    }
+    let (lo, hi) = (v as u32, (v >> 32) as i32);
+    let (hi, lo) = (hi >> s, (lo >> s) | ((hi as u32) << (32 - s)));
+    ((hi as u64) << 32 | u64::from(lo)) as i64
+}
+
+/// The four-product form of [`mul_wide`].
+#[inline]
+pub(crate) fn mul_wide_parts(a: u32, b: u32) -> u64 {
+    let (a1, a0) = (a >> 16, a & 0xffff);
+    let (b1, b0) = (b >> 16, b & 0xffff);
+    let (mid, carry) = (a1 * b0).overflowing_add(a0 * b1); // each < 2³²; carry is 2⁴⁸
+    let (low, c) = (a0 * b0).overflowing_add(mid << 16);
+    let high = a1 * b1 + (mid >> 16) + (u32::from(carry) << 16) + u32::from(c);
+    (u64::from(high) << 32) | u64::from(low)
+}
+
+/// `(n / d, n % d)` for `d > 0` by restoring shift-and-subtract division, one step per
+/// quotient bit: the divisor is doubled while it stays at most `n / 2` (so it never
+/// overflows), then halved back down, subtracting where it fits.
+#[inline]
+pub(crate) fn udivrem(n: u32, d: u32) -> (u32, u32) {
+    if n < d || d == 0 {
+        return (0, n);
+    }
+    let (mut dd, mut bit) = (d, 1u32);
+    while dd <= n >> 1 {
+        dd <<= 1;
+        bit <<= 1;
+    }
+    let (mut q, mut r) = (0, n);
+    loop {
+        if r >= dd {
+            r -= dd;
+            q |= bit;
+        }
+        if bit == 1 {
+            return (q, r);
+        }
+        dd >>= 1;
+        bit >>= 1;
+    }
+}
+
+/// [`floor_div32`] through [`udivrem`]. For `n = i32::MIN` the quotient 2³¹ wraps to
+/// `i32::MIN`, which negated is itself: still exact.
+#[inline]
+pub(crate) fn floor_div32_soft(n: i32, d: i32) -> i32 {
+    let (q, r) = udivrem(n.unsigned_abs(), d as u32);
+    let q = q as i32;
+    match (n < 0, r == 0) {
+        (false, _) => q,
+        (true, true) => q.wrapping_neg(),
+        (true, false) => q.wrapping_neg() - 1,
+    }
+}
+
+/// ⌊2⁶² / d⌋. For 2³⁰ < d < 2³¹ (the projection's normal case) without a 64-bit
+/// division, which chips with integer projection lack: a first guess from a table
+/// (9 bits), two Newton steps (18, then about 36 bits) in 32×32-bit products, and a
+/// last step or two to the exact quotient, checked by its remainder. About 140
+/// instructions on a Cortex-M0+, against 330 for bit-by-bit long division. Other `d`
+/// (and 0, taken as 1) go through `u64` division.
+pub(crate) fn recip62(d: u32) -> u64 {
+    if d <= 1 << 30 || d >= 1 << 31 {
+        return (1 << 62) / u64::from(d.max(1));
+    }
+    // d in [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²): guess 2⁶² over the middle of that range.
+    let i = ((d >> 22) & 0xff) as usize;
+    let mut x = u32::from(RECIP_TABLE.get(i).copied().unwrap_or(u16::MAX)) << 16;
+    for _ in 0..2 {
+        // x ← x + x·e/2⁶², e = 2⁶² − d·x: |e| < 2⁵⁴ here, so e/2²⁴ fits 30 bits and
+        // x ≤ 2⁶²/d + 1 < 2³² − 2 after each step (Newton's method for 1/d approaches
+        // from below, and rounding the correction down adds at most 1).
+        let e = (1i64 << 62) - mul_wide(d, x) as i64;
+        let m = (mul_wide(x, (e.unsigned_abs() >> 24) as u32) >> 38) as u32;
+        x = if e >= 0 { x + m } else { x - m };
+    }
+    // Within a few units now: step to the quotient whose remainder lies in [0, d).
+    let mut e = (1i64 << 62) - mul_wide(d, x) as i64;
+    while e < 0 {
+        x -= 1;
+        e += i64::from(d);
+    }
+    while e >= i64::from(d) {
+        x += 1;
+        e -= i64::from(d);
+    }
+    u64::from(x)
+}
+
+/// ⌊2⁴¹ / (513 + 2i)⌋ / 2¹⁶: 2⁶² over the middle of [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²),
+/// to 16 bits. Worked out at compile time.
+const RECIP_TABLE: [u16; 256] = {
+    let mut t = [0u16; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = (((1u64 << 41) / (513 + 2 * i as u64)) >> 16) as u16;
+        i += 1;
+    }
+    t
+};

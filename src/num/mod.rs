@@ -1,0 +1,551 @@
+//! Integer arithmetic behind small portable functions, with a backend per kind of
+//! core: division, widening multiplication, reciprocals, wide shifts and rounding.
+//!
+//! The stages call the functions here and never ask which chip they run on. Each
+//! function chooses, at compile time, between the plain operation (hosts, and
+//! Cortex-M3/M4/M7, whose divide and long-multiply instructions make it cheap) and the
+//! [`armv6m`] forms for cores without them (Cortex-M0/M0+), and [`armv7m`] holds the
+//! forms that pay on Cortex-M3/M4/M7 only. The capability cfgs they test are set once,
+//! in `build.rs`. Every backend function is written in portable Rust and tested against
+//! the plain operation on the host.
+
+mod armv6m;
+mod armv7m;
+
+pub(crate) use armv6m::{
+    bits_beyond_31_parts, div_floor_pair_recip, floor_div32_soft, mul_small_parts, mul_wide_parts,
+    recip62, shl64_parts, shr64_parts, udivrem,
+};
+use armv7m::floor_div32_flip;
+
+/// ⌊n / d⌋ for `d ≠ 0`, exact, avoiding 64-bit division where it can: with 32-bit
+/// divisions (one `UDIV` each on a Cortex-M3/M4, a short library call on an M0+)
+/// when both fit in 32 bits, or when `|d| < 2¹⁶` and `|n| < 2⁴⁸` (two 16-bit "digits"
+/// of long division). Small triangles, the common case, always take those paths.
+#[inline]
+pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
+    let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+    if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
+        return i64::from(floor_div32(n, d));
+    }
+    let m = n.unsigned_abs();
+    if d < 1 << 16 && m < 1 << 48 {
+        let d32 = d as u32;
+        // On ARMv6-M by shift and subtract (the digits are usually a few bits).
+        let (q, r0) = by_digits(m, |x| {
+            if ARMV6M {
+                udivrem(x, d32)
+            } else {
+                (x / d32, x % d32)
+            }
+        });
+        let q = q as i64;
+        // Truncated |n| / d; floor for negative n rounds away from zero when inexact.
+        return if n >= 0 {
+            q
+        } else if r0 == 0 {
+            -q
+        } else {
+            -q - 1
+        };
+    }
+    n.div_euclid(d)
+}
+
+/// `(⌊n₁ / d⌋, ⌊n₂ / d⌋)` for `d ≠ 0`, exactly as [`div_floor`] gives them: by the
+/// divide instruction on 64-bit hosts; on ARMv6-M, which has no divide instruction,
+/// when `|d| < 2¹⁶` and both `|n| < 2⁴⁸` (the depth slopes of every small triangle),
+/// by a reciprocal of `d` and each 16-bit digit of the two long divisions by a multiply
+/// and at most three corrections, instead of four library divisions; elsewhere by two
+/// [`div_floor_signless`]s.
+#[inline]
+pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
+    if ARMV6M {
+        if let Some(q) = div_floor_pair_recip(n1, n2, d) {
+            return q;
+        }
+    }
+    if WIDE {
+        // A 64-bit divide instruction: one each, cheaper than the digit method.
+        let (n1, n2, d) = if d < 0 { (-n1, -n2, -d) } else { (n1, n2, d) };
+        return (n1.div_euclid(d), n2.div_euclid(d));
+    }
+    (div_floor_signless(n1, d), div_floor_signless(n2, d))
+}
+
+/// [`div_floor`] with the sign of `n` folded in rather than tested: for d > 0,
+/// ⌊n/d⌋ = −1 − ⌊(−1 − n)/d⌋, so with s = 0 or −1 by n's sign it is s ^ ⌊m/d⌋ for
+/// m = n ^ s ≥ 0 — unsigned divisions and no remainder test. (Only for the depth
+/// slopes of small triangles: `div_floor` itself, inlined in the general path, keeps
+/// the plain form.)
+#[inline(always)]
+pub(crate) fn div_floor_signless(n: i64, d: i64) -> i64 {
+    let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+    let sign = n >> 63;
+    let m = (n ^ sign) as u64;
+    if d > 0 && d < 1 << 16 && m < 1 << 48 {
+        let d32 = d as u32;
+        return by_digits(m, |x| (x / d32, x % d32)).0 as i64 ^ sign;
+    }
+    div_floor(n, d)
+}
+
+/// `(m / d, m % d)` for `m < 2⁴⁸` and `d < 2¹⁶`, as two 16-bit digits of long division,
+/// each by `divrem` (`x ↦ (x / d, x % d)` for a 32-bit `x`): the first digit divides
+/// `m / 2¹⁶` (below 2³²), the second its remainder (below `d`) times 2¹⁶ plus the low 16
+/// bits, which fits 32 bits.
+#[inline(always)]
+pub(crate) fn by_digits(m: u64, divrem: impl Fn(u32) -> (u32, u32)) -> (u64, u32) {
+    let (q1, r1) = divrem((m >> 16) as u32);
+    let (q0, r0) = divrem((r1 << 16) | (m as u32 & 0xffff));
+    (u64::from(q1) << 16 | u64::from(q0), r0)
+}
+
+/// ARMv6-M (Cortex-M0/M0+): no divide instruction and no 32×32→64-bit multiply. A
+/// division is a library call costing about 130 instructions whatever the operands
+/// ([`udivrem`] costs about 7 per quotient bit, and the rasterizer's quotients are
+/// mostly a few bits), and a 64-bit product a call costing about 45 ([`mul_wide`] is
+/// four multiplies inline).
+pub(crate) const ARMV6M: bool = cfg!(zraster_armv6m);
+/// ARMv7-M and ARMv8-M mainline (Cortex-M3/M4/M7/M33): divide, long multiply and
+/// multiply-accumulate instructions.
+pub(crate) const THUMB2: bool = cfg!(zraster_thumb2);
+/// 32-bit Arm of either kind.
+pub(crate) const ARM32: bool = ARMV6M || THUMB2;
+/// 64-bit registers and a 64-bit divide instruction (x86-64, AArch64).
+pub(crate) const WIDE: bool = cfg!(zraster_wide);
+/// No hardware floating point: vertices are projected in integers (a soft-float divide
+/// and its conversions cost thousands of instructions a vertex on a Cortex-M0+).
+pub(crate) const INTEGER_PROJECTION: bool = cfg!(zraster_soft_float);
+
+/// `a · b` in 64 bits. On ARMv6-M from four 16×16-bit products, carries added by hand;
+/// elsewhere the plain widening multiply (one `UMULL` on a Cortex-M3/M4).
+#[inline]
+pub(crate) fn mul_wide(a: u32, b: u32) -> u64 {
+    if ARMV6M {
+        mul_wide_parts(a, b)
+    } else {
+        u64::from(a) * u64::from(b)
+    }
+}
+
+/// `a.wrapping_mul(b)`. On ARMv6-M, for `|b| < 2¹⁶` (every use in the rasterizer and
+/// the projection but the widest viewports), in three 32-bit multiplies instead of a
+/// 64-bit library multiply: `a` in 32-bit halves, `b`'s magnitude in 16 bits.
+#[inline]
+pub(crate) fn mul_i64_i32(a: i64, b: i32) -> i64 {
+    let ub = b.unsigned_abs();
+    if !ARMV6M || ub >= 1 << 16 {
+        return a.wrapping_mul(i64::from(b));
+    }
+    mul_small_parts(a, b)
+}
+
+/// `v << s` (wrapping) for `s < 32`. ARMv6-M shifts 64-bit values by a variable
+/// amount through library calls; this is four 32-bit shifts inline there.
+#[inline]
+pub(crate) fn shl64(v: i64, s: u32) -> i64 {
+    if ARMV6M && s < 32 {
+        shl64_parts(v, s)
+    } else {
+        v.wrapping_shl(s)
+    }
+}
+
+/// `v >> s` (arithmetic) for `s < 32`, as [`shl64`].
+#[inline]
+pub(crate) fn shr64(v: i64, s: u32) -> i64 {
+    if ARMV6M && s < 32 {
+        shr64_parts(v, s)
+    } else {
+        v.wrapping_shr(s)
+    }
+}
+
+/// How many bits `w` has beyond 31 (`w ≥ 0`): the right shift that brings it below 2³¹.
+/// On ARMv6-M by comparisons (its leading-zero count is a library call).
+#[inline]
+pub(crate) fn bits_beyond_31(w: i64) -> u32 {
+    if ARMV6M {
+        bits_beyond_31_parts(w)
+    } else {
+        (64 - w.leading_zeros()).saturating_sub(31)
+    }
+}
+
+/// ⌊n / d⌋ in 32 bits for `d > 0` (one division and a correction, inlined: the
+/// standard library's `div_euclid` is an out-of-line call on Thumb).
+#[inline(always)]
+pub(crate) fn floor_div32(n: i32, d: i32) -> i32 {
+    if ARMV6M {
+        return floor_div32_soft(n, d);
+    }
+    if THUMB2 {
+        // One unsigned division, flipping the bits of n before and after when it is
+        // negative (for n < 0, ⌊n/d⌋ = −⌊(−n − 1)/d⌋ − 1 and −n − 1 = !n): no floor
+        // correction and no signed-overflow check (hosts keep the signed form).
+        return floor_div32_flip(n, d);
+    }
+    let q = n / d;
+    if n % d < 0 {
+        q - 1
+    } else {
+        q
+    }
+}
+
+/// ⌈n / d⌉ for `d > 0`.
+#[inline]
+pub(crate) fn div_ceil(n: i64, d: i64) -> i64 {
+    -div_floor(-n, d)
+}
+
+/// ⌊n / d⌋ in 128 bits, for the rare exact evaluation of very large triangles.
+pub(crate) fn div_floor_wide(n: i128, d: i128) -> i128 {
+    let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+    n.div_euclid(d)
+}
+
+/// Saturate an `i64` into `i32`.
+#[inline]
+pub(crate) fn sat_i32(v: i64) -> i32 {
+    v.clamp(i64::from(i32::MIN), i64::from(i32::MAX)) as i32
+}
+
+/// Round an `f32` to the nearest integer (halves away from zero); the caller has checked
+/// that the value is finite and within `i32`.
+#[inline]
+pub(crate) fn round_f32(v: f32) -> i32 {
+    // ±½ by the sign bit, then truncation: no branch.
+    (v + 0.5f32.copysign(v)) as i32
+}
+
+/// `data.fill(value)`, kept a store loop. With a constant value the compiler turns a
+/// fill into `memset`, which on x86-64 glibc is `rep stosb` for large buffers: fast on
+/// the hardware but counted byte by byte by instruction counters, which would hide the
+/// renderer's own figures. Through `black_box` the value is opaque, so the compiler
+/// emits a vectorised store loop instead. Elsewhere (Cortex-M) `memset` is the faster
+/// of the two and stays.
+#[inline]
+pub(crate) fn fill<T: Copy>(data: &mut [T], value: T) {
+    #[cfg(target_arch = "x86_64")]
+    let value = core::hint::black_box(value);
+    data.fill(value);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::armv6m::recip32_small;
+    use super::*;
+
+    #[test]
+    fn wide_products_are_exact() {
+        let edges = [
+            0u32,
+            1,
+            0xffff,
+            0x1_0000,
+            0x1_0001,
+            0x8000_0000,
+            u32::MAX - 1,
+            u32::MAX,
+        ];
+        let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut pairs = edges
+            .iter()
+            .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+            .collect::<std::vec::Vec<_>>();
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            pairs.push(((x >> 32) as u32, x as u32 >> (x % 31)));
+        }
+        for (a, b) in pairs {
+            let want = u64::from(a) * u64::from(b);
+            assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
+            assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+        }
+    }
+
+    #[test]
+    fn bits_beyond_31_counts_them() {
+        let want = |w: i64| (64 - w.leading_zeros()).saturating_sub(31);
+        let mut cases = std::vec![
+            0i64,
+            1,
+            (1 << 31) - 1,
+            1 << 31,
+            (1 << 32) - 1,
+            1 << 32,
+            i64::MAX
+        ];
+        for k in 0..63 {
+            cases.extend([1i64 << k, (1i64 << k) - 1, (1i64 << k) + 1]);
+        }
+        let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+        for _ in 0..100_000 {
+            let x = next();
+            cases.push((x >> 1) as i64 >> (x % 63));
+        }
+        for w in cases {
+            assert_eq!(bits_beyond_31_parts(w), want(w), "{w}");
+            assert_eq!(bits_beyond_31(w), want(w), "{w}");
+        }
+    }
+
+    #[test]
+    fn split_shifts_are_shifts() {
+        let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+        for _ in 0..20_000 {
+            let x = next();
+            let v = x as i64 >> (x % 40);
+            for s in 0..32 {
+                assert_eq!(shl64_parts(v, s), v.wrapping_shl(s), "{v} << {s}");
+                assert_eq!(shr64_parts(v, s), v >> s, "{v} >> {s}");
+                assert_eq!(shl64(v, s), v.wrapping_shl(s));
+                assert_eq!(shr64(v, s), v >> s);
+            }
+        }
+        for v in [0i64, -1, 1, i64::MIN, i64::MAX] {
+            for s in 0..32 {
+                assert_eq!(shl64_parts(v, s), v.wrapping_shl(s));
+                assert_eq!(shr64_parts(v, s), v >> s);
+            }
+        }
+    }
+
+    #[test]
+    fn small_products_wrap_as_i64_does() {
+        let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut cases = std::vec![];
+        for a in [
+            0i64,
+            1,
+            -1,
+            i64::MAX,
+            i64::MIN,
+            1 << 47,
+            -(1 << 53) + 5,
+            0xffff_ffff,
+        ] {
+            for b in [0i32, 1, -1, 8, -8, 65535, -65535, 65536, i32::MIN, i32::MAX] {
+                cases.push((a, b));
+            }
+        }
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            cases.push((x as i64 >> (x % 17), (x >> 40) as i32 >> (x % 23)));
+        }
+        for (a, b) in cases {
+            let want = a.wrapping_mul(i64::from(b));
+            assert_eq!(mul_i64_i32(a, b), want, "{a} * {b}");
+            if b.unsigned_abs() < 1 << 16 {
+                assert_eq!(mul_small_parts(a, b), want, "{a} * {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn signless_division_is_floor_division() {
+        // The floor of n/d from Euclid's division (d ≠ 0).
+        let floor = |n: i64, d: i64| {
+            let q = n.div_euclid(d);
+            if d < 0 && n.rem_euclid(d) != 0 {
+                q - 1
+            } else {
+                q
+            }
+        };
+        let edge_n = [
+            0i64,
+            1,
+            -1,
+            (1 << 48) - 1,
+            -(1 << 48) + 1,
+            -(1 << 48),
+            1 << 48,
+            -(1 << 48) - 1,
+            i64::from(i32::MAX),
+            i64::from(i32::MIN),
+            1 << 52,
+        ];
+        let edge_d = [1i64, -1, 2, -3, 65535, -65535, 65536, -65536, 1 << 20];
+        for &n in &edge_n {
+            for &d in &edge_d {
+                assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
+            }
+        }
+        let mut next = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..300_000 {
+            let v = next();
+            let n = ((v >> 12) as i64) >> (v % 48); // |n| < 2⁵¹
+            let d = (((next() % (1 << 18)) as i64 + 1) >> (next() % 18)).max(1);
+            let d = if next().is_multiple_of(2) { d } else { -d };
+            assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
+        }
+    }
+
+    #[test]
+    fn small_reciprocal_is_exact_for_every_divisor() {
+        for d in 1..1u32 << 16 {
+            assert_eq!(recip32_small(d), u32::MAX / d, "d = {d}");
+        }
+        assert_eq!(recip32_small(1 << 16), u32::MAX >> 16);
+        assert_eq!(recip32_small(0), u32::MAX);
+    }
+
+    #[test]
+    fn reciprocal_pair_division_is_div_floor() {
+        let ds = [
+            1i64, 2, 3, 7, 255, 256, 4095, 65534, 65535, -1, -2, -3, -65535,
+        ];
+        let ns = [
+            0i64,
+            1,
+            -1,
+            65535,
+            -65536,
+            (1 << 32) - 1,
+            1 << 32,
+            -(1 << 40) - 3,
+            (1 << 48) - 1,
+            -(1 << 48) + 1,
+        ];
+        let check = |n1: i64, n2: i64, d: i64| {
+            let want = (n1.div_euclid(d), n2.div_euclid(d));
+            let want = if d < 0 {
+                // div_euclid rounds toward −∞ only for positive divisors.
+                ((-n1).div_euclid(-d), (-n2).div_euclid(-d))
+            } else {
+                want
+            };
+            assert_eq!(
+                div_floor_pair_recip(n1, n2, d),
+                Some(want),
+                "{n1} {n2} / {d}"
+            );
+            assert_eq!(div_floor_pair(n1, n2, d), want);
+            assert_eq!((div_floor(n1, d), div_floor(n2, d)), want);
+        };
+        for &d in &ds {
+            for &n1 in &ns {
+                for &n2 in &ns {
+                    check(n1, n2, d);
+                }
+            }
+        }
+        let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+        for _ in 0..200_000 {
+            let d = (next() % 65535) as i64 + 1;
+            let d = if next().is_multiple_of(2) { d } else { -d };
+            let n = |v: u64| ((v >> 16) as i64) >> (v % 40); // |n| < 2⁴⁸
+            check(n(next()), n(next()), d);
+        }
+        // Outside its range: None.
+        assert_eq!(div_floor_pair_recip(1, 1, 1 << 16), None);
+        assert_eq!(div_floor_pair_recip(1 << 48, 1, 3), None);
+        assert_eq!(div_floor_pair_recip(1, -(1 << 48), 3), None);
+        assert_eq!(div_floor_pair_recip(1, 1, 0), None);
+    }
+
+    #[test]
+    fn shift_and_subtract_division_is_exact() {
+        let edges = [
+            0u32,
+            1,
+            2,
+            3,
+            7,
+            8,
+            255,
+            256,
+            65535,
+            65536,
+            1 << 31,
+            u32::MAX - 1,
+            u32::MAX,
+        ];
+        for &n in &edges {
+            for &d in edges.iter().filter(|&&d| d > 0) {
+                assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+            }
+        }
+        let mut x = 0x9e37_79b9_u64;
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let n = (x >> 32) as u32 >> (x % 32);
+            let d = ((x >> 7) as u32 >> ((x >> 3) % 32)).max(1);
+            assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+            let (ni, di) = (n as i32, (d >> 1).max(1) as i32);
+            assert_eq!(floor_div32_soft(ni, di), ni.div_euclid(di), "{ni} / {di}");
+        }
+    }
+
+    #[test]
+    fn floor_and_ceil_division_round_the_right_way() {
+        assert_eq!(div_floor(7, 2), 3);
+        assert_eq!(div_floor(-7, 2), -4);
+        assert_eq!(div_floor(7, -2), -4);
+        assert_eq!(div_floor(-7, -2), 3);
+        assert_eq!(div_ceil(7, 2), 4);
+        assert_eq!(div_ceil(-7, 2), -3);
+        assert_eq!(div_ceil(8, 2), 4);
+        for (n, d) in [
+            (7, 2),
+            (-7, 2),
+            (-8, 2),
+            (0, 5),
+            (i32::MIN, 3),
+            (i32::MAX, 7),
+        ] {
+            assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_flip(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
+        }
+        let mut x = 0x853c_49e6_748f_ea9b_u64;
+        for _ in 0..100_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (n, d) = (
+                (x >> 32) as i32,
+                ((x as u32 & i32::MAX as u32) >> (x % 31)).max(1) as i32,
+            );
+            assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_flip(n, d), n.div_euclid(d), "{n} / {d}");
+            assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
+        }
+        // The 64-bit and two-digit paths agree with plain division.
+        assert_eq!(div_floor(-(1 << 40) - 1, 1 << 20), -(1 << 20) - 1);
+        let mut x = 0x1234_5678_9abc_u64;
+        for _ in 0..20_000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let n = ((x >> 14) as i64) - (1 << 49);
+            let d = ((x >> 3) % 70_000) as i64 - 35_000;
+            if d != 0 {
+                assert_eq!(
+                    div_floor(n, d),
+                    n.div_euclid(d) - i64::from(d < 0 && n.rem_euclid(d) != 0),
+                    "{n} / {d}"
+                );
+            }
+        }
+        assert_eq!(div_floor_wide(-7, 2), -4);
+    }
+
+    #[test]
+    fn rounding_and_saturation() {
+        assert_eq!(round_f32(2.5), 3);
+        assert_eq!(round_f32(-2.5), -3);
+        assert_eq!(round_f32(2.49), 2);
+        assert_eq!(sat_i32(1 << 40), i32::MAX);
+        assert_eq!(sat_i32(-(1 << 40)), i32::MIN);
+    }
+}
