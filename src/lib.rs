@@ -58,31 +58,27 @@
 extern crate std;
 
 mod band;
+mod buffer;
 pub mod camera;
-mod clip;
 mod error;
 mod fill;
 pub mod fixed;
-mod line;
+mod geometry;
 pub mod math;
 pub mod mesh;
 mod num;
 mod raster;
 mod render;
 pub mod shade;
-mod small;
-mod target;
 #[cfg(test)]
 mod testing;
-mod zbuffer;
 
 pub use band::BandBuffers;
+pub use buffer::{ColorBuffer, DepthTest, ZBuffer};
 pub use error::{DrawError, Error};
-pub use fill::{fill_triangle, fill_triangle_shaded, SpanStats};
-pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex};
+pub use fill::{fill_triangle, fill_triangle_shaded};
+pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
 pub use render::{CachedVertex, Cull, DepthSort, FrameStats, RenderOptions, Renderer};
-pub use target::ColorBuffer;
-pub use zbuffer::{DepthTest, ZBuffer};
 
 /// The largest width or height of a Z-buffer or colour buffer, in pixels (8192).
 ///

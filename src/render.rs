@@ -11,13 +11,16 @@
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::band::{Carry, ColorCarry};
-use crate::camera::{outcode_of, to_f32, FixedTransform, ScreenMap, Transform};
-use crate::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
-use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget, SpanStats};
-use crate::line::draw_line;
+use crate::camera::Transform;
+use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget};
+use crate::geometry::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
+use crate::geometry::project::{outcode_of, to_f32, ScreenMap};
+use crate::geometry::transform::FixedTransform;
 use crate::math::Vec3;
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
-use crate::raster::{signed_area, signed_area_guarded, Clip, Plane, ScreenVertex};
+use crate::raster::{
+    draw_line, signed_area, signed_area_guarded, Clip, Plane, ScreenVertex, SpanStats,
+};
 use crate::shade::{Intensity, Light, Material, Shading, ONE};
 use crate::{ColorBuffer, DrawError, Error, ZBuffer};
 
@@ -515,7 +518,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 clip_polygon(&mut poly, v0.code | v1.code | v2.code);
                 let mut out: heapless::Vec<
                     (ScreenVertex, Intensity),
-                    { crate::clip::MAX_CLIPPED },
+                    { crate::geometry::clip::MAX_CLIPPED },
                 > = heapless::Vec::new();
                 for c in &poly {
                     if let Some(s) = self.map.project(&c.c) {
@@ -1088,7 +1091,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             return false;
         }
         clip_polygon(&mut poly, code_or);
-        let pts: heapless::Vec<ScreenVertex, { crate::clip::MAX_CLIPPED }> =
+        let pts: heapless::Vec<ScreenVertex, { crate::geometry::clip::MAX_CLIPPED }> =
             poly.iter().filter_map(|c| self.map.project(&c.c)).collect();
         let p = |v: &ScreenVertex| (v.x(), v.y());
         let Some((first, rest)) = pts.split_first() else {

@@ -7,9 +7,9 @@ use embedded_graphics::{
     Pixel,
 };
 
+use super::{band_origin, check_dims, row_span};
 use crate::error::prefix_mut;
 use crate::raster::Clip;
-use crate::zbuffer::{band_origin, check_dims, row_span};
 use crate::Error;
 
 /// A frame (or a band of one) of colours in a caller-provided slice.

@@ -5,18 +5,18 @@
 //! runs, one `fill_solid` per run (or one `fill_contiguous` for shaded runs), already
 //! clipped to the target's bounding box.
 
-use core::ops::AddAssign;
-
 use embedded_graphics::{
     pixelcolor::PixelColor,
     prelude::{DrawTarget, Point, Size},
     primitives::Rectangle,
 };
 
-use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup};
+use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup, SpanStats};
 use crate::shade::{Intensity, Material};
-use crate::small::{fill_small, Buffers};
+mod small;
+
 use crate::{ColorBuffer, DepthTest, ZBuffer};
+use small::{fill_small, Buffers};
 
 /// `$body` with `$pass` bound to the comparison of depth test `$test`, in one arm per
 /// test so that each gets its own copy of the loop in `$body` (the comparison is a
@@ -47,25 +47,6 @@ macro_rules! per_depth_test {
             DepthTest::Never => $never,
         }
     };
-}
-
-/// Counts from drawing one or more triangles.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
-pub struct SpanStats {
-    /// Pixel centres inside the triangles and the clip area (depth-tested).
-    pub pixels_tested: u32,
-    /// Pixels that passed the depth test and were drawn.
-    pub pixels_written: u32,
-    /// Horizontal runs handed to the draw target.
-    pub runs: u32,
-}
-
-impl AddAssign for SpanStats {
-    fn add_assign(&mut self, o: SpanStats) {
-        self.pixels_tested += o.pixels_tested;
-        self.pixels_written += o.pixels_written;
-        self.runs += o.runs;
-    }
 }
 
 /// The pixels both the target and the Z-buffer hold.

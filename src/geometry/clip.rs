@@ -3,7 +3,7 @@
 
 use heapless::Vec;
 
-use crate::camera::{outcode, GUARD};
+use super::project::{outcode, GUARD};
 
 /// A clip-space vertex with the attribute interpolated alongside (light intensity).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,8 +103,8 @@ pub(crate) fn clip_segment(
 
 #[cfg(test)]
 mod tests {
+    use super::super::project::outcode_of;
     use super::*;
-    use crate::camera::outcode_of;
 
     fn v(x: f32, y: f32, z: f32, w: f32) -> ClipVertex {
         ClipVertex {

@@ -6,10 +6,10 @@ use embedded_graphics::{
     primitives::Rectangle,
 };
 
-use crate::fill::SpanStats;
+use super::SpanStats;
+use super::{Clip, ScreenVertex};
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::div_floor;
-use crate::raster::{Clip, ScreenVertex};
 use crate::ZBuffer;
 
 /// Draw the segment `a`–`b`: one pixel per column (or per row, for steep lines), the

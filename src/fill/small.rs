@@ -266,7 +266,7 @@ fn rows<C: Copy>(
                 }
             } else if let (Some(zr), Some(cr)) = (b.zdata.get_mut(s..e), b.cdata.get_mut(s..e)) {
                 let n = (xb - xa) as u32;
-                let failed = crate::fill::flat_span(zr, cr, acc, d.sx, color, write, &pass);
+                let failed = super::flat_span(zr, cr, acc, d.sx, color, write, &pass);
                 *tested += n;
                 *written += n - failed;
             }

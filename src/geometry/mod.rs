@@ -1,0 +1,6 @@
+//! From model space to screen triangles: the fixed-point vertex transform, projection
+//! with outcodes, clipping against the view volume, and face culling.
+
+pub(crate) mod clip;
+pub(crate) mod project;
+pub(crate) mod transform;

@@ -1,0 +1,320 @@
+//! Projection: clip-space vertices classified against the view volume (outcodes) and
+//! mapped to screen vertices, in `f32` or, on cores without an FPU, in integers.
+// Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
+#![allow(clippy::indexing_slicing)]
+
+use super::transform::Clip4;
+use crate::camera::Viewport;
+use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
+use crate::num::{
+    bits_beyond_31, mul_i64_i32, mul_wide, recip62, round_f32, shr64, INTEGER_PROJECTION,
+};
+use crate::raster::ScreenVertex;
+
+/// How far outside the screen (in screen widths) a vertex may project before the
+/// triangle is clipped: |x|, |y| ≤ GUARD·w. With viewports of at most 8192 pixels the
+/// projected coordinates stay within ±(GUARD + 1)·8192 pixels, inside the rasterizer's
+/// range of ±2²⁰ pixels.
+pub(crate) const GUARD: f32 = 64.0;
+
+/// Outcode bits: which clip planes a vertex is outside of.
+pub(crate) mod outcode {
+    pub const NEAR: u8 = 1;
+    pub const FAR: u8 = 2;
+    pub const LEFT: u8 = 4;
+    pub const RIGHT: u8 = 8;
+    pub const BOTTOM: u8 = 16;
+    pub const TOP: u8 = 32;
+    pub const W: u8 = 64;
+}
+
+/// `o` with the guard-band bits of an outcode added: `x` and `y` against `±g`
+/// (g = GUARD · w), in whichever number type the caller tests in (`f32`, or exact `i64`).
+#[inline(always)]
+fn guard_code<T: PartialOrd + core::ops::Neg<Output = T> + Copy>(
+    mut o: u8,
+    x: T,
+    y: T,
+    g: T,
+) -> u8 {
+    if x < -g {
+        o |= outcode::LEFT;
+    }
+    if x > g {
+        o |= outcode::RIGHT;
+    }
+    if y < -g {
+        o |= outcode::BOTTOM;
+    }
+    if y > g {
+        o |= outcode::TOP;
+    }
+    o
+}
+
+/// The outcode of a clip-space point.
+#[inline]
+pub(crate) fn outcode_of(c: &[f32; 4]) -> u8 {
+    let [x, y, z, w] = *c;
+    let g = GUARD * w;
+    let mut o = 0;
+    if z < -w {
+        o |= outcode::NEAR;
+    }
+    if z > w {
+        o |= outcode::FAR;
+    }
+    o = guard_code(o, x, y, g);
+    if w < 1.0 || w.is_nan() {
+        o |= outcode::W;
+    }
+    o
+}
+
+/// Fixed clip coordinates as `f32` (rounded once).
+#[inline]
+pub(crate) fn to_f32(c: &Clip4) -> [f32; 4] {
+    c.to_f32()
+}
+
+/// Screen mapping of a viewport, precomputed.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ScreenMap {
+    sx: f32,
+    ox: f32,
+    sy: f32,
+    oy: f32,
+    /// The same in integers (1/16 pixel), for the integer projection; half_w and
+    /// half_h are at most 8 · 8192 = 2¹⁶ (so they fit `i32`).
+    half_w: i64,
+    half_h: i64,
+    ox_i: i64,
+    oy_i: i64,
+}
+
+/// 65535 · 65536 / 2: window depth (z_ndc + 1)/2 in 16.16 of 0..=65535.
+const DEPTH_HALF: f32 = 65535.0 * 32768.0;
+
+impl ScreenMap {
+    pub(crate) fn new(vp: &Viewport) -> ScreenMap {
+        let half_w = vp.width as f32 * (SUBPIXEL as f32 / 2.0);
+        let half_h = vp.height as f32 * (SUBPIXEL as f32 / 2.0);
+        let (hw, hh) = (i64::from(vp.width) * 8, i64::from(vp.height) * 8);
+        ScreenMap {
+            sx: half_w,
+            ox: half_w + (vp.x * SUBPIXEL) as f32,
+            sy: -half_h,
+            oy: half_h + (vp.y * SUBPIXEL) as f32,
+            half_w: hw,
+            half_h: hh,
+            ox_i: hw + i64::from(vp.x * SUBPIXEL),
+            oy_i: hh + i64::from(vp.y * SUBPIXEL),
+        }
+    }
+
+    /// Classify and project a fixed-point clip-space point: its outcode, and its screen
+    /// vertex when the outcode is 0. The planes are tested in integers (64-bit where a
+    /// sum could overflow); only points inside are divided by w.
+    #[inline]
+    pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
+        // Near, far and w ≥ 1 exactly, in 64 bits; every plane is tested, also behind
+        // the eye, so that clipping cuts at the near plane first, well away from w = 0.
+        let (z, w) = c.zw();
+        let mut code = if w < 1 { outcode::W } else { 0 };
+        if z < -w {
+            code |= outcode::NEAR;
+        }
+        if z > w {
+            code |= outcode::FAR;
+        }
+        if INTEGER_PROJECTION {
+            if let Some(v) = self.project_integer(c, z, w, code) {
+                return v;
+            }
+        }
+        self.project_fixed_float(c, code)
+    }
+
+    /// The rest of [`project_fixed`](ScreenMap::project_fixed) in `f32`.
+    #[inline]
+    pub(crate) fn project_fixed_float(&self, c: &Clip4, mut code: u8) -> (u8, ScreenVertex) {
+        // The guard band in f32: it has room for rounding.
+        let [x, y, zf, wf] = c.to_f32();
+        let g = GUARD * wf;
+        // Both within ±g (the usual case) adds no bit: two compares instead of four.
+        if !(x.abs() <= g && y.abs() <= g) {
+            code = guard_code(code, x, y, g);
+        }
+        if code != 0 {
+            return (code, ScreenVertex::ORIGIN);
+        }
+        // Inside: |x|, |y| ≤ 64·w (to f32 rounding) and |z| ≤ w, so x and y land
+        // within ±65·8192·8 < 2²³ (no clamp needed) and only z needs clamping.
+        let inv = 1.0 / wf;
+        let sx = x * inv * self.sx + self.ox;
+        let sy = y * inv * self.sy + self.oy;
+        let sz = (zf * inv + 1.0) * DEPTH_HALF + 0.5;
+        (
+            0,
+            ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)),
+        )
+    }
+
+    /// The rest of [`project_fixed`](ScreenMap::project_fixed) in integers: the guard
+    /// band exactly, then three 64-by-32-bit divisions by w normalised to 31 bits
+    /// (relative precision 2⁻³⁰, well below a 1/16 pixel or a 1/65536 depth unit).
+    /// `None` when x and y are not in a scale it handles (then the `f32` path runs).
+    pub(crate) fn project_integer(
+        &self,
+        c: &Clip4,
+        z: i64,
+        w: i64,
+        mut code: u8,
+    ) -> Option<(u8, ScreenVertex)> {
+        let (x, y) = c.xy_wide()?;
+        if code & outcode::W == 0 {
+            let g = w << 6; // w < 2⁴⁵
+            code = guard_code(code, x, y, g);
+        }
+        if code != 0 {
+            return Some((code, ScreenVertex::ORIGIN));
+        }
+        // Inside: 1 ≤ w < 2⁴⁵, 0 ≤ z + w ≤ 2w, |x|, |y| ≤ 64w. Shift everything so that
+        // w fits 31 bits; the ratios keep 30 bits or more.
+        let sh = bits_beyond_31(w);
+        let wn = shr64(w, sh); // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
+                               // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
+        let (xn, yn, un) = (shr64(x, sh), shr64(y, sh), shr64(z + w, sh)); // sh ≤ 14
+                                                                           // One division: r = ⌊2⁶²/wn⌋ (≤ 2³² when wn ≥ 2³⁰; below that the exact
+                                                                           // divisions further down run instead). Each quotient n/wn is then n·r/2⁶², formed
+                                                                           // from 32-bit halves of n (no 128-bit arithmetic), exact to within one unit of the
+                                                                           // result's last place.
+        let r = if wn >= 1 << 30 { recip62(wn as u32) } else { 0 };
+        let times_r = |n: u64| -> u64 {
+            // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴; with 32×32-bit products
+            // unless r = 2³² (wn = 2³⁰ exactly).
+            let (hi, lo) = (n >> 32, n & 0xffff_ffff);
+            if r >> 32 == 0 {
+                let (hi, lo, r) = (hi as u32, lo as u32, r as u32);
+                mul_wide(hi, r)
+                    .wrapping_shl(2)
+                    .wrapping_add(mul_wide(lo, r) >> 30)
+            } else {
+                hi.wrapping_mul(r)
+                    .wrapping_shl(2)
+                    .wrapping_add(lo.wrapping_mul(r) >> 30)
+            }
+        };
+        // A quotient rounded to nearest: (n/wn) in units of 2⁻³², then halved.
+        let ratio = |n: i64| -> i64 {
+            let q = times_r(n.unsigned_abs()) as i64; // n/wn · 2³²
+            let q = (q + (1 << 31)) >> 32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let sx = if wn >= 1 << 30 {
+            self.ox_i + ratio(mul_i64_i32(xn, self.half_w as i32))
+        } else {
+            self.ox_i + (2 * xn * self.half_w + wn).div_euclid(2 * wn)
+        };
+        let sy = if wn >= 1 << 30 {
+            self.oy_i - ratio(mul_i64_i32(yn, self.half_h as i32))
+        } else {
+            self.oy_i - (2 * yn * self.half_h + wn).div_euclid(2 * wn)
+        };
+        // Depth: (z/w + 1)/2 · 65535 · 2¹⁶ = (un/wn) · 65535 · 2¹⁵, through the ratio in
+        // Q30 (≤ 2³¹; times 65535 < 2⁴⁷).
+        let q30 = if wn >= 1 << 30 {
+            ((times_r(un as u64) >> 1) + 1) as i64 >> 1 // un/wn · 2³⁰, rounded (un ≥ 0)
+        } else {
+            (2 * (un << 30) + wn).div_euclid(2 * wn)
+        };
+        let sz = ((mul_i64_i32(q30, 65535) + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH));
+        Some((0, ScreenVertex::from_raw(sx as i32, sy as i32, sz as u32)))
+    }
+
+    /// Project a clip-space point inside the guard band and depth range (outcode 0).
+    #[inline]
+    pub(crate) fn project(&self, c: &[f32; 4]) -> Option<ScreenVertex> {
+        let inv = 1.0 / c[3];
+        let lim = GUARD_BAND as f32;
+        let x = (c[0] * inv * self.sx + self.ox).clamp(-lim, lim);
+        let y = (c[1] * inv * self.sy + self.oy).clamp(-lim, lim);
+        let z = ((c[2] * inv + 1.0) * DEPTH_HALF).clamp(0.0, MAX_DEPTH as f32);
+        if !(x.is_finite() && y.is_finite() && z.is_finite()) {
+            return None;
+        }
+        ScreenVertex::new(round_f32(x), round_f32(y), (z + 0.5) as u32).ok()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::transform::FixedTransform;
+    use super::*;
+    use crate::camera::{Transform, Viewport};
+    use crate::math::{radians, Mat4, Vec3};
+
+    #[test]
+    fn integer_and_float_projections_agree() {
+        let vp = Viewport::new(320, 240).unwrap();
+        let map = ScreenMap::new(&vp);
+        for (yaw, dist) in [(0.0, 2.5), (30.0, 1.6), (200.0, 0.5), (77.0, 9.0)] {
+            let xf = Transform::perspective(
+                Vec3::new(0.0, 0.0, dist),
+                Vec3::default(),
+                60.0,
+                0.1,
+                10.0,
+                vp,
+            )
+            .unwrap()
+            .with_model(Mat4::rotation_y(radians(yaw)));
+            let fx = FixedTransform::new(&xf.model_view_projection(), 1.0 / 32767.0).unwrap();
+            let mut seen = 0;
+            for i in 0..2000i32 {
+                let p = [
+                    ((i * 7919) % 65535 - 32767) as i16,
+                    ((i * 104_729) % 65535 - 32767) as i16,
+                    ((i * 31) % 65535 - 32767) as i16,
+                ];
+                let c = fx.apply(&p);
+                let (z, w) = c.zw();
+                let base = if w < 1 { outcode::W } else { 0 }
+                    | if z < -w { outcode::NEAR } else { 0 }
+                    | if z > w { outcode::FAR } else { 0 };
+                let (code_f, vf) = map.project_fixed_float(&c, base);
+                let (code_i, vi) = map.project_integer(&c, z, w, base).unwrap();
+                // Away from the guard band's edge the two agree on the outcode.
+                if code_f != code_i {
+                    continue;
+                }
+                if code_i == 0 {
+                    seen += 1;
+                    assert!(
+                        (vf.x() - vi.x()).abs() <= 1 && (vf.y() - vi.y()).abs() <= 1,
+                        "{p:?}: {vf:?} vs {vi:?}"
+                    );
+                    // The f32 path rounds depth to 24 bits (512 units of 16.16 near the far end).
+                    assert!(
+                        (i64::from(vf.z()) - i64::from(vi.z())).abs() <= 1 << 11,
+                        "{p:?}: {vf:?} vs {vi:?}"
+                    );
+                }
+            }
+            assert!(seen > 100);
+        }
+    }
+
+    #[test]
+    fn outcodes() {
+        assert_eq!(outcode_of(&[0.0, 0.0, 0.0, 10.0]), 0);
+        assert_eq!(outcode_of(&[0.0, 0.0, -11.0, 10.0]), outcode::NEAR);
+        assert_eq!(outcode_of(&[0.0, 0.0, 11.0, 10.0]), outcode::FAR);
+        assert_eq!(outcode_of(&[641.0, 0.0, 0.0, 10.0]), outcode::RIGHT);
+        assert_eq!(outcode_of(&[0.0, 0.0, 0.0, -1.0]) & outcode::W, outcode::W);
+    }
+}
