@@ -11,9 +11,10 @@
 
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
+use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
 use crate::raster::signed_area_guarded;
-use crate::render::{cached_triangle, CachedVertex};
+use crate::render::{cached_triangle, outside_rows, per_colouring, CachedVertex};
 use crate::shade::{Material, Shading};
 use crate::{ColorBuffer, DrawError, Error, FrameStats, Renderer, ZBuffer, MAX_DIMENSION};
 
@@ -304,6 +305,91 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         }
         self.count(st);
         Ok(Some(nt))
+    }
+}
+
+impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+    /// Draw a band's listed faces of a cached triangle mesh, in face order. All but the
+    /// tall ones ([`Carry::Tall`]) are known to be unclipped, front-facing (as the
+    /// options cull) and to reach the rows of `frame`, so those tests are skipped for
+    /// them. Colours pass between bands through `carry` as each face's [`Carry`] says.
+    pub(crate) fn draw_band_faces<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        faces: impl Iterator<Item = (usize, Carry)>,
+        carry: &mut ColorCarry<C>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let Faces::Triangles { indices, materials } = self.mesh.faces else {
+            return self.draw_buffer(frame, zbuf);
+        };
+        let lambert = self.options.shading == Shading::Lambert;
+        carry.start_band();
+        // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
+        let px = per_colouring!(self, materials, lambert, |shade| {
+            self.band_loop(frame, zbuf, indices, faces, carry, shade)?
+        });
+        self.stats.add_pixel_counts(&px);
+        Ok(())
+    }
+    /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
+    /// colours from `shade` unless carried; returns the pixel counts.
+    #[inline(always)]
+    pub(crate) fn band_loop<C>(
+        &self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        indices: &'m [[u16; 3]],
+        faces: impl Iterator<Item = (usize, Carry)>,
+        carry: &mut ColorCarry<C>,
+        shade: impl Fn(usize) -> Result<C, Error>,
+    ) -> Result<FrameStats, Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let mut px = FrameStats::default();
+        let Some(cache) = self.cache.as_deref() else {
+            return Ok(px);
+        };
+        let clip = clip_of(frame, zbuf);
+        let (row0, row1) = clip.subpixel_rows();
+        let mut target = FlatTarget::new(frame, zbuf, &clip);
+        for (f, how) in faces {
+            let Some(t) = indices.get(f) else { continue };
+            let [a, b, c] = cached_triangle(cache, f, t)?;
+            let tri = [&a.screen, &b.screen, &c.screen];
+            if how == Carry::Tall {
+                // Drawn in every band: clipped by the general path, or skipped when it
+                // does not reach this band's rows.
+                if a.code | b.code | c.code != 0 {
+                    px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
+                    continue;
+                }
+                if outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                    continue;
+                }
+            }
+            // One call of `shade` (so that it is inlined): carried, or worked out.
+            let carried = if how == Carry::Take {
+                carry.take()
+            } else {
+                None
+            };
+            let color = match carried {
+                Some(c) => c,
+                None => shade(f)?,
+            };
+            if how == Carry::Keep {
+                carry.keep(color);
+            }
+            px.add_fill(target.fill(tri, color));
+        }
+        Ok(px)
     }
 }
 

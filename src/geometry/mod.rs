@@ -2,5 +2,6 @@
 //! with outcodes, clipping against the view volume, and face culling.
 
 pub(crate) mod clip;
+pub(crate) mod cull;
 pub(crate) mod project;
 pub(crate) mod transform;

@@ -1,0 +1,374 @@
+//! The renderers: from a mesh and a transform to pixels.
+//!
+//! One [`Renderer`] holds a frame's geometry state (the fixed-point transform, the
+//! light in model space and, optionally, a cache of transformed vertices) and draws it
+//! in any of four ways: with the Z-buffer ([`draw`](Renderer::draw)), by depth sorting
+//! ([`draw_depth_sorted`](Renderer::draw_depth_sorted)), as hidden-line
+//! ([`draw_hidden_line`](Renderer::draw_hidden_line)) or as wireframe
+//! ([`draw_wireframe`](Renderer::draw_wireframe)). Each call draws into one target,
+//! which may be the whole screen or one band of it.
+
+use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
+
+mod lines;
+mod painter;
+mod solid;
+mod walk;
+
+pub(crate) use crate::geometry::cull::culled;
+pub use crate::geometry::cull::Cull;
+pub use painter::DepthSort;
+pub(crate) use solid::per_colouring;
+pub(crate) use walk::{cached_triangle, outside_rows};
+use walk::{edges, fan};
+
+use crate::camera::Transform;
+use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget};
+use crate::geometry::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
+use crate::geometry::project::{outcode_of, to_f32, ScreenMap};
+use crate::geometry::transform::FixedTransform;
+use crate::math::Vec3;
+use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
+use crate::raster::{
+    draw_line, signed_area, signed_area_guarded, Clip, Plane, ScreenVertex, SpanStats,
+};
+use crate::shade::{Intensity, Light, Material, Shading, ONE};
+use crate::{ColorBuffer, DrawError, Error, ZBuffer};
+
+/// How a mesh is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RenderOptions {
+    /// Face culling.
+    pub cull: Cull,
+    /// Shading model.
+    pub shading: Shading,
+    /// The light for [`Shading::Lambert`] and [`Shading::Gouraud`].
+    pub light: Light,
+}
+
+/// Counts for a frame.
+///
+/// Geometry counts (triangles in, culled, outside, clipped, drawn) are taken by the
+/// first draw call of a [`Renderer`]; pixel counts add up over every call, so a frame
+/// drawn band by band reports the same totals as one drawn whole.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct FrameStats {
+    /// Triangles after fan triangulation of the faces.
+    pub triangles_in: u32,
+    /// Triangles dropped by face culling (or with zero area).
+    pub culled: u32,
+    /// Triangles entirely outside the view volume.
+    pub outside: u32,
+    /// Triangles cut by a clip plane (near, far or guard band).
+    pub clipped: u32,
+    /// Triangles handed to the rasterizer (pieces of clipped ones included).
+    pub drawn: u32,
+    /// Pixels depth-tested (64 bits: overdraw at large sizes passes 2³²).
+    pub pixels_tested: u64,
+    /// Pixels written.
+    pub pixels_written: u64,
+    /// Runs handed to the draw target (the fused path of
+    /// [`Renderer::draw_buffer`] writes pixels directly and hands over none).
+    pub runs: u64,
+}
+
+impl FrameStats {
+    /// Add the triangle counts of `g` (not its pixel counts).
+    pub(crate) fn add_geometry(&mut self, g: &FrameStats) {
+        self.triangles_in += g.triangles_in;
+        self.culled += g.culled;
+        self.outside += g.outside;
+        self.clipped += g.clipped;
+        self.drawn += g.drawn;
+    }
+
+    pub(crate) fn add_pixel_counts(&mut self, o: &FrameStats) {
+        self.pixels_tested += o.pixels_tested;
+        self.pixels_written += o.pixels_written;
+        self.runs += o.runs;
+    }
+
+    pub(crate) fn add_pixels(&mut self, s: SpanStats) {
+        self.add_fill(s);
+        self.runs += u64::from(s.runs);
+    }
+
+    /// Add the pixel counts of `s`, which has no runs (a fill into buffers).
+    #[inline(always)]
+    pub(crate) fn add_fill(&mut self, s: SpanStats) {
+        self.pixels_tested += u64::from(s.pixels_tested);
+        self.pixels_written += u64::from(s.pixels_written);
+    }
+}
+
+/// A vertex transformed and projected once per frame (16 bytes), so that every band
+/// and every face sharing it reuses the work. See [`Renderer::with_cache`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CachedVertex {
+    pub(crate) screen: ScreenVertex,
+    pub(crate) code: u8,
+    pub(crate) light: Intensity,
+}
+
+impl CachedVertex {
+    #[inline]
+    pub(crate) fn code(&self) -> u8 {
+        self.code
+    }
+
+    #[inline]
+    pub(crate) fn screen(&self) -> ScreenVertex {
+        self.screen
+    }
+
+    /// An empty entry, to initialise cache arrays.
+    pub const EMPTY: CachedVertex = CachedVertex {
+        screen: ScreenVertex::ORIGIN,
+        code: 0,
+        light: 0,
+    };
+}
+
+impl Default for CachedVertex {
+    fn default() -> Self {
+        CachedVertex::EMPTY
+    }
+}
+
+/// Draws one mesh, placed by one transform, into targets with the methods below.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_graphics::prelude::*;
+/// use zraster::{math::{Mat4, Vec3}, mesh::CUBE, camera::{Transform, Viewport}};
+/// use zraster::{ColorBuffer, Renderer, RenderOptions, ZBuffer};
+///
+/// let vp = Viewport::new(64, 48)?;
+/// let xf = Transform::perspective(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, vp)?;
+/// let mut pixels = [Rgb565::BLACK; 64 * 48];
+/// let mut depth = [0u16; 64 * 48];
+/// let mut frame = ColorBuffer::new(&mut pixels, 64, 48)?;
+/// let mut zbuf = ZBuffer::new(&mut depth, 64, 48)?;
+/// zbuf.clear();
+/// let mut renderer = Renderer::new(&CUBE, &xf, RenderOptions::default())?;
+/// renderer.draw(&mut frame, &mut zbuf).unwrap();
+/// // Three faces of the cube face the camera.
+/// assert_eq!(renderer.stats().drawn, 6);
+/// assert_eq!(frame.pixel(32, 24), Some(Rgb565::new(0, 0, 31))); // the blue front face
+/// # Ok::<(), zraster::Error>(())
+/// ```
+pub struct Renderer<'m, 'c, M> {
+    pub(crate) mesh: Mesh<'m, M>,
+    pub(crate) fixed: FixedTransform,
+    pub(crate) map: ScreenMap,
+    pub(crate) options: RenderOptions,
+    /// Unit light direction in model space, for model-space normals.
+    pub(crate) light_model: Vec3,
+    /// The light for Q14 normals: `L` in Q15, and the ambient and diffuse weights in Q15.
+    pub(crate) light_q: ([i32; 3], i64, i64),
+    pub(crate) cache: Option<&'c mut [CachedVertex]>,
+    pub(crate) stats: FrameStats,
+    pub(crate) counted: bool,
+}
+
+/// A fetched vertex: screen position if inside (code 0), and its light.
+#[derive(Clone, Copy)]
+struct Fetched {
+    index: u16,
+    code: u8,
+    screen: ScreenVertex,
+    light: Intensity,
+}
+
+impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+    /// A renderer that transforms vertices as faces need them (no cache memory; shared
+    /// vertices are transformed once per face that uses them, and again in every band).
+    ///
+    /// Errors: a NaN/∞ or degenerate transform, a mesh scale that is not finite.
+    pub fn new(mesh: &Mesh<'m, M>, xf: &Transform, options: RenderOptions) -> Result<Self, Error> {
+        let mvp = xf.model_view_projection();
+        let fixed = FixedTransform::new(&mvp, mesh.scale)?;
+        if !(options.light.direction.is_finite()
+            && options.light.ambient.is_finite()
+            && options.light.diffuse.is_finite())
+        {
+            return Err(Error::NotFinite);
+        }
+        let light_model = xf
+            .model
+            .transpose_dir(options.light.direction.normalize())
+            .normalize();
+        Ok(Renderer {
+            mesh: *mesh,
+            fixed,
+            map: ScreenMap::new(&xf.viewport),
+            options,
+            light_model,
+            light_q: (
+                [light_model.x, light_model.y, light_model.z]
+                    .map(|c| crate::num::round_f32(c * 32768.0)),
+                i64::from(crate::num::round_f32(
+                    options.light.ambient.clamp(-2.0, 2.0) * 32768.0,
+                )),
+                i64::from(crate::num::round_f32(
+                    options.light.diffuse.clamp(-2.0, 2.0) * 32768.0,
+                )),
+            ),
+            cache: None,
+            stats: FrameStats::default(),
+            counted: false,
+        })
+    }
+
+    /// A renderer that transforms every vertex once, now, into `cache` (one
+    /// [`CachedVertex`] per mesh vertex, 16 bytes each).
+    ///
+    /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
+    pub fn with_cache(
+        mesh: &Mesh<'m, M>,
+        xf: &Transform,
+        options: RenderOptions,
+        cache: &'c mut [CachedVertex],
+    ) -> Result<Self, Error> {
+        let mut r = Self::new(mesh, xf, options)?;
+        let n = mesh.positions.len();
+        let cache = crate::error::prefix_mut(cache, n)?;
+        // Positions first, vertex lights (Gouraud only) in a pass of their own: the
+        // projection loop then does not ask for each vertex which shading it is.
+        for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
+            let (code, screen) = r.map.project_fixed(&r.fixed.apply(p));
+            *slot = CachedVertex {
+                screen,
+                code,
+                light: ONE,
+            };
+        }
+        if options.shading == Shading::Gouraud {
+            for (i, slot) in cache.iter_mut().enumerate() {
+                slot.light = r.vertex_light(i);
+            }
+        }
+        r.cache = Some(cache);
+        Ok(r)
+    }
+
+    /// The counts so far (see [`FrameStats`]).
+    pub fn stats(&self) -> FrameStats {
+        self.stats
+    }
+
+    /// Transform, classify and project vertex `i`.
+    fn transform(&self, i: u16) -> Result<Fetched, Error> {
+        let p = self
+            .mesh
+            .positions
+            .get(usize::from(i))
+            .ok_or(Error::IndexOutOfRange {
+                face: usize::MAX,
+                index: usize::from(i),
+            })?;
+        let (code, screen) = self.map.project_fixed(&self.fixed.apply(p));
+        let light = if self.options.shading == Shading::Gouraud {
+            self.vertex_light(usize::from(i))
+        } else {
+            ONE
+        };
+        Ok(Fetched {
+            index: i,
+            code,
+            screen,
+            light,
+        })
+    }
+
+    #[inline]
+    fn fetch(&self, i: u16, face: usize) -> Result<Fetched, Error> {
+        let bad = Error::IndexOutOfRange {
+            face,
+            index: usize::from(i),
+        };
+        match &self.cache {
+            Some(cache) => {
+                let c = cache.get(usize::from(i)).ok_or(bad)?;
+                Ok(Fetched {
+                    index: i,
+                    code: c.code,
+                    screen: c.screen,
+                    light: c.light,
+                })
+            }
+            None => self.transform(i).map_err(|_| bad),
+        }
+    }
+
+    /// Gouraud light of vertex `i` from the mesh's vertex normals (full light without).
+    pub(crate) fn vertex_light(&self, i: usize) -> Intensity {
+        match self.mesh.vertex_normals.and_then(|n| n.get(i)) {
+            Some(n) => self.options.light.intensity(self.dot_q14(n)),
+            None => ONE,
+        }
+    }
+
+    pub(crate) fn dot_q14(&self, n: &[i16; 3]) -> f32 {
+        let l = self.light_model;
+        (f32::from(n[0]) * l.x + f32::from(n[1]) * l.y + f32::from(n[2]) * l.z) / NORMAL_ONE as f32
+    }
+
+    /// Lambert light of face `f` (inlined into the face loops).
+    #[inline(always)]
+    pub(crate) fn face_light(&self, f: usize) -> Intensity {
+        match self.mesh.face_normals.and_then(|n| n.get(f)) {
+            Some(n) => self.lambert_q14(n),
+            None => self
+                .options
+                .light
+                .intensity(face_normal(&self.mesh, f).map_or(0.0, |n| n.dot(self.light_model))),
+        }
+    }
+
+    /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29
+    /// and at most 2²⁹ in magnitude (two unit vectors), so it fits `i32`. Ambient and
+    /// diffuse are Q15 within ±2: the product is below 2⁴⁶ (in `i64`), the diffuse term
+    /// then within ±2¹⁶ and the sum within ±2¹⁷, so the sum and its clamp fit `i32`
+    /// (one saturating instruction on a Cortex-M3/M4).
+    #[inline]
+    pub(crate) fn lambert_q14(&self, n: &[i16; 3]) -> Intensity {
+        let ([lx, ly, lz], amb, diff) = self.light_q;
+        let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
+        // |diff| ≤ 2¹⁶: on ARMv6-M three 32-bit multiplies instead of a library call.
+        let product = crate::num::mul_i64_i32(i64::from(dot.max(0)), diff as i32);
+        let term = ((product + (1 << 28)) >> 29) as i32;
+        (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
+    }
+
+    /// Face `f`'s vertex list, checked.
+    pub(crate) fn face(&self, f: usize) -> Result<(&'m [u16], M), Error> {
+        let (vs, m) = self
+            .mesh
+            .face(f)
+            .ok_or(Error::CapacityExceeded { capacity: f })?;
+        if vs.len() < 3 {
+            return Err(Error::DegenerateFace { face: f });
+        }
+        Ok((vs, m))
+    }
+
+    /// Record the geometry counts of a frame (taken once, by its first pass).
+    pub(crate) fn count(&mut self, geometry: FrameStats) {
+        if !self.counted {
+            let FrameStats {
+                pixels_tested,
+                pixels_written,
+                runs,
+                ..
+            } = self.stats;
+            self.stats = FrameStats {
+                pixels_tested,
+                pixels_written,
+                runs,
+                ..geometry
+            };
+            self.counted = true;
+        }
+    }
+}

@@ -1,0 +1,289 @@
+//! Drawing with the Z-buffer: into any draw target run by run, or into a colour buffer
+//! with the depth test and the colour write fused.
+
+use super::*;
+
+/// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
+/// for the renderer's materials and shading, in one arm for each way of colouring (one
+/// colour for all; a uniform material, lit; a material per face), so that the loop in
+/// `$body` is instantiated for each and does not ask which it is for every face.
+macro_rules! per_colouring {
+    ($r:expr, $materials:expr, $lambert:expr, |$shade:ident| $body:expr) => {
+        match ($r.flat_color($materials, $lambert), $materials) {
+            (Some(c), _) => {
+                let $shade = |_: usize| Ok(c);
+                $body
+            }
+            // A uniform material without one colour for all is lit.
+            (None, crate::mesh::Materials::Uniform(m)) => {
+                let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
+                $body
+            }
+            (None, _) => {
+                let $shade = |f: usize| $r.face_color($materials, $lambert, f);
+                $body
+            }
+        }
+    };
+}
+pub(crate) use per_colouring;
+
+impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+    /// The one colour of every face when it does not depend on the face (a uniform
+    /// material, unlit).
+    pub(crate) fn flat_color<C>(
+        &self,
+        materials: crate::mesh::Materials<'m, M>,
+        lambert: bool,
+    ) -> Option<C>
+    where
+        M: Material<C>,
+    {
+        match materials {
+            crate::mesh::Materials::Uniform(m) if !lambert => Some(m.shade(ONE, 0, 0)),
+            _ => None,
+        }
+    }
+    /// Face `f`'s flat colour: its material, lit by the face's Lambert intensity (or
+    /// unlit).
+    #[inline(always)]
+    pub(crate) fn face_color<C>(
+        &self,
+        materials: crate::mesh::Materials<'m, M>,
+        lambert: bool,
+        f: usize,
+    ) -> Result<C, Error>
+    where
+        M: Material<C>,
+    {
+        let m = match materials {
+            crate::mesh::Materials::Uniform(m) => m,
+            crate::mesh::Materials::PerFace(ms) => {
+                *ms.get(f).ok_or(Error::CapacityExceeded { capacity: f })?
+            }
+        };
+        Ok(m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0))
+    }
+    /// Draw with the Z-buffer: every visible triangle, depth-tested per pixel, in the
+    /// mesh's materials and the chosen shading.
+    ///
+    /// `target` and `zbuf` may cover the whole screen or one band of it (rows the
+    /// Z-buffer does not hold are not drawn). Clear both before the first call of a
+    /// frame (or band).
+    pub fn draw<D>(
+        &mut self,
+        target: &mut D,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), DrawError<D::Error>>
+    where
+        D: DrawTarget,
+        M: Material<D::Color>,
+    {
+        let clip = clip_of(target, zbuf);
+        let mut pixels = FrameStats::default();
+        let shading = self.options.shading;
+        let first = !self.counted;
+        let geometry = self.for_each_triangle(
+            &clip,
+            first,
+            0..self.mesh.face_count(),
+            |f, mat, tri, lights| {
+                let lights = match shading {
+                    Shading::Flat => [ONE; 3],
+                    Shading::Lambert => [self.face_light(f); 3],
+                    Shading::Gouraud => lights,
+                };
+                let s = shade_triangle(target, Some(&mut *zbuf), &clip, tri, mat, lights)
+                    .map_err(DrawError::Target)?;
+                pixels.add_pixels(s);
+                Ok(())
+            },
+        )?;
+        self.count(geometry);
+        self.stats.add_pixel_counts(&pixels);
+        Ok(())
+    }
+    /// Draw with the Z-buffer into a [`ColorBuffer`]: the same pixels as
+    /// [`draw`](Renderer::draw), faster, since the depth test and the colour write
+    /// share one loop instead of handing runs to a `DrawTarget`. Flat-coloured faces
+    /// (flat shading, Lambert) take this path; Gouraud and dithered materials go through
+    /// the buffer's `DrawTarget` runs.
+    pub fn draw_buffer<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let fast = !M::DITHERED && matches!(self.options.shading, Shading::Flat | Shading::Lambert);
+        if let (true, Some(_), Faces::Triangles { indices, materials }) =
+            (fast, &self.cache, self.mesh.faces)
+        {
+            return self.draw_buffer_triangles(frame, zbuf, indices, materials, 0..indices.len());
+        }
+        let clip = clip_of(frame, zbuf);
+        let mut pixels = FrameStats::default();
+        let shading = self.options.shading;
+        let first = !self.counted;
+        let geometry = self
+            .for_each_triangle::<core::convert::Infallible>(
+                &clip,
+                first,
+                0..self.mesh.face_count(),
+                |f, mat, tri, lights| {
+                    let s = match shading {
+                        Shading::Flat if !M::DITHERED => {
+                            fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(ONE, 0, 0))
+                        }
+                        Shading::Lambert if !M::DITHERED => fill_flat_buffered(
+                            frame,
+                            zbuf,
+                            &clip,
+                            tri,
+                            mat.shade(self.face_light(f), 0, 0),
+                        ),
+                        _ => {
+                            let lights = match shading {
+                                Shading::Flat => [ONE; 3],
+                                Shading::Lambert => [self.face_light(f); 3],
+                                Shading::Gouraud => lights,
+                            };
+                            shade_triangle(frame, Some(&mut *zbuf), &clip, tri, mat, lights)
+                                .map_err(DrawError::Target)?
+                        }
+                    };
+                    pixels.add_pixels(s);
+                    Ok(())
+                },
+            )
+            .map_err(|e| match e {
+                DrawError::Input(e) => e,
+                DrawError::Target(never) => match never {},
+            })?;
+        self.count(geometry);
+        self.stats.add_pixel_counts(&pixels);
+        Ok(())
+    }
+    /// A face near a clip plane in [`draw_buffer_triangles`]: clipped, culled and drawn
+    /// by the general path. Out of line, as it is rare.
+    #[inline(never)]
+    pub(crate) fn draw_clipped_face<C>(
+        &self,
+        target: &mut FlatTarget<'_, '_, '_, C>,
+        clip: &Clip,
+        first: bool,
+        f: usize,
+    ) -> Result<(FrameStats, SpanStats), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let lambert = self.options.shading == Shading::Lambert;
+        let mut more = SpanStats::default();
+        let g = self
+            .for_each_triangle::<core::convert::Infallible>(
+                clip,
+                first,
+                core::iter::once(f),
+                |f, mat, tri, _| {
+                    let i = if lambert { self.face_light(f) } else { ONE };
+                    more += target.fill(tri.each_ref(), mat.shade(i, 0, 0));
+                    Ok(())
+                },
+            )
+            .map_err(|e| match e {
+                DrawError::Input(e) => e,
+                DrawError::Target(never) => match never {},
+            })?;
+        Ok((g, more))
+    }
+    /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
+    /// one tight loop over the triangles, instantiated for each way of colouring a face
+    /// (one colour; one material, lit; a material per face), so that the loop does not
+    /// ask which it is for every face. Faces near the clip planes go through the general
+    /// path.
+    pub(crate) fn draw_buffer_triangles<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        indices: &'m [[u16; 3]],
+        materials: crate::mesh::Materials<'m, M>,
+        faces: impl Iterator<Item = usize>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let lambert = self.options.shading == Shading::Lambert;
+        let (st, px) = per_colouring!(self, materials, lambert, |shade| {
+            self.cull_and_fill(frame, zbuf, indices, faces, shade)?
+        });
+        self.count(st);
+        self.stats.add_pixel_counts(&px);
+        Ok(())
+    }
+    /// The loop of [`draw_buffer_triangles`](Renderer::draw_buffer_triangles), with the
+    /// faces' colours from `shade`; returns the geometry and pixel counts.
+    #[inline(always)]
+    pub(crate) fn cull_and_fill<C>(
+        &self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        indices: &'m [[u16; 3]],
+        faces: impl Iterator<Item = usize>,
+        shade: impl Fn(usize) -> Result<C, Error>,
+    ) -> Result<(FrameStats, FrameStats), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let clip = clip_of(frame, zbuf);
+        let first = !self.counted;
+        let cull = self.options.cull;
+        let (row0, row1) = clip.subpixel_rows();
+        let mut st = FrameStats::default();
+        let mut px = FrameStats::default();
+        let Some(cache) = self.cache.as_deref() else {
+            return Ok((st, px));
+        };
+        let mut target = FlatTarget::new(frame, zbuf, &clip);
+        let mut faces = faces;
+        loop {
+            // The faces up to the next one to draw, in a loop of their own: most are
+            // culled, and without the drawing's calls in it the loop keeps its state in
+            // registers.
+            let next = loop {
+                let Some(f) = faces.next() else { break None };
+                let Some(t) = indices.get(f) else { continue };
+                let [a, b, c] = cached_triangle(cache, f, t)?;
+                if a.code | b.code | c.code != 0 {
+                    break Some((f, None));
+                }
+                st.triangles_in += 1;
+                if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                    continue;
+                }
+                // The test of `culled`, written out (the helper's array copy costs).
+                let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
+                if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
+                    st.culled += 1;
+                    continue;
+                }
+                st.drawn += 1;
+                break Some((f, Some([&a.screen, &b.screen, &c.screen])));
+            };
+            let Some((f, tri)) = next else { break };
+            let Some(tri) = tri else {
+                // Outside or across a clip plane: the general path (rare).
+                let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
+                st.add_geometry(&g);
+                px.add_pixels(more);
+                continue;
+            };
+            px.add_fill(target.fill(tri, shade(f)?));
+        }
+        Ok((st, px))
+    }
+}
