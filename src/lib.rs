@@ -1,36 +1,76 @@
 //! A `no_std` Z-buffer 3D rasterizer for microcontroller displays.
 //!
-//! zraster draws triangles with per-pixel hidden-surface removal (the Z-buffer method)
+//! zraster draws meshes with per-pixel hidden-surface removal (the Z-buffer method)
 //! into any [`embedded_graphics`] [`DrawTarget`](embedded_graphics::draw_target::DrawTarget),
 //! with fixed-point screen coordinates, a 16-bit depth buffer in memory you provide,
-//! and no heap.
+//! and no heap. A spinning cube on a 160×120 RGB565 display:
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use zraster::camera::{Transform, Viewport};
+//! use zraster::math::{Mat4, Vec3};
+//! use zraster::{mesh::CUBE, ColorBuffer, RenderOptions, Renderer, ZBuffer};
+//!
+//! const W: u32 = 160;
+//! const H: u32 = 120;
+//! // Memory is yours: a colour buffer and a 16-bit depth buffer (or one band of each).
+//! let mut pixels = [Rgb565::BLACK; (W * H) as usize];
+//! let mut depth = [0u16; (W * H) as usize];
+//!
+//! // The camera: eye, target, vertical field of view in degrees, near and far planes.
+//! let camera = Transform::perspective(
+//!     Vec3::new(0.0, 1.2, 3.0), Vec3::new(0.0, 0.0, 0.0),
+//!     45.0, 0.1, 10.0, Viewport::new(W, H)?,
+//! )?;
+//! for frame_number in 0..3 {
+//!     // The model matrix turns the unit cube about its centre a little each frame.
+//!     let spin = Mat4::rotation_y(0.3 * frame_number as f32)
+//!         * Mat4::translation(Vec3::new(-0.5, -0.5, -0.5));
+//!     let mut frame = ColorBuffer::new(&mut pixels, W, H)?;
+//!     let mut zbuf = ZBuffer::new(&mut depth, W, H)?;
+//!     frame.clear(Rgb565::BLACK).ok();
+//!     zbuf.clear();
+//!     let mut renderer = Renderer::new(&CUBE, &camera.with_model(spin), RenderOptions::default())?;
+//!     renderer.draw_buffer(&mut frame, &mut zbuf)?;
+//!     // frame.flush(&mut display) would send it in one fill_contiguous.
+//!     assert!(renderer.stats().drawn >= 2); // two or three faces turn to the camera
+//! }
+//! assert_ne!(pixels[(H / 2 * W + W / 2) as usize], Rgb565::BLACK);
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! # What is where
+//! - [`mesh`]: the vertex table and face table (`i16` positions, flash-friendly).
+//! - [`camera`]: the model, view and projection matrices and the [`Viewport`](camera::Viewport).
+//! - [`ZBuffer`] and [`ColorBuffer`]: caller memory for depth and colour, a whole frame
+//!   or a band of rows.
+//! - [`Renderer`]: draws a mesh with the Z-buffer, by depth sorting (the painter's
+//!   algorithm), as hidden-line or as wireframe; [`BandBuffers`] draws a frame band by
+//!   band in a few KiB, pixel-identical to a whole frame.
+//! - [`shade`]: lights and materials (flat, Lambert, Gouraud; dithering for 1-bit).
+//! - [`fill_triangle`] and [`ScreenVertex`]: single screen-space triangles.
+//!
+//! Single triangles need no mesh: screen x, y in pixels (y down), depth 0 (near) ..=
+//! 65535 (far):
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 //! use zraster::{fill_triangle, ColorBuffer, ScreenVertex, ZBuffer};
 //!
-//! const W: u32 = 32;
-//! const H: u32 = 24;
-//! let mut pixels = [Rgb565::BLACK; (W * H) as usize];
-//! let mut depth = [0u16; (W * H) as usize];
-//! let mut frame = ColorBuffer::new(&mut pixels, W, H)?;
-//! let mut zbuf = ZBuffer::new(&mut depth, W, H)?;
+//! let mut pixels = [Rgb565::BLACK; 32 * 24];
+//! let mut depth = [0u16; 32 * 24];
+//! let mut frame = ColorBuffer::new(&mut pixels, 32, 24)?;
+//! let mut zbuf = ZBuffer::new(&mut depth, 32, 24)?;
 //! zbuf.clear();
-//!
-//! // Screen x, y in pixels (y down), depth 0 (near) ..= 65535 (far).
 //! let v = |x, y, z| ScreenVertex::from_pixels(x, y, z);
 //! let far = [v(0, 0, 9000)?, v(32, 0, 9000)?, v(0, 24, 9000)?];
 //! let near = [v(4, 4, 1000)?, v(28, 4, 1000)?, v(4, 20, 1000)?];
-//!
-//! // Draw the near triangle first: the far one is hidden where they overlap.
+//! // The near triangle first: the far one is hidden where they overlap.
 //! fill_triangle(&mut frame, &mut zbuf, &near, Rgb565::RED).unwrap();
 //! fill_triangle(&mut frame, &mut zbuf, &far, Rgb565::BLUE).unwrap();
 //! assert_eq!(frame.pixel(5, 5), Some(Rgb565::RED));
 //! assert_eq!(frame.pixel(1, 1), Some(Rgb565::BLUE));
 //! assert_eq!(zbuf.depth(5, 5), Some(1000));
-//! // frame.flush(&mut display) sends it to a display in one fill_contiguous.
-//! // Meshes go through a `Renderer` (see `render`'s docs), whole frames or band by
-//! // band (`BandBuffers`).
 //! # Ok::<(), zraster::Error>(())
 //! ```
 //!

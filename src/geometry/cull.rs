@@ -14,7 +14,7 @@ pub enum Cull {
     None,
 }
 impl Cull {
-    /// Is a triangle with twice-signed *screen* area `area` ([`signed_area`] of y-down
+    /// Is a triangle with twice-signed *screen* area `area` ([`signed_area`](crate::signed_area) of y-down
     /// screen coordinates) dropped? Front faces have negative screen area (they are
     /// counter-clockwise with y up). Zero area always is dropped.
     #[inline]
