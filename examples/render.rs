@@ -21,7 +21,7 @@ use zraster::{
     BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions,
     Renderer, ZBuffer,
 };
-use zraster_obj::{fit_scale, parse_obj, quantize};
+use zraster_obj::{bounds, fit_scale, parse_obj, quantize};
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]
@@ -294,8 +294,18 @@ fn main() {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let obj = parse_obj(&text, |name| std::fs::read_to_string(dir.join(name)).ok())
+    let mut libraries = std::collections::HashSet::new();
+    let obj = parse_obj(&text, |name| read_library(&dir.join(name), &mut libraries))
         .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
+    // Coordinates whose extent overflows f32 (near ±3.4e38) cannot be fitted or
+    // quantised: say so rather than draw a blank frame.
+    let (lo, hi) = bounds(&obj.positions);
+    if (0..3).any(|k| !(hi[k] - lo[k]).is_finite()) {
+        input_error(&format!(
+            "{}: coordinates too large (the model's extent overflows f32)",
+            o.model
+        ));
+    }
     for w in &obj.warnings {
         eprintln!("render: warning: {}: {w}", o.model);
     }
@@ -495,4 +505,32 @@ fn main() {
             stats.runs
         );
     }
+}
+
+/// The largest material library `render` reads.
+const MAX_LIBRARY: u64 = 16 << 20;
+
+/// The text of the material library at `path`: only a regular file (not a device or a
+/// FIFO, which could hang or never end), of at most [`MAX_LIBRARY`] bytes, and each
+/// file once (a repeated `mtllib` reads as empty). `None` (a warning) otherwise.
+fn read_library(
+    path: &Path,
+    seen: &mut std::collections::HashSet<std::path::PathBuf>,
+) -> Option<String> {
+    let meta = std::fs::metadata(path).ok()?;
+    if !meta.is_file() || meta.len() > MAX_LIBRARY {
+        return None;
+    }
+    let key = std::fs::canonicalize(path).ok()?;
+    if !seen.insert(key) {
+        return Some(String::new());
+    }
+    use std::io::Read;
+    let mut text = String::new();
+    std::fs::File::open(path)
+        .ok()?
+        .take(MAX_LIBRARY)
+        .read_to_string(&mut text)
+        .ok()?;
+    Some(text)
 }

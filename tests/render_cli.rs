@@ -213,6 +213,60 @@ fn bad_input_exits_2_with_a_message() {
     let bad_v = write("badv.obj", b"v 0 zero 0\n");
     fails_with(&[&bad_v], "line 1");
     fails_with(&["/nonexistent/model.obj"], "model.obj");
+    // Coordinates near ±3e38: the extent overflows f32 (it drew a blank frame, exit 0).
+    let huge = write(
+        "huge.obj",
+        b"v -3e38 -3e38 0\nv 3e38 -3e38 0\nv 0 3e38 0\nf 1 2 3\n",
+    );
+    fails_with(&[&huge], "too large");
+}
+
+/// `mtllib` reads only regular files, each once, of bounded size: a device, a FIFO and
+/// a missing file are warnings (the model still renders); a repeated line is read once.
+#[test]
+fn material_libraries_are_read_safely() {
+    let out = tmp("lib-out.png");
+    let out = out.to_str().unwrap();
+    let tri = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
+    let with = |lib: &str| [format!("mtllib {lib}\n").as_bytes(), tri].concat();
+    for lib in ["/dev/zero", "/nonexistent.mtl"] {
+        let obj = write("lib.obj", &with(lib));
+        let o = render(&[&obj, "--out", out]);
+        assert!(
+            o.status.success(),
+            "{lib}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("cannot read material library"), "{lib}: {err}");
+    }
+    // A FIFO with no writer would block a reader forever.
+    let fifo = tmp("lib.fifo");
+    let _ = std::fs::remove_file(&fifo);
+    let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
+    assert!(made.success());
+    let obj = write("fifo.obj", &with(fifo.to_str().unwrap()));
+    let o = render(&[&obj, "--out", out]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read material library"));
+    // The same library named three times: read once, and its material used.
+    write("red.mtl", b"newmtl red\nKd 1 0 0\n");
+    let obj = write(
+        "thrice.obj",
+        &[b"mtllib red.mtl red.mtl\nmtllib red.mtl\n".as_slice(), tri].concat(),
+    );
+    let o = render(&[
+        &obj,
+        "--out",
+        out,
+        "--shade",
+        "none",
+        "--no-fit",
+        "--distance",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("warning"));
 }
 
 #[test]

@@ -13,7 +13,7 @@ use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 /// Write `display` to `NAME.png` (or show it in a window with the `window` feature).
 pub fn present<C>(display: &SimulatorDisplay<C>, name: &str, scale: u32)
 where
-    C: PixelColor + Into<Rgb888>,
+    C: PixelColor + Into<Rgb888> + From<Rgb888>,
 {
     let settings = embedded_graphics_simulator::OutputSettingsBuilder::new()
         .scale(scale)

@@ -112,6 +112,8 @@ pub fn parse_obj(
 ) -> Result<ObjModel, ObjError> {
     let mut m = ObjModel::default();
     let mut current: Option<usize> = None;
+    // A UTF-8 byte-order mark is not part of the first statement.
+    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     for (i, raw) in src.lines().enumerate() {
         let line = i + 1;
         let text = raw.split('#').next().unwrap_or("");
@@ -213,6 +215,7 @@ pub fn parse_obj(
 
 /// Read `newmtl` / `Kd` statements of an MTL file into `out`.
 pub fn parse_mtl(src: &str, out: &mut Vec<ObjMaterial>) -> Result<(), ObjError> {
+    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     for (i, raw) in src.lines().enumerate() {
         let line = i + 1;
         let text = raw.split('#').next().unwrap_or("");
@@ -330,6 +333,19 @@ mod tests {
 
     fn parse(s: &str) -> Result<ObjModel, ObjError> {
         parse_obj(s, |_| None)
+    }
+
+    /// A byte-order mark before the first statement is skipped: the first vertex is
+    /// kept (it was dropped, and the face then referred to a missing vertex).
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let m = parse("\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert_eq!(m.positions.len(), 3);
+        assert_eq!(m.positions[0], [0.0, 0.0, 0.0]);
+        let mut mats = Vec::new();
+        parse_mtl("\u{feff}newmtl red\nKd 1 0 0\n", &mut mats).unwrap();
+        assert_eq!(mats.len(), 1);
+        assert_eq!(mats[0].name, "red");
     }
 
     #[test]
