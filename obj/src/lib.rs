@@ -3,12 +3,18 @@
 //!
 //! Reads `v` and `f` (with `v`, `v/vt`, `v/vt/vn`, `v//vn` and negative indices),
 //! `mtllib` + `usemtl` with `Kd` colours; other statements are ignored. Errors name the
-//! line. [`quantize`] turns the positions into the `i16` vertex table of a
-//! `zraster::mesh::Mesh`.
+//! line. A UTF-8 byte-order mark at the start of an OBJ or MTL text is skipped.
+//! [`MtlLoader`] reads the material libraries from disk safely (regular files of at most
+//! [`MAX_MTL_BYTES`], each once). [`quantize`] turns the positions into the `i16`
+//! vertex table of a `zraster::mesh::Mesh`; [`fit_scale_f64`] sizes any finite model,
+//! up to coordinates of ±`f32::MAX`.
 //!
 //! It lives in its own crate because it allocates: zraster itself never does.
 
+use std::collections::HashSet;
 use std::fmt;
+use std::io::Read;
+use std::path::{Path, PathBuf};
 
 /// A material from an MTL file.
 #[derive(Debug, Clone, PartialEq)]
@@ -98,6 +104,7 @@ pub const MAX_VERTICES: usize = 1 << 16;
 
 /// Read an OBJ file. `load_mtl(name)` returns the text of an MTL file named by `mtllib`
 /// (relative to the OBJ file), or `None` if it cannot be read (a warning, not an error).
+/// Each library name is asked for once, however often `mtllib` repeats it.
 ///
 /// ```
 /// let model = zraster_obj::parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n", |_| None)?;
@@ -110,8 +117,20 @@ pub fn parse_obj(
     src: &str,
     mut load_mtl: impl FnMut(&str) -> Option<String>,
 ) -> Result<ObjModel, ObjError> {
+    parse_obj_with(src, |name| load_mtl(name).ok_or_else(String::new))
+}
+
+/// [`parse_obj`], with `load_mtl` saying why a library cannot be read: `Err(reason)`
+/// becomes the warning `line N: cannot read material library NAME: REASON` (an empty
+/// reason leaves off the `: REASON`). [`MtlLoader::load`] is such a loader.
+pub fn parse_obj_with(
+    src: &str,
+    mut load_mtl: impl FnMut(&str) -> Result<String, String>,
+) -> Result<ObjModel, ObjError> {
     let mut m = ObjModel::default();
     let mut current: Option<usize> = None;
+    // The libraries already asked for: a repeated `mtllib` is not read again.
+    let mut libraries: HashSet<&str> = HashSet::new();
     // A UTF-8 byte-order mark is not part of the first statement.
     let src = src.strip_prefix('\u{feff}').unwrap_or(src);
     for (i, raw) in src.lines().enumerate() {
@@ -170,12 +189,18 @@ pub fn parse_obj(
             }
             "mtllib" => {
                 for name in toks {
+                    if !libraries.insert(name) {
+                        continue;
+                    }
                     match load_mtl(name) {
-                        Some(text) => parse_mtl(&text, &mut m.materials)
+                        Ok(text) => parse_mtl(&text, &mut m.materials)
                             .map_err(|e| err(line, format!("in {name}: {e}")))?,
-                        None => m
+                        Err(why) if why.is_empty() => m
                             .warnings
                             .push(format!("line {line}: cannot read material library {name}")),
+                        Err(why) => m.warnings.push(format!(
+                            "line {line}: cannot read material library {name}: {why}"
+                        )),
                     }
                 }
             }
@@ -240,6 +265,73 @@ pub fn parse_mtl(src: &str, out: &mut Vec<ObjMaterial>) -> Result<(), ObjError> 
     Ok(())
 }
 
+/// The largest material library [`MtlLoader`] reads: 16 MiB.
+pub const MAX_MTL_BYTES: u64 = 16 << 20;
+
+/// Reads the material libraries an OBJ file names, from the OBJ file's folder, for
+/// [`parse_obj_with`] — safe for files from anywhere: it reads only regular files (never
+/// a device such as `/dev/zero`, which never ends, or a FIFO, which blocks its reader
+/// until something writes), of at most [`MAX_MTL_BYTES`], and each file once (by its
+/// canonical path: a library named again, under any name, reads as empty).
+///
+/// ```
+/// let dir = std::env::temp_dir();
+/// let mut mtl = zraster_obj::MtlLoader::new(&dir);
+/// let model = zraster_obj::parse_obj_with("mtllib /dev/zero\n", |name| mtl.load(name))?;
+/// assert_eq!(
+///     model.warnings,
+///     ["line 1: cannot read material library /dev/zero: not a regular file"]
+/// );
+/// # Ok::<(), zraster_obj::ObjError>(())
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct MtlLoader {
+    dir: PathBuf,
+    seen: HashSet<PathBuf>,
+}
+
+impl MtlLoader {
+    /// A loader for the libraries of an OBJ file in `dir`.
+    pub fn new(dir: impl AsRef<Path>) -> MtlLoader {
+        MtlLoader {
+            dir: dir.as_ref().to_path_buf(),
+            seen: HashSet::new(),
+        }
+    }
+
+    /// The text of the library `name` (relative to the folder, or absolute); `""` for a
+    /// file read before. `Err` says why it cannot be read.
+    pub fn load(&mut self, name: &str) -> Result<String, String> {
+        let path = self.dir.join(name);
+        let too_big = || format!("larger than {} MiB", MAX_MTL_BYTES >> 20);
+        // The type and size before opening: opening a FIFO for reading blocks.
+        let meta = std::fs::metadata(&path).map_err(|e| e.to_string())?;
+        if !meta.is_file() {
+            return Err("not a regular file".into());
+        }
+        if meta.len() > MAX_MTL_BYTES {
+            return Err(too_big());
+        }
+        let key = std::fs::canonicalize(&path).map_err(|e| e.to_string())?;
+        if !self.seen.insert(key) {
+            return Ok(String::new());
+        }
+        let file = std::fs::File::open(&path).map_err(|e| e.to_string())?;
+        // What was opened may not be what was looked at; and a file may grow.
+        if !file.metadata().is_ok_and(|m| m.is_file()) {
+            return Err("not a regular file".into());
+        }
+        let mut bytes = Vec::new();
+        file.take(MAX_MTL_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| e.to_string())?;
+        if bytes.len() as u64 > MAX_MTL_BYTES {
+            return Err(too_big());
+        }
+        String::from_utf8(bytes).map_err(|_| "not UTF-8 text".into())
+    }
+}
+
 /// Positions quantised to `i16` for a `zraster::mesh::Mesh`: `q × scale + offset`
 /// reproduces each position to within half a step.
 #[derive(Debug, Clone, PartialEq)]
@@ -269,30 +361,57 @@ pub fn bounds(positions: &[[f32; 3]]) -> ([f32; 3], [f32; 3]) {
 }
 
 /// The uniform scale that makes the largest extent of the bounding box 1 (1 when the
-/// box is a point or there are no positions).
+/// box is a point or there are no positions), as `f32`: [`fit_scale_f64`] rounded. For
+/// a box wider than 2¹²⁶ (8.5·10³⁷) that is below `f32`'s normal range and loses
+/// precision; use [`fit_scale_f64`] for such models.
 pub fn fit_scale(positions: &[[f32; 3]]) -> f32 {
+    fit_scale_f64(positions) as f32
+}
+
+/// [`fit_scale`] without overflow: the extent of a box of `f32` coordinates reaches
+/// 2 × `f32::MAX`, which is ∞ in `f32` (the scale was then 0). The value is the one
+/// `f32` arithmetic gives (the extent rounded to `f32`, then `1 / extent` rounded)
+/// wherever that is a normal `f32`; for wider and narrower boxes, the same two
+/// roundings to 24 bits, without the `f32` exponent range.
+pub fn fit_scale_f64(positions: &[[f32; 3]]) -> f64 {
     let (lo, hi) = bounds(positions);
-    let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max);
+    let extent = (0..3)
+        .map(|k| f64::from(hi[k]) - f64::from(lo[k]))
+        .fold(0.0f64, f64::max);
     if extent > 0.0 {
-        1.0 / extent
+        // extent = m·2^e with m in [1, 2): f32 arithmetic on m, the exponent apart.
+        let e = exponent(extent);
+        let m = (extent * pow2(-e)) as f32;
+        f64::from(1.0 / m) * pow2(-e)
     } else {
         1.0
     }
+}
+
+/// ⌊log₂ x⌋ of a positive normal `f64` (every `f32` value, and every difference of two,
+/// is one).
+fn exponent(x: f64) -> i32 {
+    ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023
+}
+
+/// 2^e, for e in -1022..=1023.
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
 }
 
 /// Quantise positions to `i16`. With `centre`, around the bounding-box centre (best
 /// precision); otherwise around the origin.
 pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
     let (lo, hi) = bounds(positions);
+    // The centre in f64: lo + hi overflows f32 beyond ±f32::MAX / 2 (the result is
+    // that of f32 arithmetic wherever that does not overflow).
+    let mid = |k: usize| ((f64::from(lo[k]) + f64::from(hi[k])) * 0.5) as f32;
     let offset = if centre {
-        [
-            (lo[0] + hi[0]) * 0.5,
-            (lo[1] + hi[1]) * 0.5,
-            (lo[2] + hi[2]) * 0.5,
-        ]
+        [mid(0), mid(1), mid(2)]
     } else {
         [0.0; 3]
     };
+    // Around the centre a position is at most half the extent away, within f32::MAX.
     let mut reach = 0.0f32;
     for p in positions {
         for k in 0..3 {
@@ -375,6 +494,10 @@ mod tests {
             ("v 1 2\n", 1, "missing z"),
             ("v 0 0 0\nv a 0 0\n", 2, "not a number"),
             ("v 0 0 nan\n", 1, "not finite"),
+            ("v 0 inf 0\n", 1, "not finite"),
+            ("v 0 0 0\nv -infinity 0 0\n", 2, "not finite"),
+            // Beyond f32::MAX: it parses as ∞.
+            ("v 1e39 0 0\n", 1, "not finite"),
             ("v 0 0 0\nv 0 0 0\nf 1 2\n", 3, "3 or more"),
             ("v 0 0 0\nf 1 2 9\n", 2, "out of range"),
             ("v 0 0 0\n\nf 0 1 1\n", 3, "index 0"),
@@ -386,6 +509,167 @@ mod tests {
             assert_eq!(e.line, line, "{src:?}: {e}");
             assert!(e.message.contains(what), "{src:?}: {e}");
         }
+    }
+
+    /// A library named again (on the same line or another) is asked for once.
+    #[test]
+    fn a_repeated_library_is_loaded_once() {
+        let mut loads = Vec::new();
+        let src = "mtllib a.mtl a.mtl\nmtllib b.mtl\nmtllib a.mtl b.mtl\nv 0 0 0\n";
+        let m = parse_obj(src, |name| {
+            loads.push(name.to_string());
+            Some("newmtl red\nKd 1 0 0\n".into())
+        })
+        .unwrap();
+        assert_eq!(loads, ["a.mtl", "b.mtl"]);
+        assert_eq!(m.materials.len(), 2);
+        // One that cannot be read: one warning, with the reason.
+        let mut asked = 0;
+        let m = parse_obj_with("mtllib x.mtl x.mtl\nmtllib x.mtl\n", |_| {
+            asked += 1;
+            Err("gone".into())
+        })
+        .unwrap();
+        assert_eq!(asked, 1);
+        assert_eq!(
+            m.warnings,
+            ["line 1: cannot read material library x.mtl: gone"]
+        );
+    }
+
+    /// A scratch folder for one test.
+    fn scratch(test: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("zraster-obj-{}-{test}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// Only regular files of at most MAX_MTL_BYTES are read: a device never ends, a FIFO
+    /// blocks its reader forever (this test would hang), a large file is refused unread.
+    #[test]
+    #[cfg(unix)]
+    fn the_loader_reads_only_regular_files_of_bounded_size() {
+        let dir = scratch("loader-kinds");
+        let mut mtl = MtlLoader::new(&dir);
+        assert_eq!(mtl.load("/dev/zero"), Err("not a regular file".into()));
+        assert_eq!(mtl.load("."), Err("not a regular file".into()));
+        let made = std::process::Command::new("mkfifo")
+            .arg(dir.join("pipe.mtl"))
+            .status()
+            .unwrap();
+        assert!(made.success());
+        assert_eq!(mtl.load("pipe.mtl"), Err("not a regular file".into()));
+        // A sparse file one byte over the limit (no 16 MiB written).
+        let big = std::fs::File::create(dir.join("big.mtl")).unwrap();
+        big.set_len(MAX_MTL_BYTES + 1).unwrap();
+        assert_eq!(mtl.load("big.mtl"), Err("larger than 16 MiB".into()));
+        let at_limit = std::fs::File::create(dir.join("limit.mtl")).unwrap();
+        at_limit.set_len(MAX_MTL_BYTES).unwrap();
+        assert_eq!(mtl.load("limit.mtl").map(|t| t.len()), Ok(16 << 20));
+        assert!(mtl.load("missing.mtl").is_err());
+        std::fs::write(dir.join("latin1.mtl"), b"newmtl caf\xe9\n").unwrap();
+        assert_eq!(mtl.load("latin1.mtl"), Err("not UTF-8 text".into()));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Each file is read once, whatever name reaches it; the text is the file's.
+    #[test]
+    #[cfg(unix)]
+    fn the_loader_reads_each_file_once() {
+        let dir = scratch("loader-once");
+        std::fs::write(dir.join("red.mtl"), "\u{feff}newmtl red\nKd 1 0 0\n").unwrap();
+        std::os::unix::fs::symlink(dir.join("red.mtl"), dir.join("alias.mtl")).unwrap();
+        let mut mtl = MtlLoader::new(&dir);
+        let src = "mtllib red.mtl ./red.mtl\nmtllib alias.mtl\nv 0 0 0\nusemtl red\n";
+        let m = parse_obj_with(src, |name| mtl.load(name)).unwrap();
+        assert_eq!(m.materials.len(), 1, "{:?}", m.materials);
+        assert_eq!(m.materials[0].kd, [1.0, 0.0, 0.0]);
+        assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+        assert_eq!(mtl.load("red.mtl"), Ok(String::new()));
+        // By absolute path too.
+        let abs = dir.join("red.mtl");
+        assert_eq!(mtl.load(abs.to_str().unwrap()), Ok(String::new()));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// fit_scale at the top of f32's range: the extent, 6e38, overflowed f32 and the
+    /// scale was 0 (the model collapsed to a point).
+    #[test]
+    fn fit_scale_does_not_overflow_near_f32_max() {
+        let huge = [[-3e38, -3e38, 0.0], [3e38, -3e38, 0.0], [0.0, 3e38, 0.0]];
+        let s = fit_scale(&huge);
+        assert!(s > 0.0 && s.is_finite(), "{s}");
+        let s = fit_scale_f64(&huge);
+        assert!((s * 6e38 - 1.0).abs() < 1e-7, "{s}");
+        let max = [[-f32::MAX; 3], [f32::MAX; 3]];
+        assert!((fit_scale_f64(&max) * 2.0 * f64::from(f32::MAX) - 1.0).abs() < 1e-7);
+    }
+
+    /// Where f32 arithmetic suffices, fit_scale is exactly what it always was.
+    #[test]
+    fn fit_scale_is_the_f32_quotient_where_that_is_normal() {
+        let f32_fit = |p: &[[f32; 3]]| {
+            let (lo, hi) = bounds(p);
+            1.0 / (0..3).map(|k| hi[k] - lo[k]).fold(0.0f32, f32::max)
+        };
+        let boxes: [[[f32; 3]; 2]; 6] = [
+            [[-0.0947, 0.0330, -0.0619], [0.0610, 0.1873, 0.0588]],
+            [[-1.0, 0.5, 2.0], [1.0, 0.0, 2.5]],
+            [[0.1, 0.2, 0.3], [0.7, 0.11, 0.3]],
+            [[1e-30, 0.0, 0.0], [3e-30, 0.0, 0.0]],
+            [[-3e37, 0.0, 0.0], [5e37, 1.0, 1.0]],
+            [[123456.79, -7.0, 1e-3], [-98765.43, 3.0, 2.0]],
+        ];
+        for b in boxes {
+            assert_eq!(fit_scale(&b).to_bits(), f32_fit(&b).to_bits(), "{b:?}");
+            assert_eq!(fit_scale_f64(&b), f64::from(f32_fit(&b)), "{b:?}");
+        }
+    }
+
+    /// A model 2^127 times larger (up to ±3e38) quantises to the same positions, with a
+    /// scale exactly 2^127 larger, and fits with a scale exactly 2^127 smaller.
+    #[test]
+    fn a_model_scaled_by_a_power_of_two_quantises_and_fits_alike() {
+        let small = [
+            [-1.25f32, -1.0, 0.5],
+            [1.5, -0.75, -0.25],
+            [0.25, 1.75, 0.0],
+            [0.0, 0.125, 1.0],
+            [1.7, 1.7, 1.7],
+        ];
+        let k = 2f32.powi(127);
+        let huge = small.map(|p| p.map(|v| v * k));
+        for centre in [true, false] {
+            let (a, b) = (quantize(&small, centre), quantize(&huge, centre));
+            assert_eq!(a.positions, b.positions);
+            assert_eq!(a.scale * k, b.scale);
+            assert_eq!(a.offset.map(|o| o * k), b.offset);
+        }
+        assert_eq!(fit_scale_f64(&small), fit_scale_f64(&huge) * f64::from(k));
+    }
+
+    /// All positions above f32::MAX / 2: lo + hi overflowed, the centre was ∞ and every
+    /// position quantised to -32767.
+    #[test]
+    fn quantisation_centres_boxes_near_f32_max() {
+        let p = [[2e38, 3e38, 3.4e38], [3.4e38, 2.5e38, 3.3e38]];
+        let q = quantize(&p, true);
+        assert!(q.offset.iter().all(|o| o.is_finite()), "{:?}", q.offset);
+        assert!(q.scale.is_finite());
+        for (a, b) in p.iter().zip(&q.positions) {
+            for k in 0..3 {
+                let back = f64::from(b[k]) * f64::from(q.scale) + f64::from(q.offset[k]);
+                let step = f64::from(q.scale);
+                assert!((back - f64::from(a[k])).abs() <= step * 0.51, "{a:?} {b:?}");
+            }
+        }
+        // The widest box: 2 × f32::MAX, half of it each side of the centre.
+        let p = [[-f32::MAX, 0.0, 0.0], [f32::MAX - 2f32.powi(104), 1.0, 0.0]];
+        let q = quantize(&p, true);
+        assert!(q.scale.is_finite() && q.scale > 0.0);
+        assert_eq!(q.positions[0][0], -32767);
+        assert_eq!(q.positions[1][0], 32767);
     }
 
     #[test]
