@@ -13,11 +13,11 @@ use embedded_graphics::{
 };
 use zraster::{
     camera::{Transform, Viewport},
-    math::{Mat4, Vec3},
-    mesh::{Face, Mesh},
+    math::{radians, Mat4, Vec3},
+    mesh::{Face, Faces, Materials, Mesh},
     shade::{Light, Shading},
-    BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DepthTest, RenderOptions, Renderer,
-    ScreenVertex, ZBuffer,
+    BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DepthTest, DrawError, Error,
+    FrameStats, RenderOptions, Renderer, ScreenVertex, ZBuffer,
 };
 
 /// Reads numbers off the input, yielding zeros once it runs out.
@@ -282,4 +282,257 @@ pub fn obj(data: &[u8]) {
     ) {
         let _ = r.draw(&mut display, &mut zbuf);
     }
+}
+
+/// One frame: its colours, its depths and the renderer's stats.
+type Frame = (Vec<Rgb565>, Vec<u16>, FrameStats);
+
+/// The whole frame, drawn at once with the fused buffer path (as `tests/bands.rs`).
+fn whole_frame(
+    mesh: &Mesh<'_, Rgb888>,
+    xf: &Transform,
+    opts: RenderOptions,
+    (w, h): (u32, u32),
+) -> Result<Frame, Error> {
+    let mut colour = vec![Rgb565::BLACK; (w * h) as usize];
+    let mut depth = vec![0u16; (w * h) as usize];
+    let mut cache = vec![CachedVertex::EMPTY; mesh.positions.len()];
+    let stats = {
+        let mut frame = ColorBuffer::new(&mut colour, w, h)?;
+        let mut zbuf = ZBuffer::new(&mut depth, w, h)?;
+        zbuf.clear();
+        let mut r = Renderer::with_cache(mesh, xf, opts, &mut cache)?;
+        r.draw_buffer(&mut frame, &mut zbuf)?;
+        r.stats()
+    };
+    Ok((colour, depth, stats))
+}
+
+/// The same frame band by band, `rows` lines at a time, with `bins` bin entries
+/// (initially `junk`); the depth is collected from each band as it is finished.
+fn banded_frame(
+    mesh: &Mesh<'_, Rgb888>,
+    xf: &Transform,
+    opts: RenderOptions,
+    (w, h, rows): (u32, u32, u32),
+    (bins, junk): (usize, u16),
+) -> Result<Frame, Error> {
+    let mut colour = vec![Rgb565::BLUE; (w * h) as usize];
+    let mut depth = vec![7u16; (w * h) as usize];
+    let mut cb = vec![Rgb565::BLACK; (w * rows) as usize];
+    let mut zb = vec![0u16; (w * rows) as usize];
+    let mut bins = vec![junk; bins];
+    let mut cache = vec![CachedVertex::EMPTY; mesh.positions.len()];
+    let stats = {
+        let mut display = ColorBuffer::new(&mut colour, w, h)?;
+        let mut bands = BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins)?;
+        let mut r = Renderer::with_cache(mesh, xf, opts, &mut cache)?;
+        r.draw_banded_with(&mut display, &mut bands, Rgb565::BLACK, |band, z| {
+            let y0 = band.first_row();
+            assert_eq!((z.first_row(), z.rows()), (y0, band.rows()));
+            for y in y0..y0 + band.rows() as i32 {
+                for x in 0..w as i32 {
+                    depth[(y as u32 * w + x as u32) as usize] = z.depth(x, y).unwrap();
+                }
+            }
+        })
+        .map_err(|e| match e {
+            DrawError::Input(e) => e,
+            DrawError::Target(never) => match never {},
+        })?;
+        r.stats()
+    };
+    Ok((colour, depth, stats))
+}
+
+/// A random triangle mesh with coplanar duplicates (triangles repeated, quads split
+/// again along the other diagonal, each copy in another colour), a random view,
+/// options, band height and bins: drawn band by band it is byte-identical to the
+/// whole frame in colour, depth and stats.
+pub fn bands(data: &[u8]) {
+    bands_stats(data);
+}
+
+/// [`bands`], returning the frame's stats when it was drawn.
+pub fn bands_stats(data: &[u8]) -> Option<FrameStats> {
+    let mut r = Bytes(data);
+    let w = u32::from(r.u8() % 48) + 1;
+    let h = u32::from(r.u8() % 48) + 1;
+    let rows = u32::from(r.u8()) % h + 1;
+    let flags = r.u8();
+    let cull = [Cull::None, Cull::Back, Cull::Front][usize::from(flags % 3)];
+    // Flat and Lambert take the binned path; Gouraud (rarely) the per-band general one.
+    let shading = match (flags / 3) % 8 {
+        0..=3 => Shading::Flat,
+        4..=6 => Shading::Lambert,
+        _ => Shading::Gouraud,
+    };
+    // Bins: none, exactly enough, one short (so not used), or more than enough; the
+    // slice starts out holding junk.
+    let bin_mode = (flags >> 5) & 3;
+    let junk = r.u16();
+    let light = if flags & 0x80 != 0 {
+        Light {
+            direction: Vec3::new(r.float(), r.float(), r.float()),
+            ambient: r.float(),
+            diffuse: r.float(),
+        }
+    } else {
+        Light::default()
+    };
+    let opts = RenderOptions {
+        cull,
+        shading,
+        light,
+    };
+
+    // The camera.
+    let vp = Viewport::new(w, h).ok()?;
+    let view = r.u8();
+    let xf = if view % 4 == 2 {
+        let eye = Vec3::new(r.float(), r.float(), r.float());
+        let target = Vec3::new(r.float(), r.float(), r.float());
+        let (fov, near, far) = (r.float(), r.float(), r.float());
+        Transform::perspective(eye, target, fov, near, far, vp)
+    } else {
+        // As tests/bands.rs: orbiting the origin.
+        let yaw = f32::from(r.u8()) * (360.0 / 256.0) - 180.0;
+        let pitch = f32::from(r.u8() as i8) * (85.0 / 128.0);
+        let distance = 0.2 + f32::from(r.u8()) / 50.0;
+        let fov = 20.0 + f32::from(r.u8() % 128);
+        Transform::perspective(
+            Vec3::new(0.0, 0.0, distance),
+            Vec3::default(),
+            fov,
+            0.1,
+            10.0,
+            vp,
+        )
+        .map(|xf| xf.with_model(Mat4::rotation_x(radians(pitch)) * Mat4::rotation_y(radians(yaw))))
+    };
+    let mut xf = xf.ok()?;
+    if view % 4 == 3 {
+        // Any model matrix at all.
+        for row in xf.model.m.iter_mut() {
+            for v in row.iter_mut() {
+                *v = r.float();
+            }
+        }
+    }
+
+    // The mesh: positions in ±2¹⁵ >> shift, times the scale.
+    let shape = r.u8();
+    let shift = shape % 8;
+    let scale = match shape >> 3 {
+        0 => r.f32(),
+        1..=3 => 1.0 / 4096.0,
+        4..=15 => 1.0 / 1024.0,
+        _ => 1.0 / f32::from(r.u8().max(1)) / 64.0,
+    };
+    let mut positions: Vec<[i16; 3]> = Vec::new();
+    let mut indices: Vec<[u16; 3]> = Vec::new();
+    let mut colours: Vec<Rgb888> = Vec::new();
+    // Parallelograms a b c d, for splitting again.
+    let mut quads: Vec<[u16; 4]> = Vec::new();
+    let vertex = |r: &mut Bytes, positions: &mut Vec<[i16; 3]>| {
+        let mut c = || (r.u16() as i16) >> shift;
+        positions.push([c(), c(), c()]);
+        (positions.len() - 1) as u16
+    };
+    let colour = |r: &mut Bytes| Rgb888::new(r.u8(), r.u8(), r.u8());
+    while !r.is_empty() && indices.len() < 300 && positions.len() < 600 {
+        let op = r.u8();
+        match op % 8 {
+            0..=2 => {
+                let t = [0; 3].map(|_| vertex(&mut r, &mut positions));
+                indices.push(t);
+                colours.push(colour(&mut r));
+            }
+            3 | 4 => {
+                // A parallelogram (planar exactly, unless d is clamped), split a–c.
+                let [a, b, c] = [0; 3].map(|_| vertex(&mut r, &mut positions));
+                let [pa, pb, pc] = [a, b, c].map(|i| positions[usize::from(i)]);
+                let d = [0, 1, 2].map(|k| {
+                    (i32::from(pa[k]) + i32::from(pc[k]) - i32::from(pb[k]))
+                        .clamp(i32::from(i16::MIN), i32::from(i16::MAX)) as i16
+                });
+                positions.push(d);
+                let d = (positions.len() - 1) as u16;
+                let col = colour(&mut r);
+                indices.extend([[a, b, c], [a, c, d]]);
+                colours.extend([col, col]);
+                quads.push([a, b, c, d]);
+            }
+            5 if !indices.is_empty() => {
+                // An earlier triangle again, perhaps starting at another vertex.
+                let [a, b, c] = indices[usize::from(r.u8()) % indices.len()];
+                let t = [[a, b, c], [b, c, a], [c, a, b]][usize::from(op >> 3) % 3];
+                indices.push(t);
+                colours.push(colour(&mut r));
+            }
+            6 if !quads.is_empty() => {
+                // An earlier quad again, split along the other diagonal (b–d).
+                let [a, b, c, d] = quads[usize::from(r.u8()) % quads.len()];
+                let col = colour(&mut r);
+                indices.extend([[a, b, d], [b, c, d]]);
+                colours.extend([col, col]);
+            }
+            7 if !positions.is_empty() => {
+                // A triangle of existing vertices (shared edges, slivers, degenerates).
+                let n = positions.len();
+                let t = [0; 3].map(|_| (usize::from(r.u16()) % n) as u16);
+                indices.push(t);
+                colours.push(colour(&mut r));
+            }
+            _ => {}
+        }
+    }
+    let mesh = Mesh {
+        positions: &positions,
+        scale,
+        faces: Faces::Triangles {
+            indices: &indices,
+            materials: Materials::PerFace(&colours),
+        },
+        face_normals: None,
+        vertex_normals: None,
+    };
+    let needed = BandBuffers::<Rgb565>::bins_needed(indices.len(), h, rows);
+    let bins = match bin_mode {
+        0 => 0,
+        1 => needed,
+        2 => needed - 1,
+        _ => needed + 5,
+    };
+    let want = whole_frame(&mesh, &xf, opts, (w, h));
+    let got = banded_frame(&mesh, &xf, opts, (w, h, rows), (bins, junk));
+    let what = format!(
+        "{w}×{h} rows {rows} bins {bins}/{needed} {cull:?} {shading:?}, {} faces",
+        indices.len()
+    );
+    let (want, got) = match (want, got) {
+        (Ok(want), Ok(got)) => (want, got),
+        (Err(_), Err(_)) => return None,
+        (want, got) => panic!(
+            "{what}: whole frame {:?}, bands {:?}",
+            want.map(|f| f.2),
+            got.map(|f| f.2)
+        ),
+    };
+    fn differ<T: PartialEq>(x: &[T], y: &[T]) -> (usize, Option<usize>) {
+        let n = x.iter().zip(y).filter(|(p, q)| p != q).count();
+        (n, x.iter().zip(y).position(|(p, q)| p != q))
+    }
+    let at = |i: Option<usize>| i.map(|i| (i as u32 % w, i as u32 / w));
+    let (n, i) = differ(&got.0, &want.0);
+    assert_eq!(
+        n,
+        0,
+        "{what}: {n} pixels of colour differ, first at {:?}",
+        at(i)
+    );
+    let (n, i) = differ(&got.1, &want.1);
+    assert_eq!(n, 0, "{what}: {n} depths differ, first at {:?}", at(i));
+    assert_eq!(got.2, want.2, "{what}: stats differ");
+    Some(want.2)
 }
