@@ -6,6 +6,12 @@
 //! See `USAGE` below (or run with `--help`). Exit codes: 0 success, 2 bad options or
 //! bad input (with a message naming the problem, and the line for OBJ errors), 1 when
 //! an output file cannot be written.
+//!
+//! Coordinates may be any finite `f32`, up to ±3.4·10³⁸ (a NaN or infinite one, or one
+//! beyond that range, is bad input: exit 2, naming the line). Material libraries
+//! (`mtllib`) are read with [`MtlLoader`]: regular files only, of at most
+//! [`zraster_obj::MAX_MTL_BYTES`] (16 MiB), each file once; one that cannot be read is
+//! a warning on stderr, and faces whose `usemtl` it would have defined take `--color`.
 
 use std::io::Write;
 use std::path::Path;
@@ -21,7 +27,7 @@ use zraster::{
     BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions,
     Renderer, ZBuffer,
 };
-use zraster_obj::{bounds, fit_scale, parse_obj, quantize};
+use zraster_obj::{fit_scale_f64, parse_obj_with, quantize, MtlLoader};
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]
@@ -41,7 +47,10 @@ usage: render MODEL.obj [options]
   --frames N          render N frames, write the last (default 1)
   --spin DEG          yaw added per frame (default 0)
   --band ROWS         render in bands of ROWS rows (output identical)
-  --stats             print the last frame's stats as one JSON line";
+  --stats             print the last frame's stats as one JSON line
+Material libraries (mtllib) are read from MODEL.obj's folder: regular files only,
+of at most 16 MiB, each once. One that cannot be read is a warning, and faces whose
+material it would have defined take --color.";
 
 /// Everything the command line says.
 struct Options {
@@ -294,18 +303,9 @@ fn main() {
         .parent()
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let mut libraries = std::collections::HashSet::new();
-    let obj = parse_obj(&text, |name| read_library(&dir.join(name), &mut libraries))
+    let mut libraries = MtlLoader::new(&dir);
+    let obj = parse_obj_with(&text, |name| libraries.load(name))
         .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
-    // Coordinates whose extent overflows f32 (near ±3.4e38) cannot be fitted or
-    // quantised: say so rather than draw a blank frame.
-    let (lo, hi) = bounds(&obj.positions);
-    if (0..3).any(|k| !(hi[k] - lo[k]).is_finite()) {
-        input_error(&format!(
-            "{}: coordinates too large (the model's extent overflows f32)",
-            o.model
-        ));
-    }
     for w in &obj.warnings {
         eprintln!("render: warning: {}: {w}", o.model);
     }
@@ -313,6 +313,14 @@ fn main() {
         input_error(&format!("{}: no faces", o.model));
     }
     let q = quantize(&obj.positions, true);
+    // The mesh's position scale is q.scale times 2^-k, and the model matrix takes 2^k
+    // back. k is 0 unless the model reaches beyond 2^±16: then its normals' cross and
+    // dot products (the fourth power of its size) would overflow or vanish in f32, and
+    // a fit below f32's normal range would lose precision. k then brings the positions
+    // to about ±2^8. A power of two scales f32 arithmetic exactly, so the image is
+    // exactly that of the model scaled by 2^-k (drawn with k = 0).
+    let k = balance_exponent(q.scale);
+    let mesh_scale = (f64::from(q.scale) * pow2(-k)) as f32;
     let indices = obj.triangle_indices();
     let materials: Vec<Kd> = obj
         .triangles
@@ -321,7 +329,7 @@ fn main() {
         .collect();
     let mut mesh = Mesh {
         positions: &q.positions,
-        scale: q.scale,
+        scale: mesh_scale,
         faces: Faces::Triangles {
             indices: &indices,
             materials: Materials::PerFace(&materials),
@@ -343,9 +351,15 @@ fn main() {
     // Model space → fitted: centre the bounding box, largest extent 1 (positions are
     // already stored around the bounding-box centre, q.offset).
     let place = if o.fit {
-        Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit_scale(&obj.positions))
+        let fit = (fit_scale_f64(&obj.positions) * pow2(k)) as f32;
+        Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit)
     } else {
-        Mat4::translation(Vec3::new(q.offset[0], q.offset[1], q.offset[2]))
+        let at = Mat4::translation(Vec3::new(q.offset[0], q.offset[1], q.offset[2]));
+        if k == 0 {
+            at
+        } else {
+            at * Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * pow2(k) as f32)
+        }
     };
 
     // ---- The frame.
@@ -507,30 +521,19 @@ fn main() {
     }
 }
 
-/// The largest material library `render` reads.
-const MAX_LIBRARY: u64 = 16 << 20;
+/// The k of `main`'s mesh scale `scale × 2^-k`: 0 for a model within 2^±16 (`scale` is
+/// its reach / 32767), else the k that brings `scale` into [2^-8, 2^-7) (positions to
+/// about ±2^8), within what an `f32` power of two can take back.
+fn balance_exponent(scale: f32) -> i32 {
+    let reach = f64::from(scale) * 32767.0;
+    if (pow2(-16)..=pow2(16)).contains(&reach) {
+        return 0;
+    }
+    let e = ((f64::from(scale).to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    (e + 8).clamp(-126, 127)
+}
 
-/// The text of the material library at `path`: only a regular file (not a device or a
-/// FIFO, which could hang or never end), of at most [`MAX_LIBRARY`] bytes, and each
-/// file once (a repeated `mtllib` reads as empty). `None` (a warning) otherwise.
-fn read_library(
-    path: &Path,
-    seen: &mut std::collections::HashSet<std::path::PathBuf>,
-) -> Option<String> {
-    let meta = std::fs::metadata(path).ok()?;
-    if !meta.is_file() || meta.len() > MAX_LIBRARY {
-        return None;
-    }
-    let key = std::fs::canonicalize(path).ok()?;
-    if !seen.insert(key) {
-        return Some(String::new());
-    }
-    use std::io::Read;
-    let mut text = String::new();
-    std::fs::File::open(path)
-        .ok()?
-        .take(MAX_LIBRARY)
-        .read_to_string(&mut text)
-        .ok()?;
-    Some(text)
+/// 2^e, for e in -1022..=1023.
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
 }

@@ -1,8 +1,9 @@
 //! The `render` example's command line: the contract outside checks drive.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Command, Output, Stdio};
 use std::sync::Once;
+use std::time::{Duration, Instant};
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
 use embedded_graphics_simulator::SimulatorDisplay;
@@ -47,6 +48,27 @@ fn tmp(name: &str) -> PathBuf {
 
 fn render(args: &[&str]) -> Output {
     Command::new(render_bin()).args(args).output().unwrap()
+}
+
+/// `render args`, failing the test if it has not finished within `secs` seconds (it is
+/// killed): for inputs that used to hang or read without end.
+fn render_within(secs: u64, args: &[&str]) -> Output {
+    let mut child = Command::new(render_bin())
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(secs) {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{args:?}: still running after {secs} s");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
 }
 
 fn run_ok(args: &[&str]) -> String {
@@ -213,60 +235,173 @@ fn bad_input_exits_2_with_a_message() {
     let bad_v = write("badv.obj", b"v 0 zero 0\n");
     fails_with(&[&bad_v], "line 1");
     fails_with(&["/nonexistent/model.obj"], "model.obj");
-    // Coordinates near ±3e38: the extent overflows f32 (it drew a blank frame, exit 0).
-    let huge = write(
-        "huge.obj",
-        b"v -3e38 -3e38 0\nv 3e38 -3e38 0\nv 0 3e38 0\nf 1 2 3\n",
-    );
-    fails_with(&[&huge], "too large");
+    // Coordinates that are not finite f32: NaN, ∞, and beyond ±3.4e38 (read as ∞).
+    for (i, v) in ["nan", "inf", "-Infinity", "1e39", "-3.5e38"]
+        .iter()
+        .enumerate()
+    {
+        let obj = write(
+            &format!("nonfinite{i}.obj"),
+            format!("v 0 0 0\nv 1 {v} 0\nv 0 1 0\nf 1 2 3\n").as_bytes(),
+        );
+        fails_with(&[&obj], "line 2: y is not finite");
+    }
 }
 
-/// `mtllib` reads only regular files, each once, of bounded size: a device, a FIFO and
-/// a missing file are warnings (the model still renders); a repeated line is read once.
+/// A model's f32 coordinates as OBJ text (`{:?}` round-trips every f32 exactly).
+fn obj_text(points: &[[f32; 3]], faces: &str) -> Vec<u8> {
+    let mut s = String::new();
+    for p in points {
+        s += &format!("v {:?} {:?} {:?}\n", p[0], p[1], p[2]);
+    }
+    (s + faces).into_bytes()
+}
+
+/// Render `args` with a PNG and a PGM of the depth; their bytes and the stats.
+fn render_all(name: &str, args: &[&str]) -> (Vec<u8>, Vec<u8>, String) {
+    let (png, pgm) = (tmp(&format!("{name}.png")), tmp(&format!("{name}.pgm")));
+    let out = [png.to_str().unwrap(), pgm.to_str().unwrap()];
+    let stats = run_ok(&[args, &["--out", out[0], "--depth-out", out[1], "--stats"]].concat());
+    (
+        std::fs::read(&png).unwrap(),
+        std::fs::read(&pgm).unwrap(),
+        stats,
+    )
+}
+
+/// Coordinates up to ±3e38 render exactly as the same model scaled down by a power of
+/// two. They drew a blank frame and exited 0: the fit scale's extent overflowed f32
+/// (and, from about ±4e9, the face normals did, leaving only the ambient light).
+#[test]
+fn huge_coordinates_render_as_the_model_scaled_down() {
+    let small = [
+        [-1.25f32, -1.0, 0.5],
+        [1.5, -0.75, -0.25],
+        [0.25, 1.75, 0.0],
+        [0.0, 0.125, 1.0],
+    ];
+    let faces = "f 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n";
+    let scenes: [&[&str]; 3] = [
+        &["--size", "96x72"],
+        &[
+            "--size", "96x72", "--shade", "gouraud", "--yaw", "30", "--pitch", "20",
+        ],
+        &[
+            "--size", "96x72", "--mode", "painter", "--yaw", "200", "--band", "7",
+        ],
+    ];
+    let small_obj = write("tetra.obj", &obj_text(&small, faces));
+    for k in [40, 100, 127] {
+        let s = 2f32.powi(k);
+        let big = small.map(|p| p.map(|v| v * s));
+        let big_obj = write(&format!("tetra{k}.obj"), &obj_text(&big, faces));
+        for (i, scene) in scenes.iter().enumerate() {
+            let want = render_all("tetra", &[&[small_obj.as_str()], *scene].concat());
+            let got = render_all("tetra-big", &[&[big_obj.as_str()], *scene].concat());
+            assert!(!want.2.contains("\"drawn\":0"), "{}", want.2);
+            assert!(want == got, "×2^{k}, scene {i}: {} vs {}", got.2, want.2);
+        }
+    }
+    // The triangle, at ±3e38 and at ±3 (the same quantised positions).
+    let tri = |c: &str| format!("v -{c} -{c} 0\nv {c} -{c} 0\nv 0 {c} 0\nf 1 2 3\n");
+    let huge = write("tri3e38.obj", tri("3e38").as_bytes());
+    let unit = write("tri3.obj", tri("3").as_bytes());
+    let (got, want) = (render_all("tri-a", &[&huge]), render_all("tri-b", &[&unit]));
+    assert!(got == want, "{} vs {}", got.2, want.2);
+    assert!(got.2.contains("\"drawn\":1"), "{}", got.2);
+}
+
+/// `mtllib` reads only regular files, each once, of at most 16 MiB: /dev/zero (read
+/// without end), a FIFO (blocked forever), a larger file and a missing one are warnings
+/// saying why, and the model still renders, in `--color`. Each used to be read whole.
 #[test]
 fn material_libraries_are_read_safely() {
     let out = tmp("lib-out.png");
     let out = out.to_str().unwrap();
     let tri = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
     let with = |lib: &str| [format!("mtllib {lib}\n").as_bytes(), tri].concat();
-    for lib in ["/dev/zero", "/nonexistent.mtl"] {
-        let obj = write("lib.obj", &with(lib));
-        let o = render(&[&obj, "--out", out]);
-        assert!(
-            o.status.success(),
-            "{lib}: {}",
-            String::from_utf8_lossy(&o.stderr)
-        );
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert!(err.contains("cannot read material library"), "{lib}: {err}");
-    }
-    // A FIFO with no writer would block a reader forever.
     let fifo = tmp("lib.fifo");
     let _ = std::fs::remove_file(&fifo);
     let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
     assert!(made.success());
-    let obj = write("fifo.obj", &with(fifo.to_str().unwrap()));
-    let o = render(&[&obj, "--out", out]);
-    assert!(o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read material library"));
+    let big = tmp("big.mtl");
+    std::fs::File::create(&big)
+        .unwrap()
+        .set_len((16 << 20) + 1)
+        .unwrap();
+    let cases = [
+        ("/dev/zero", "not a regular file"),
+        (fifo.to_str().unwrap(), "not a regular file"),
+        (big.to_str().unwrap(), "larger than 16 MiB"),
+        ("/nonexistent.mtl", "No such file"),
+    ];
+    for (lib, why) in cases {
+        let obj = write("lib.obj", &with(lib));
+        let o = render_within(
+            20,
+            &[&obj, "--out", out, "--shade", "none", "--color", "0,1,0"],
+        );
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{lib}: {err}");
+        let want = format!("line 1: cannot read material library {lib}: {why}");
+        assert!(err.contains(&want), "{lib}: {err}");
+        assert_eq!(
+            load(Path::new(out)).get_pixel(Point::new(150, 130)),
+            Rgb888::new(0, 255, 0),
+            "{lib}: the faces take --color"
+        );
+    }
     // The same library named three times: read once, and its material used.
     write("red.mtl", b"newmtl red\nKd 1 0 0\n");
     let obj = write(
         "thrice.obj",
-        &[b"mtllib red.mtl red.mtl\nmtllib red.mtl\n".as_slice(), tri].concat(),
+        &[
+            b"mtllib red.mtl red.mtl\nmtllib ./red.mtl\n".as_slice(),
+            tri,
+        ]
+        .concat(),
     );
-    let o = render(&[
-        &obj,
-        "--out",
-        out,
-        "--shade",
-        "none",
-        "--no-fit",
-        "--distance",
-        "1",
-    ]);
+    let o = render_within(20, &[&obj, "--out", out, "--shade", "none"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(!String::from_utf8_lossy(&o.stderr).contains("warning"));
+    assert_eq!(
+        load(Path::new(out)).get_pixel(Point::new(150, 130)),
+        Rgb888::new(255, 0, 0)
+    );
+    // The rule is in --help.
+    let help = run_ok(&["--help"]);
+    assert!(
+        help.contains("regular files only,\nof at most 16 MiB, each once"),
+        "{help}"
+    );
+}
+
+/// A UTF-8 byte-order mark before the first line of an OBJ or MTL file is skipped: the
+/// first statement was lost (here the first vertex, then the first material).
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    let dir = tmp("bom");
+    std::fs::create_dir_all(&dir).unwrap();
+    let obj = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nmtllib m.mtl\nusemtl c\nf 1 2 3 4\n";
+    let mtl = "newmtl c\nKd 0.5 0.25 1.0\n";
+    let mut outs = Vec::new();
+    for bom in ["", "\u{feff}"] {
+        std::fs::write(dir.join("m.mtl"), format!("{bom}{mtl}")).unwrap();
+        std::fs::write(dir.join("q.obj"), format!("{bom}{obj}")).unwrap();
+        let png = dir.join("q.png");
+        let o = render(&[
+            dir.join("q.obj").to_str().unwrap(),
+            "--size",
+            "32x32",
+            "--out",
+            png.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{err}");
+        assert!(err.is_empty(), "{err}");
+        outs.push(std::fs::read(&png).unwrap());
+    }
+    assert!(outs[0] == outs[1]);
 }
 
 #[test]
