@@ -10,10 +10,10 @@
 //! QEMU) are the figures to compare across commits.
 
 #[allow(dead_code, clippy::all)]
-#[path = "../bench/mcu/src/bunny.rs"]
+#[path = "../mcu/src/bunny.rs"]
 mod bunny;
 #[allow(dead_code)] // the benchmarks need no checksum
-#[path = "../bench/mcu/src/scene.rs"]
+#[path = "../mcu/src/scene.rs"]
 mod scene;
 
 use criterion::{criterion_group, criterion_main, Criterion};
