@@ -1,6 +1,7 @@
 //! Host benchmarks (criterion): `cargo bench`.
 //!
-//! - `bunny-320`: the performance issue's scene, one frame (transform, cull, draw).
+//! - `bunny-320`: the bench scene (`bench/scene`, the frame `bench/mcu` counts), one
+//!   frame (transform, cull, draw).
 //! - `bunny-320 banded 16`: the same frame in 16-row bands with bins.
 //! - `fill-bound cube`: the seeds' cube filling a 320×240 screen.
 //! - `tiny triangles`: 2000 triangles of a few pixels each, screen space (setup cost).
@@ -8,13 +9,6 @@
 //!
 //! Times on a shared host move around; the instruction counts in the README (callgrind,
 //! QEMU) are the figures to compare across commits.
-
-#[allow(dead_code, clippy::all)]
-#[path = "../mcu/src/bunny.rs"]
-mod bunny;
-#[allow(dead_code)] // the benchmarks need no checksum
-#[path = "../mcu/src/scene.rs"]
-mod scene;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use embedded_graphics::pixelcolor::Rgb565;
@@ -27,7 +21,7 @@ use zraster::{
     BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ScreenVertex, ZBuffer,
 };
 
-use scene::{H, W};
+use zraster_bench_scene::{self as scene, bunny, H, W};
 
 fn benches(c: &mut Criterion) {
     let n = (W * H) as usize;

@@ -7,22 +7,19 @@
 #![no_std]
 #![no_main]
 
-mod bunny;
-mod scene;
-
 use core::ptr::{addr_of, addr_of_mut, read_volatile, write_volatile};
 
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use panic_semihosting as _;
-use scene::{checksum, H, W};
 use zraster::{
     camera::{Transform, Viewport},
     math::Vec3,
     mesh::CUBE,
     BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
 };
+use zraster_bench_scene::{self as scene, bunny, checksum, H, W};
 
 const BAND: u32 = 16;
 const N: usize = (W * H) as usize;

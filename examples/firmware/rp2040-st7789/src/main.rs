@@ -11,10 +11,6 @@
 #![no_std]
 #![no_main]
 
-#[allow(dead_code, clippy::all)]
-#[path = "../../../../bench/mcu/src/bunny.rs"]
-mod bunny;
-
 use core::ptr::addr_of_mut;
 
 use embedded_graphics::{pixelcolor::Rgb565, pixelcolor::Rgb888, prelude::*};
@@ -31,6 +27,7 @@ use zraster::{
     shade::Shading,
     BandBuffers, CachedVertex, RenderOptions, Renderer,
 };
+use zraster_bench_scene::bunny;
 
 /// The second-stage boot loader for the Pico's W25Q080 flash.
 #[link_section = ".boot2"]
