@@ -2,15 +2,30 @@
 # Instruction counts of zraster on the Cortex-M4F (thumbv7em) and Cortex-M0+ (thumbv6m)
 # instruction sets, under QEMU's mps2-an386 board with -icount shift=0 (exact and
 # repeatable). Needs qemu-system-arm (Debian) and the two rustup targets.
-# Fails when a firmware fails, when banded and whole-frame pictures differ, or when the
-# frame is not the host's (its checksum is tests/bench_scene.rs's BENCH_CHECKSUM).
+# Fails when a firmware fails, when banded and whole-frame pictures differ, when the
+# frame is not the host's (its checksum is tests/bench_scene.rs's BENCH_CHECKSUM), or
+# when a bunny-320 whole frame costs more than 2 % over bench/baseline.txt.
+# UPDATE_BASELINE=1 bash bench/mcu.sh rewrites bench/baseline.txt with this run's figures
+# (see bench/README.md: a change that moves them updates it in the same commit).
 set -euo pipefail
 cd "$(dirname "$0")/mcu"
+baseline=../baseline.txt
+# The gate: a whole frame may cost at most this many per cent over the baseline.
+limit=2
 # The frame checksum every build must print: the host's picture (tests/bench_scene.rs).
 want=$(sed -n 's/^const BENCH_CHECKSUM: u32 = 0x\([0-9a-f_]*\);/\1/p' ../../tests/bench_scene.rs | tr -d _)
 [ -n "$want" ] || { echo "no BENCH_CHECKSUM in tests/bench_scene.rs"; exit 1; }
 out=$(mktemp)
+fresh=$(mktemp)
+trap 'rm -f "$out" "$fresh"' EXIT
 status=0
+slower=()
+
+# The figure KEY of TARGET in the baseline file (empty when it has none).
+base() { if [ -f "$baseline" ]; then awk -v t="$1" -v k="$2" '$1 == t && $2 == k { print $3 }' "$baseline"; fi; }
+# "+0.07 %": how far NEW is from OLD.
+pct() { awk -v o="$1" -v n="$2" 'BEGIN { printf "%+.2f %%", (n - o) * 100 / o }'; }
+
 for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   echo "== $target"
   if ! timeout 300 cargo run --quiet --release --target "$target" >"$out" 2>&1; then
@@ -22,6 +37,63 @@ for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   grep -Ev '^warning|^ *\||^ *=|^$|^ +-->' "$out" || true
   grep -q "same picture: true" "$out" || { echo "banded and whole-frame pictures differ on $target"; status=1; }
   grep -q "checksum $want " "$out" || { echo "the frame on $target is not the host's picture (checksum $want)"; status=1; }
+
+  # The figures the baseline holds, from the lines above.
+  full=$(sed -n 's/^bunny-320 full: .* total \([0-9][0-9]*\)$/\1/p' "$out")
+  banded=$(sed -n 's/^bunny-320 banded-16 without the copy to the frame: total \([0-9][0-9]*\)$/\1/p' "$out")
+  fill=$(sed -n 's/^fill-bound cube: .* \([0-9][0-9]*\.[0-9][0-9]\) per pixel$/\1/p' "$out")
+  ram=$(sed -n 's/^static RAM \([0-9][0-9]*\) bytes.*/\1/p' "$out")
+  if [ -z "$full" ] || [ -z "$banded" ] || [ -z "$fill" ] || [ -z "$ram" ]; then
+    echo "could not read the figures of $target for the baseline"
+    status=1
+    continue
+  fi
+  printf '%s full %s\n%s banded %s\n%s fill-per-pixel %s\n%s static-ram %s\n' \
+    "$target" "$full" "$target" "$banded" "$target" "$fill" "$target" "$ram" >>"$fresh"
+
+  # The comparison with the baseline.
+  old=$(base "$target" full)
+  if [ -z "$old" ]; then
+    echo "baseline: none for $target in bench/baseline.txt (UPDATE_BASELINE=1 bash bench/mcu.sh writes it)"
+    [ "${UPDATE_BASELINE:-}" = 1 ] || status=1
+    continue
+  fi
+  echo "baseline: whole frame $old -> $full ($(pct "$old" "$full"); the gate fails above +$limit %)"
+  if [ $((full * 100)) -gt $((old * (100 + limit))) ]; then
+    slower+=("$target")
+  elif [ $((full * 100)) -lt $((old * (100 - limit))) ]; then
+    echo "baseline: the whole frame on $target is more than $limit % below the baseline: update it so the gate keeps the gain"
+  fi
+  old=$(base "$target" banded)
+  [ -z "$old" ] || echo "baseline: banded, no copy $old -> $banded ($(pct "$old" "$banded"))"
+  old=$(base "$target" fill-per-pixel)
+  [ -z "$old" ] || echo "baseline: fill $old -> $fill instructions a pixel"
+  old=$(base "$target" static-ram)
+  [ -z "$old" ] || echo "baseline: RAM $old -> $ram bytes"
 done
-rm -f "$out"
+
+if [ "${UPDATE_BASELINE:-}" = 1 ]; then
+  if [ "$status" != 0 ]; then
+    echo "bench/baseline.txt not rewritten: the run failed"
+    exit 1
+  fi
+  {
+    echo "# The figures bench/mcu.sh compares against: exact instruction counts of bench/mcu under"
+    echo "# QEMU (bunny-320 whole frame, 16-row banded frame without the copy to the frame, the"
+    echo "# fill-bound cube's instructions a pixel) and the firmware's static RAM in bytes."
+    echo "# bench/mcu.sh fails when a whole frame costs more than $limit % over its figure here."
+    echo "# A change that moves the figures updates this file in the same commit, with"
+    echo "#   UPDATE_BASELINE=1 bash bench/mcu.sh"
+    cat "$fresh"
+  } >"$baseline"
+  echo "bench/baseline.txt rewritten"
+  exit 0
+fi
+for target in "${slower[@]}"; do
+  echo "the bunny-320 whole frame on $target costs more than $limit % over bench/baseline.txt"
+  status=1
+done
+if [ ${#slower[@]} -gt 0 ]; then
+  echo "(if that is the price of a change, update the baseline in the same commit: UPDATE_BASELINE=1 bash bench/mcu.sh)"
+fi
 exit $status

@@ -3,8 +3,9 @@
 #  - x86-64: instructions per bunny-320 frame of the render example, counted by
 #    callgrind as (Ir(2N) - Ir(N)) / N, so start-up and PNG writing cancel out;
 #  - Cortex-M4F and M0+ instruction sets: the QEMU bench (bench/mcu.sh).
-# Needs valgrind (Debian) for the first part; bench/mcu.sh installs its own needs
-# with MCU_INSTALL=1.
+# Needs valgrind (Debian) for the first part; bench/mcu.sh needs qemu-system-arm (Debian)
+# and the rustup targets thumbv7em-none-eabihf and thumbv6m-none-eabi, and fails when a
+# whole frame costs more than 2 % over bench/baseline.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=${N:-10}
