@@ -52,7 +52,7 @@ fn bands_seeds_draw() {
     for name in [
         "floor_flat_bins",
         "floor_lambert_nobins",
-        "floor_front_slack",
+        "floor_below_slack",
         "floor_persp",
         "soup_short_bins",
         "soup_light_bins",
