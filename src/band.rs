@@ -313,7 +313,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// tall ones ([`Carry::Tall`]) are known to be unclipped, front-facing (as the
     /// options cull) and to reach the rows of `frame`, so those tests are skipped for
     /// them. Colours pass between bands through `carry` as each face's [`Carry`] says.
-    pub(crate) fn draw_band_faces<C>(
+    fn draw_band_faces<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
@@ -336,10 +336,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.stats.add_pixel_counts(&px);
         Ok(())
     }
+
     /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
     /// colours from `shade` unless carried; returns the pixel counts.
     #[inline(always)]
-    pub(crate) fn band_loop<C>(
+    fn band_loop<C>(
         &self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
