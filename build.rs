@@ -6,9 +6,12 @@
 //!   M4, M7, M33);
 //! - `zraster_soft_float`: 32-bit Arm without hardware floating point, where vertices
 //!   are projected in integers;
-//! - `zraster_wide`: 64-bit registers with a 64-bit divide instruction (x86-64, AArch64).
+//! - `zraster_wide`: 64-bit registers with a 64-bit divide instruction (x86-64, AArch64);
+//! - `zraster_thumb`: Thumb code (every Cortex-M target: the target name starts with
+//!   `thumb`; Arm's instruction-set mode is not a cfg), for which `src/num/kernel.rs`
+//!   has assembly loops.
 fn main() {
-    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide)");
+    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb)");
     println!("cargo::rerun-if-changed=build.rs");
     let var = |k: &str| std::env::var(k).unwrap_or_default();
     let arm = var("CARGO_CFG_TARGET_ARCH") == "arm";
@@ -26,6 +29,7 @@ fn main() {
         "zraster_soft_float",
         arm && var("CARGO_CFG_TARGET_ABI") != "eabihf",
     );
+    set("zraster_thumb", arm && var("TARGET").starts_with("thumb"));
     set(
         "zraster_wide",
         var("CARGO_CFG_TARGET_POINTER_WIDTH") == "64",

@@ -82,7 +82,7 @@
 //!   `V1 × V2 > 0`); on the y-down screen their [`signed_area`] is negative.
 #![no_std]
 #![deny(missing_docs)]
-#![forbid(unsafe_code)]
+#![deny(unsafe_code)]
 #![deny(
     clippy::unwrap_used,
     clippy::expect_used,
@@ -119,6 +119,11 @@ pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
 pub use render::{CachedVertex, Cull, DepthSort, FrameStats, RenderOptions, Renderer};
+
+/// For the bench firmware: checks the assembly fill loop against its portable twin on
+/// the target (the number of differing cases; see `src/num/kernel.rs`).
+#[doc(hidden)]
+pub use num::kernel::check_fill_kernel;
 
 /// The largest width or height of a Z-buffer or colour buffer, in pixels (8192).
 ///

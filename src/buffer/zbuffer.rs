@@ -156,7 +156,7 @@ impl<'a> ZBuffer<'a> {
 
     /// Set every entry to `depth`.
     pub fn fill(&mut self, depth: u16) {
-        self.data.fill(depth);
+        crate::num::fill(self.data, depth);
     }
 
     /// The stored depth at screen pixel (x, y), or `None` outside the rows held.

@@ -110,7 +110,7 @@ pub(crate) fn divrem_by_recip(x: u32, d: u32, r: u32) -> (u32, u32) {
 }
 
 /// The three-multiply form of [`mul_i64_i32`], for `|b| < 2¹⁶`.
-#[inline]
+#[inline(always)]
 pub(crate) fn mul_small_parts(a: i64, b: i32) -> i64 {
     let ub = b.unsigned_abs();
     let (al, ah) = (a as u32, (a as u64 >> 32) as u32);

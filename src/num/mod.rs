@@ -11,6 +11,7 @@
 
 mod armv6m;
 mod armv7m;
+pub(crate) mod kernel;
 
 pub(crate) use armv6m::{
     bits_beyond_31_parts, div_floor_pair_recip, floor_div32_soft, mul_small_parts, mul_wide_parts,
@@ -65,10 +66,14 @@ pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
             return q;
         }
     }
+    let (n1, n2, d) = if d < 0 { (-n1, -n2, -d) } else { (n1, n2, d) };
     if WIDE {
         // A 64-bit divide instruction: one each, cheaper than the digit method.
-        let (n1, n2, d) = if d < 0 { (-n1, -n2, -d) } else { (n1, n2, d) };
         return (n1.div_euclid(d), n2.div_euclid(d));
+    }
+    if let (Ok(a), Ok(b), Ok(d)) = (i32::try_from(n1), i32::try_from(n2), i32::try_from(d)) {
+        // One 32-bit division each (the usual small triangle's depth steps).
+        return (i64::from(floor_div32(a, d)), i64::from(floor_div32(b, d)));
     }
     (div_floor_signless(n1, d), div_floor_signless(n2, d))
 }
@@ -110,8 +115,11 @@ pub(crate) const ARMV6M: bool = cfg!(zraster_armv6m);
 /// ARMv7-M and ARMv8-M mainline (Cortex-M3/M4/M7/M33): divide, long multiply and
 /// multiply-accumulate instructions.
 pub(crate) const THUMB2: bool = cfg!(zraster_thumb2);
+/// A divide instruction (everything but ARMv6-M): a division costs about as much as
+/// a multiply, so loops may divide where a DDA would step.
+pub(crate) const DIVIDE: bool = !ARMV6M;
 /// 32-bit Arm of either kind.
-pub(crate) const ARM32: bool = ARMV6M || THUMB2;
+pub(crate) const ARM: bool = ARMV6M || THUMB2;
 /// 64-bit registers and a 64-bit divide instruction (x86-64, AArch64).
 pub(crate) const WIDE: bool = cfg!(zraster_wide);
 /// No hardware floating point: vertices are projected in integers (a soft-float divide
@@ -220,14 +228,15 @@ pub(crate) fn round_f32(v: f32) -> i32 {
     (v + 0.5f32.copysign(v)) as i32
 }
 
-/// `data.fill(value)`, kept a store loop. With a constant value the compiler turns a
-/// fill into `memset`, which on x86-64 glibc is `rep stosb` for large buffers: fast on
-/// the hardware but counted byte by byte by instruction counters, which would hide the
-/// renderer's own figures. Through `black_box` the value is opaque, so the compiler
-/// emits a vectorised store loop instead. Elsewhere (Cortex-M) `memset` is the faster
-/// of the two and stays.
+/// `data.fill(value)`: on Cortex-M, two-byte values (RGB565, depth) by the
+/// store-multiple loop of [`kernel::fill_u16`]. On x86-64 the value goes through
+/// `black_box`, so that the compiler emits a vector store loop rather than `memset`
+/// (glibc's `rep stosb`, counted byte by byte by instruction counters).
 #[inline]
 pub(crate) fn fill<T: Copy>(data: &mut [T], value: T) {
+    if ARM && kernel::fill_as_u16(data, value) {
+        return;
+    }
     #[cfg(target_arch = "x86_64")]
     let value = core::hint::black_box(value);
     data.fill(value);

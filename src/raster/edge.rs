@@ -80,6 +80,73 @@ impl EdgeWalk {
     }
 }
 
+/// An edge of a small triangle walked downward in coordinates relative to a local
+/// origin at or above-left of its vertices (so every column it meets is ≥ 0): at each
+/// row, [`x`](SmallEdge::x) is the first column whose centre lies on or right of the
+/// edge. Two forms give the same columns: [`EdgeWalk`] (a DDA, for cores without a
+/// divide instruction) and [`EdgeDivide`] (one division a row).
+pub(crate) trait SmallEdge {
+    /// The edge from `a` to `b` (`a.1 < b.1`, both with extents below [`SMALL`]) at row
+    /// `py`, one of the rows whose centres lie in `[a.1, b.1)`.
+    fn new(a: (i32, i32), b: (i32, i32), py: i32) -> Self;
+    /// The first covered column of the current row.
+    fn x(&self) -> i32;
+    /// Move to the next row.
+    fn advance(&mut self);
+}
+
+impl SmallEdge for EdgeWalk {
+    #[inline(always)]
+    fn new(a: (i32, i32), b: (i32, i32), py: i32) -> Self {
+        EdgeWalk::new_small(a, b, py)
+    }
+
+    #[inline(always)]
+    fn x(&self) -> i32 {
+        self.x
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        EdgeWalk::advance(self)
+    }
+}
+
+/// [`SmallEdge`] by a division a row: the column is `⌈T/16dy⌉` with `T` as in
+/// [`EdgeWalk::new`]. On the edge's rows its x lies between its endpoints', so
+/// `T > −16dy`, and `⌈T/16dy⌉ = ⌊(T + 16dy − 1)/16dy⌋` is an unsigned division (below
+/// 2²⁷ for extents below 2¹³); each row adds `16dx` to `T`.
+pub(crate) struct EdgeDivide {
+    t: u32,
+    dt: u32,
+    d: u32,
+}
+
+impl SmallEdge for EdgeDivide {
+    #[inline(always)]
+    fn new(a: (i32, i32), b: (i32, i32), py: i32) -> Self {
+        let (dx, dy) = (b.0 - a.0, b.1 - a.1); // |dx| < 2¹⁴, 0 < dy < 2¹⁴
+        let d = dy * SUBPIXEL;
+        let yc = py * SUBPIXEL + SUBPIXEL / 2;
+        let t = (yc - a.1) * dx + (a.0 - SUBPIXEL / 2) * dy; // > −d, < 2²⁷
+        EdgeDivide {
+            t: (t + d - 1) as u32,
+            dt: (dx * SUBPIXEL) as u32,
+            d: d as u32,
+        }
+    }
+
+    #[inline(always)]
+    fn x(&self) -> i32 {
+        (self.t / self.d) as i32
+    }
+
+    #[inline(always)]
+    fn advance(&mut self) {
+        self.t = self.t.wrapping_add(self.dt);
+    }
+}
+
 /// Extents (in 1/16 pixel) below which a triangle takes the all-`i32` setup: 512 pixels.
 pub(crate) const SMALL: i32 = 1 << 13;
 
@@ -238,5 +305,43 @@ impl Spans {
             }
         }
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The two small-edge forms give the same column on every row of random edges
+    /// with extents up to the small limit, and both agree with the general walk.
+    #[test]
+    fn small_edge_forms_agree() {
+        let mut rnd = crate::testing::xorshift32(0x1234_5678);
+        for i in 0..50_000u32 {
+            let mut r = |m: u32| (rnd() % m) as i32;
+            // Mostly short edges (the usual case), some up to the limit.
+            let span = if i % 8 == 0 { SMALL as u32 } else { 160 };
+            let (ax, ay) = (r(span), r(span));
+            let (bx, by) = (r(span), ay + 1 + r(span - ay as u32));
+            if by >= SMALL {
+                continue;
+            }
+            let (a, b) = ((ax, ay), (bx, by));
+            let first = (ay + SUBPIXEL / 2 - 1) >> SUBPIXEL_BITS;
+            let last = (by + SUBPIXEL / 2 - 1) >> SUBPIXEL_BITS;
+            if first >= last {
+                continue;
+            }
+            let mut walk = <EdgeWalk as SmallEdge>::new(a, b, first);
+            let mut div = <EdgeDivide as SmallEdge>::new(a, b, first);
+            let mut wide = EdgeWalk::new(a, b, first);
+            for py in first..last {
+                assert_eq!(walk.x(), div.x(), "{a:?} {b:?} row {py}");
+                assert_eq!(wide.x, div.x(), "{a:?} {b:?} row {py}");
+                walk.advance();
+                div.advance();
+                wide.advance();
+            }
+        }
     }
 }

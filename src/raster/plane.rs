@@ -4,7 +4,7 @@
 use super::edge::Setup;
 use super::ScreenVertex;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
-use crate::num::{div_floor, div_floor_wide, mul_i64_i32, sat_i32};
+use crate::num::{div_floor, div_floor_pair, div_floor_wide, mul_i64_i32, sat_i32};
 
 /// A quantity that varies linearly across a screen triangle — its depth, or a colour
 /// channel for Gouraud shading — given by its plane through the three vertices: the
@@ -172,6 +172,36 @@ pub(crate) fn plane_origin(p0: &ScreenVertex, sx: i64, sy: i64) -> u32 {
         .wrapping_add(DEPTH_BIAS)
 }
 
+/// The depth steps per pixel along x and y (16.16) of a small triangle (extents below
+/// [`SMALL`](super::SMALL)); `None` for zero area.
+///
+/// The plane is taken through the depths in 20.12 (`z >> 4`), so its numerators
+/// `16·(Δz₁·Δy₂ − Δz₂·Δy₁)` (|Δz| < 2²⁸, |Δy| < 2¹³: below 2⁴⁶) usually fit 32 bits and
+/// each step is one exact division, floored to 20.12 and widened to 16.16. Stepped
+/// from the plane's origin ([`plane_origin`]) across at most 2¹⁰ pixels, a step's
+/// rounding moves the depth by less than 2¹⁰·2⁻¹² = ¼ unit: each pixel's stored depth is
+/// within one unit of the exactly rounded plane value.
+#[inline(always)]
+pub(crate) fn small_steps(tri: &[ScreenVertex; 3]) -> Option<(i64, i64)> {
+    let [p0, p1, p2] = tri;
+    let (dx1, dy1) = (p1.x - p0.x, p1.y - p0.y);
+    let (dx2, dy2) = (p2.x - p0.x, p2.y - p0.y);
+    let area = dx1 * dy2 - dx2 * dy1; // |·| < 2²⁷
+    if area == 0 {
+        return None;
+    }
+    let zq = |p: &ScreenVertex| i64::from(p.z >> 4);
+    let (dz1, dz2) = (zq(p1) - zq(p0), zq(p2) - zq(p0));
+    let a = mul_i64_i32(dz1, dy2) - mul_i64_i32(dz2, dy1);
+    let b = mul_i64_i32(dz2, dx1) - mul_i64_i32(dz1, dx2);
+    let (sx, sy) = div_floor_pair(
+        a * i64::from(SUBPIXEL),
+        b * i64::from(SUBPIXEL),
+        i64::from(area),
+    );
+    Some((sx << 4, sy << 4))
+}
+
 /// Depth at the start of each row of a triangle, in the pixel loop's biased form.
 ///
 /// For the usual triangle (extent within 4096 pixels, slopes within `i32`) this is the
@@ -209,26 +239,8 @@ impl DepthRows {
             Some((rows, sx as u32))
         };
         if setup.small {
-            // Extents below 2¹³: the area and the position products fit i32, the plane
-            // numerators (|Δz| < 2³², |Δy| < 2¹³) fit i64, and divisions by a small
-            // area take the two-digit path.
-            let [p0, p1, p2] = tri;
-            let (dx1, dy1) = (p1.x - p0.x, p1.y - p0.y);
-            let (dx2, dy2) = (p2.x - p0.x, p2.y - p0.y);
-            let area = i64::from(dx1 * dy2 - dx2 * dy1);
-            if area == 0 {
-                return None;
-            }
-            let (dz1, dz2) = (
-                i64::from(p1.z) - i64::from(p0.z),
-                i64::from(p2.z) - i64::from(p0.z),
-            );
-            let a = dz1 * i64::from(dy2) - dz2 * i64::from(dy1);
-            let b = i64::from(dx1) * dz2 - i64::from(dx2) * dz1;
-            return fast(
-                div_floor(a * i64::from(SUBPIXEL), area),
-                div_floor(b * i64::from(SUBPIXEL), area),
-            );
+            let (sx, sy) = small_steps(tri)?;
+            return fast(sx, sy);
         }
         let plane = Plane::new(tri, zs)?;
         if !plane.exact {

@@ -141,15 +141,20 @@ fn main() -> ! {
     }
     let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
 
+    // The assembly fill loop against its portable twin, at every alignment and length
+    // up to 200 (bench/mcu.sh fails unless none differ).
+    let bad = zraster::check_fill_kernel(&mut depth[..256], 200);
+    hprintln!("fill kernel cases differing from the portable twin: {}", bad);
+
     // ---- bunny-320, full frame.
+    let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
+    let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
     let (_, clear) = measure(|| {
-        pixels.fill(Rgb565::BLACK);
-        depth.fill(u16::MAX);
+        frame.clear(Rgb565::BLACK).unwrap();
+        zbuf.clear();
     });
     let (renderer, transform) = measure(|| Renderer::with_cache(&mesh, &xf, opts, cache).unwrap());
     let mut renderer = renderer;
-    let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
-    let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
     let (_, draw) = measure(|| renderer.draw_buffer(&mut frame, &mut zbuf).unwrap());
     drop(zbuf);
     let stats = renderer.stats();
