@@ -14,7 +14,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
 use crate::raster::signed_area_guarded;
-use crate::render::{cached_triangle, outside_rows, per_colouring, CachedVertex};
+use crate::render::{cached_triangle, outside_rows, per_colouring};
 use crate::shade::{Material, Shading};
 use crate::{ColorBuffer, DrawError, Error, FrameStats, Renderer, ZBuffer, MAX_DIMENSION};
 
@@ -259,15 +259,14 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     outside += 1;
                     continue;
                 }
-                if a.code() | b.code() | c.code() != 0 {
+                if a.marked() | b.marked() | c.marked() {
                     break Some(f);
                 }
-                let xy = |v: &CachedVertex| (v.screen().x(), v.screen().y());
-                if cull.drops(signed_area_guarded(xy(a), xy(b), xy(c))) {
+                if cull.drops(signed_area_guarded(a.xy(), b.xy(), c.xy())) {
                     culled += 1;
                     continue;
                 }
-                let [p, q, r] = [a.screen(), b.screen(), c.screen()];
+                let [p, q, r] = [a.placed(), b.placed(), c.placed()];
                 let ymin = p.y().min(q.y()).min(r.y());
                 let ymax = p.y().max(q.y()).max(r.y());
                 let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
@@ -363,18 +362,18 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
             let [a, b, c] = cached_triangle(cache, f, t)?;
-            let tri = [&a.screen, &b.screen, &c.screen];
             if how == Carry::Tall {
                 // Drawn in every band: clipped by the general path, or skipped when it
                 // does not reach this band's rows.
-                if a.code | b.code | c.code != 0 {
+                if a.marked() | b.marked() | c.marked() {
                     px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
                     continue;
                 }
-                if outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
                     continue;
                 }
             }
+            let tri = [a.placed(), b.placed(), c.placed()];
             // One call of `shade` (so that it is inlined): carried, or worked out.
             let carried = if how == Carry::Take {
                 carry.take()
@@ -388,7 +387,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            px.add_fill(target.fill(tri, color));
+            px.add_fill(target.fill(tri.each_ref(), color));
         }
         Ok(px)
     }

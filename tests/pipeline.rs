@@ -489,6 +489,73 @@ fn banded_drawing_is_pixel_identical_with_and_without_bins() {
     }
 }
 
+/// The vertex cache holds screen positions within ±2048 pixels: with the view placed
+/// across x = 2048 the faces beyond take the general path, with the pixels, depths and
+/// counts of a renderer without a cache, whole or banded.
+#[test]
+fn vertices_beyond_the_cache_range_draw_as_without_a_cache() {
+    let bunny = scenes::Bunny::load();
+    let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
+    let (w, h) = (2240u32, 96u32);
+    let vp = Viewport::at(1920, 0, 256, h).unwrap();
+    let xf = Transform::perspective(
+        Vec3::new(0.0, 0.0, 1.6),
+        Vec3::default(),
+        60.0,
+        0.1,
+        10.0,
+        vp,
+    )
+    .unwrap()
+    .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
+    let opts = RenderOptions {
+        shading: Shading::Lambert,
+        ..Default::default()
+    };
+    let whole = |cache: Option<&mut [CachedVertex]>| {
+        let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
+        let mut depth = vec![0u16; (w * h) as usize];
+        let mut frame = ColorBuffer::new(&mut pixels, w, h).unwrap();
+        let mut zbuf = ZBuffer::new(&mut depth, w, h).unwrap();
+        zbuf.clear();
+        let mut r = match cache {
+            Some(c) => Renderer::with_cache(&mesh, &xf, opts, c).unwrap(),
+            None => Renderer::new(&mesh, &xf, opts).unwrap(),
+        };
+        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        let stats = r.stats();
+        (pixels, depth, stats)
+    };
+    let mut cache = vec![CachedVertex::EMPTY; bunny.positions.len()];
+    let (p1, d1, s1) = whole(Some(&mut cache));
+    let (p0, d0, s0) = whole(None);
+    assert_same(&p1, &p0, "cached against uncached");
+    assert!(d1 == d0, "depth differs");
+    assert_eq!(s1, s0);
+    // The bunny lies across x = 2048 (128 pixels): drawn on both sides.
+    let drawn_at = |x0: u32, x1: u32| {
+        (0..h).any(|y| (x0..x1).any(|x| p0[(y * w + x) as usize] != Rgb565::BLACK))
+    };
+    assert!(drawn_at(1990, 2048) && drawn_at(2048, 2110), "{s0:?}");
+    // Banded, with bins.
+    let rows = 16;
+    let mut out = vec![Rgb565::BLUE; (w * h) as usize];
+    let mut cb = vec![Rgb565::BLACK; (w * rows) as usize];
+    let mut zb = vec![0u16; (w * rows) as usize];
+    let mut bins =
+        vec![0u16; zraster::BandBuffers::<Rgb565>::bins_needed(bunny.indices.len(), h, rows)];
+    let stats = {
+        let mut display = ColorBuffer::new(&mut out, w, h).unwrap();
+        let mut bands = zraster::BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
+        let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+        r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+            .unwrap();
+        r.stats()
+    };
+    assert_same(&out, &p0, "banded against uncached");
+    assert_eq!(stats, s0);
+}
+
 /// Bands no triangle reaches are not cleared again, unless an overlay may have drawn
 /// into the band: a pixel drawn after the first band only must not show in the next.
 #[test]

@@ -101,32 +101,86 @@ impl FrameStats {
     }
 }
 
-/// A vertex transformed and projected once per frame (16 bytes), so that every band
+/// A vertex transformed and projected once per frame (8 bytes), so that every band
 /// and every face sharing it reuses the work. See [`Renderer::with_cache`].
+///
+/// It holds the screen position of a vertex inside the view volume within ±2048 pixels
+/// of the origin (x and y in 12.4, depth in 16.16). Any other vertex is marked and
+/// holds its outcode: faces using it take the general path, which clips them or
+/// projects that vertex again.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CachedVertex {
-    pub(crate) screen: ScreenVertex,
-    pub(crate) code: u8,
-    pub(crate) light: Intensity,
+    /// x in 1/16 pixel, or [`CachedVertex::MARK`].
+    x: i16,
+    /// y in 1/16 pixel, or the outcode when marked.
+    y: i16,
+    /// Depth in 16.16.
+    z: u32,
 }
 
 impl CachedVertex {
+    /// `x` of a vertex the entry does not place.
+    const MARK: i16 = i16::MIN;
+
+    /// The entry for a vertex with outcode `code` and screen position `v`.
     #[inline]
-    pub(crate) fn code(&self) -> u8 {
-        self.code
+    pub(crate) fn new(code: u8, v: ScreenVertex) -> CachedVertex {
+        let fits = |c: i32| c.unsigned_abs() <= i16::MAX as u32;
+        if code == 0 && fits(v.x()) && fits(v.y()) {
+            CachedVertex {
+                x: v.x() as i16,
+                y: v.y() as i16,
+                z: v.z(),
+            }
+        } else {
+            CachedVertex {
+                x: Self::MARK,
+                y: i16::from(code),
+                z: 0,
+            }
+        }
     }
 
-    #[inline]
+    /// Whether the entry holds no screen position (outside, or beyond ±2048 pixels).
+    #[inline(always)]
+    pub(crate) fn marked(&self) -> bool {
+        self.x == Self::MARK
+    }
+
+    /// The vertex's outcode (0 for every vertex inside the view volume).
+    #[inline(always)]
+    pub(crate) fn code(&self) -> u8 {
+        if self.marked() {
+            self.y as u8
+        } else {
+            0
+        }
+    }
+
+    /// The screen position (the origin for a marked entry).
+    #[inline(always)]
     pub(crate) fn screen(&self) -> ScreenVertex {
-        self.screen
+        if self.marked() {
+            ScreenVertex::ORIGIN
+        } else {
+            ScreenVertex::from_raw(i32::from(self.x), i32::from(self.y), self.z)
+        }
+    }
+
+    /// x and y (1/16 pixel) of an entry known not to be marked.
+    #[inline(always)]
+    pub(crate) fn xy(&self) -> (i32, i32) {
+        (i32::from(self.x), i32::from(self.y))
+    }
+
+    /// The screen position of an entry known not to be marked.
+    #[inline(always)]
+    pub(crate) fn placed(&self) -> ScreenVertex {
+        ScreenVertex::from_raw(i32::from(self.x), i32::from(self.y), self.z)
     }
 
     /// An empty entry, to initialise cache arrays.
-    pub const EMPTY: CachedVertex = CachedVertex {
-        screen: ScreenVertex::ORIGIN,
-        code: 0,
-        light: 0,
-    };
+    pub const EMPTY: CachedVertex = CachedVertex { x: 0, y: 0, z: 0 };
 }
 
 impl Default for CachedVertex {
@@ -221,7 +275,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 
     /// A renderer that transforms every vertex once, now, into `cache` (one
-    /// [`CachedVertex`] per mesh vertex, 16 bytes each).
+    /// [`CachedVertex`] per mesh vertex, 8 bytes each).
     ///
     /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
     pub fn with_cache(
@@ -233,20 +287,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut r = Self::new(mesh, xf, options)?;
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
-        // Positions first, vertex lights (Gouraud only) in a pass of their own: the
-        // projection loop then does not ask for each vertex which shading it is.
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
             let (code, screen) = r.map.project_fixed(&r.fixed.apply(p));
-            *slot = CachedVertex {
-                screen,
-                code,
-                light: ONE,
-            };
-        }
-        if options.shading == Shading::Gouraud {
-            for (i, slot) in cache.iter_mut().enumerate() {
-                slot.light = r.vertex_light(i);
-            }
+            *slot = CachedVertex::new(code, screen);
         }
         r.cache = Some(cache);
         Ok(r)
@@ -283,22 +326,29 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
 
     #[inline]
     fn fetch(&self, i: u16, face: usize) -> Result<Fetched, Error> {
-        let bad = Error::IndexOutOfRange {
+        let bad = || Error::IndexOutOfRange {
             face,
             index: usize::from(i),
         };
-        match &self.cache {
-            Some(cache) => {
-                let c = cache.get(usize::from(i)).ok_or(bad)?;
-                Ok(Fetched {
-                    index: i,
-                    code: c.code,
-                    screen: c.screen,
-                    light: c.light,
-                })
-            }
-            None => self.transform(i).map_err(|_| bad),
+        let Some(cache) = &self.cache else {
+            return self.transform(i).map_err(|_| bad());
+        };
+        let c = cache.get(usize::from(i)).ok_or_else(bad)?;
+        if c.marked() && c.code() == 0 {
+            // Inside, but too far out for the cache's 16 bits: projected again.
+            return self.transform(i).map_err(|_| bad());
         }
+        let light = if self.options.shading == Shading::Gouraud {
+            self.vertex_light(usize::from(i))
+        } else {
+            ONE
+        };
+        Ok(Fetched {
+            index: i,
+            code: c.code(),
+            screen: c.screen(),
+            light,
+        })
     }
 
     /// Gouraud light of vertex `i` from the mesh's vertex normals (full light without).

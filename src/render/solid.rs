@@ -258,21 +258,20 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 let Some(f) = faces.next() else { break None };
                 let Some(t) = indices.get(f) else { continue };
                 let [a, b, c] = cached_triangle(cache, f, t)?;
-                if a.code | b.code | c.code != 0 {
+                if a.marked() | b.marked() | c.marked() {
                     break Some((f, None));
                 }
                 st.triangles_in += 1;
-                if !first && outside_rows(&[a.screen, b.screen, c.screen], row0, row1) {
+                if !first && outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
                     continue;
                 }
                 // The test of `culled`, written out (the helper's array copy costs).
-                let p = |v: &CachedVertex| (v.screen.x(), v.screen.y());
-                if cull.drops(signed_area_guarded(p(a), p(b), p(c))) {
+                if cull.drops(signed_area_guarded(a.xy(), b.xy(), c.xy())) {
                     st.culled += 1;
                     continue;
                 }
                 st.drawn += 1;
-                break Some((f, Some([&a.screen, &b.screen, &c.screen])));
+                break Some((f, Some([a.placed(), b.placed(), c.placed()])));
             };
             let Some((f, tri)) = next else { break };
             let Some(tri) = tri else {
@@ -282,7 +281,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 px.add_pixels(more);
                 continue;
             };
-            px.add_fill(target.fill(tri, shade(f)?));
+            px.add_fill(target.fill(tri.each_ref(), shade(f)?));
         }
         Ok((st, px))
     }
