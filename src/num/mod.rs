@@ -78,6 +78,23 @@ pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
     (div_floor_signless(n1, d), div_floor_signless(n2, d))
 }
 
+/// [`div_floor_pair`] when both numerators and the divisor (`d ≠ 0`) fit 32 bits, on
+/// cores with a divide instruction: two divisions inline. `None` otherwise (and always
+/// on ARMv6-M, whose reciprocal form is the cheaper).
+#[inline(always)]
+pub(crate) fn div_floor_pair32(n1: i64, n2: i64, d: i32) -> Option<(i32, i32)> {
+    if !DIVIDE {
+        return None;
+    }
+    let (n1, n2) = (i32::try_from(n1).ok()?, i32::try_from(n2).ok()?);
+    let (n1, n2, d) = if d < 0 {
+        (n1.checked_neg()?, n2.checked_neg()?, d.checked_neg()?)
+    } else {
+        (n1, n2, d)
+    };
+    Some((floor_div32(n1, d), floor_div32(n2, d)))
+}
+
 /// [`div_floor`] with the sign of `n` folded in rather than tested: for d > 0,
 /// ⌊n/d⌋ = −1 − ⌊(−1 − n)/d⌋, so with s = 0 or −1 by n's sign it is s ^ ⌊m/d⌋ for
 /// m = n ^ s ≥ 0 — unsigned divisions and no remainder test. (Only for the depth
@@ -246,6 +263,54 @@ pub(crate) fn fill<T: Copy>(data: &mut [T], value: T) {
 mod tests {
     use super::armv6m::recip32_small;
     use super::*;
+
+    #[test]
+    fn div_floor_pair32_agrees_with_div_floor_pair() {
+        let mut rnd = crate::testing::xorshift32(0x0bad_cafe);
+        let edges = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65536,
+            -17,
+            -1,
+            0,
+            1,
+            17,
+            65535,
+            i32::MAX,
+        ];
+        for i in 0..200_000u32 {
+            let pick = |r: u32, k: usize| {
+                if i % 5 == 0 {
+                    edges[(r as usize + k) % edges.len()]
+                } else {
+                    r as i32 >> (r % 24)
+                }
+            };
+            let (n1, n2) = (pick(rnd(), 0), pick(rnd(), 3));
+            let d = match pick(rnd(), 7) {
+                0 => 1,
+                d => d,
+            };
+            let (n1, n2) = (i64::from(n1), i64::from(n2));
+            match div_floor_pair32(n1, n2, d) {
+                Some((a, b)) => {
+                    assert_eq!(
+                        (i64::from(a), i64::from(b)),
+                        div_floor_pair(n1, n2, i64::from(d))
+                    )
+                }
+                // Only where a quotient or a negation leaves i32 (or on ARMv6-M).
+                None => assert!(
+                    !DIVIDE
+                        || d == i32::MIN
+                        || n1 == i64::from(i32::MIN)
+                        || n2 == i64::from(i32::MIN)
+                ),
+            }
+        }
+        assert_eq!(div_floor_pair32(1 << 40, 1, 3), None);
+    }
 
     #[test]
     fn recip62_is_the_exact_quotient() {

@@ -4,7 +4,9 @@
 use super::edge::Setup;
 use super::ScreenVertex;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
-use crate::num::{div_floor, div_floor_pair, div_floor_wide, mul_i64_i32, sat_i32};
+use crate::num::{
+    div_floor, div_floor_pair, div_floor_pair32, div_floor_wide, mul_i64_i32, sat_i32,
+};
 
 /// A quantity that varies linearly across a screen triangle — its depth, or a colour
 /// channel for Gouraud shading — given by its plane through the three vertices: the
@@ -194,11 +196,11 @@ pub(crate) fn small_steps(tri: &[ScreenVertex; 3]) -> Option<(i64, i64)> {
     let (dz1, dz2) = (zq(p1) - zq(p0), zq(p2) - zq(p0));
     let a = mul_i64_i32(dz1, dy2) - mul_i64_i32(dz2, dy1);
     let b = mul_i64_i32(dz2, dx1) - mul_i64_i32(dz1, dx2);
-    let (sx, sy) = div_floor_pair(
-        a * i64::from(SUBPIXEL),
-        b * i64::from(SUBPIXEL),
-        i64::from(area),
-    );
+    let (na, nb) = (a * i64::from(SUBPIXEL), b * i64::from(SUBPIXEL));
+    let (sx, sy) = match div_floor_pair32(na, nb, area) {
+        Some((sx, sy)) => (i64::from(sx), i64::from(sy)),
+        None => div_floor_pair(na, nb, i64::from(area)),
+    };
     Some((sx << 4, sy << 4))
 }
 
