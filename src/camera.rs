@@ -125,6 +125,79 @@ impl Transform {
         self
     }
 
+    /// This transform with its near and far planes moved to enclose a box (its lowest
+    /// and highest corners in model space, as [`Mesh::bounds`](crate::mesh::Mesh::bounds)
+    /// gives them): the box's nearest and farthest corners in eye space, so the depths
+    /// the mesh covers use most of the 16-bit range instead of a sliver of a fixed
+    /// near…far (which is where z-fighting comes from). x and y are unchanged. Near
+    /// never goes below `min_near`: a mesh reaching closer than that is clipped there,
+    /// as with any near plane; a mesh wholly behind `min_near` keeps planes that show
+    /// nothing of it. Eight corners transformed: cheap enough for every frame.
+    ///
+    /// Works for perspective and orthographic projections (as built by
+    /// [`perspective`](Transform::perspective) and [`Mat4::orthographic`]); other
+    /// projection matrices, a `min_near` that is not positive or corners in the wrong
+    /// order are an [`Error::InvalidParameter`].
+    ///
+    /// ```
+    /// use zraster::{camera::{Transform, Viewport}, math::Vec3, mesh::CUBE};
+    /// let vp = Viewport::new(64, 48)?;
+    /// let xf = Transform::perspective(Vec3::new(0.5, 0.5, 4.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 100.0, vp)?;
+    /// let (lo, hi) = CUBE.bounds().unwrap();
+    /// let fitted = xf.fit_depth(lo, hi, 0.1)?;
+    /// // The cube's front face now lies at depth 0 and its back face at 1.
+    /// let depth = |p: Vec3| { let c = fitted.model_view_projection().transform_point(p); (c[2] / c[3] + 1.0) / 2.0 };
+    /// assert!(depth(Vec3::new(0.5, 0.5, 1.0)) < 0.01 && depth(Vec3::new(0.5, 0.5, 0.0)) > 0.99);
+    /// # Ok::<(), zraster::Error>(())
+    /// ```
+    pub fn fit_depth(mut self, lo: Vec3, hi: Vec3, min_near: f32) -> Result<Transform, Error> {
+        if !(lo.is_finite() && hi.is_finite() && min_near.is_finite()) {
+            return Err(Error::NotFinite);
+        }
+        if !(min_near > 0.0 && lo.x <= hi.x && lo.y <= hi.y && lo.z <= hi.z) {
+            return Err(Error::InvalidParameter(
+                "need min_near > 0 and the lowest corner first",
+            ));
+        }
+        // Eye space looks down −z: a corner's distance is −z.
+        let mv = self.view * self.model;
+        let (mut nearest, mut farthest) = (f32::INFINITY, f32::NEG_INFINITY);
+        for k in 0..8 {
+            let pick = |bit: u32, a: f32, b: f32| if k & bit == 0 { a } else { b };
+            let corner = Vec3::new(
+                pick(1, lo.x, hi.x),
+                pick(2, lo.y, hi.y),
+                pick(4, lo.z, hi.z),
+            );
+            let d = -mv.transform_point(corner)[2];
+            nearest = nearest.min(d);
+            farthest = farthest.max(d);
+        }
+        // A little margin for rounding: points on the box must not be clipped.
+        let margin = (farthest - nearest).abs() * 1e-4 + farthest.abs() * 1e-6;
+        let near = (nearest - margin).max(min_near);
+        let far = farthest + margin;
+        // Wholly nearer than min_near: any far plane beyond near shows nothing of it.
+        let far = if far > near { far } else { near * 2.0 };
+        if !(near.is_finite() && far.is_finite()) {
+            return Err(Error::NotFinite);
+        }
+        let p = &mut self.projection.m;
+        let d = near - far;
+        if p[3] == [0.0, 0.0, -1.0, 0.0] {
+            p[2][2] = (far + near) / d;
+            p[2][3] = 2.0 * far * near / d;
+        } else if p[3] == [0.0, 0.0, 0.0, 1.0] && p[2][0] == 0.0 && p[2][1] == 0.0 {
+            p[2][2] = 2.0 / d;
+            p[2][3] = (far + near) / d;
+        } else {
+            return Err(Error::InvalidParameter(
+                "fit_depth needs a perspective or orthographic projection",
+            ));
+        }
+        Ok(self)
+    }
+
     /// Model to clip space.
     pub fn model_view_projection(&self) -> Mat4 {
         self.projection * self.view * self.model

@@ -137,6 +137,26 @@ impl<'a, M: Copy> Mesh<'a, M> {
         Some(Vec3::new(f32::from(p[0]), f32::from(p[1]), f32::from(p[2])) * self.scale)
     }
 
+    /// The box around every vertex, in model units: its lowest and highest corners.
+    /// `None` for a mesh without vertices (or with a scale that is not finite). For
+    /// [`Transform::fit_depth`](crate::camera::Transform::fit_depth).
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let first = self.positions.first()?;
+        let (mut lo, mut hi) = (*first, *first);
+        for p in self.positions {
+            for ((l, h), &c) in lo.iter_mut().zip(hi.iter_mut()).zip(p) {
+                *l = (*l).min(c);
+                *h = (*h).max(c);
+            }
+        }
+        let v = |a: [i16; 3]| Vec3::new(f32::from(a[0]), f32::from(a[1]), f32::from(a[2]));
+        let (a, b) = (v(lo) * self.scale, v(hi) * self.scale);
+        // A negative scale swaps the corners.
+        let lo = Vec3::new(a.x.min(b.x), a.y.min(b.y), a.z.min(b.z));
+        let hi = Vec3::new(a.x.max(b.x), a.y.max(b.y), a.z.max(b.z));
+        (lo.is_finite() && hi.is_finite()).then_some((lo, hi))
+    }
+
     /// Check every table: indices in range, polygons of three or more vertices, one
     /// material and one normal per face, one normal per vertex, a finite positive scale.
     ///
