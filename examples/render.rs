@@ -24,8 +24,8 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
     shade::{Intensity, Light, Material, Shading, ONE},
-    BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, FrameStats, RenderOptions,
-    Renderer, ZBuffer,
+    BandBuffers, Bands, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, Frame, FrameStats,
+    RenderOptions, Renderer, ZBuffer,
 };
 use zraster_obj::{fit_scale_f64, parse_obj_with, quantize, MtlLoader};
 
@@ -254,18 +254,20 @@ fn draw_pass(
     renderer: &mut Renderer<'_, '_, Kd>,
     mode: Mode,
     sort: Option<&mut DepthSort<65536>>,
-    frame: &mut ColorBuffer<'_, Rgb565>,
-    zbuf: &mut ZBuffer<'_>,
+    frame: &mut Frame<'_, Rgb565>,
     line_color: Rgb565,
 ) -> Result<(), DrawError<core::convert::Infallible>> {
     match mode {
-        Mode::ZBuffer => renderer.draw_buffer(frame, zbuf).map_err(DrawError::Input),
+        Mode::ZBuffer => renderer.draw(frame),
         Mode::Painter => match sort {
-            Some(s) => renderer.draw_depth_sorted(frame, s),
+            Some(s) => renderer.draw_depth_sorted(frame.color_mut(), s),
             None => Ok(()),
         },
-        Mode::HiddenLine => renderer.draw_hidden_line(frame, zbuf, line_color),
-        Mode::Wireframe => renderer.draw_wireframe(frame, line_color),
+        Mode::HiddenLine => {
+            let (color, depth) = frame.parts_mut();
+            renderer.draw_hidden_line(color, depth, line_color)
+        }
+        Mode::Wireframe => renderer.draw_wireframe(frame.color_mut(), line_color),
     }
 }
 
@@ -417,20 +419,16 @@ fn main() {
         let xf = camera.with_model(model);
         let mut renderer = Renderer::with_cache(&mesh, &xf, options, &mut cache)
             .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
-        let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
-            .unwrap_or_else(|e| input_error(&e.to_string()));
         if o.band.is_none() {
             // The whole frame at once, straight into the frame buffer.
-            let mut zbuf =
-                ZBuffer::new(&mut depth_full, w, h).unwrap_or_else(|e| input_error(&e.to_string()));
-            full.clear(Rgb565::BLACK).ok();
-            zbuf.clear();
+            let mut whole = Frame::new(&mut frame_pixels, &mut depth_full, w, h)
+                .unwrap_or_else(|e| input_error(&e.to_string()));
+            whole.clear(Rgb565::BLACK);
             let result = draw_pass(
                 &mut renderer,
                 o.mode,
                 sort.as_deref_mut(),
-                &mut full,
-                &mut zbuf,
+                &mut whole,
                 line_color,
             );
             if let Err(e) = result {
@@ -439,14 +437,16 @@ fn main() {
             stats = renderer.stats();
             continue;
         }
+        let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
+            .unwrap_or_else(|e| input_error(&e.to_string()));
         if o.mode == Mode::ZBuffer {
             // Band by band, triangles binned once per frame.
             let mut bands =
                 BandBuffers::new(&mut band_pixels, &mut band_depth, w, rows, h, &mut bins)
                     .unwrap_or_else(|e| input_error(&e.to_string()));
             let keep_depth = o.depth_out.is_some();
-            let result =
-                renderer.draw_banded_with(&mut full, &mut bands, Rgb565::BLACK, |_, zbuf| {
+            let mut target =
+                Bands::new(&mut full, &mut bands, Rgb565::BLACK).after_band(|_, zbuf| {
                     // The Z-buffer as a whole frame, for --depth-out.
                     if keep_depth {
                         let start = (zbuf.first_row() as u32 * w) as usize;
@@ -454,6 +454,7 @@ fn main() {
                         depth_full[start..start + band.len()].copy_from_slice(band);
                     }
                 });
+            let result = renderer.draw(&mut target);
             if let Err(e) = result {
                 input_error(&format!("{}: {e:?}", o.model));
             }
@@ -463,26 +464,25 @@ fn main() {
         let mut y = 0;
         while y < h {
             let n = rows.min(h - y);
-            let mut color = ColorBuffer::new_band(&mut band_pixels, w, n, y as i32)
+            let color = ColorBuffer::new_band(&mut band_pixels, w, n, y as i32)
                 .unwrap_or_else(|e| input_error(&e.to_string()));
-            let mut zbuf = ZBuffer::new_band(&mut band_depth, w, n, y as i32)
+            let zbuf = ZBuffer::new_band(&mut band_depth, w, n, y as i32)
                 .unwrap_or_else(|e| input_error(&e.to_string()));
-            color.clear(Rgb565::BLACK).ok();
-            zbuf.clear();
+            let mut band = Frame::from_buffers(color, zbuf);
+            band.clear(Rgb565::BLACK);
             let result = draw_pass(
                 &mut renderer,
                 o.mode,
                 sort.as_deref_mut(),
-                &mut color,
-                &mut zbuf,
+                &mut band,
                 line_color,
             );
             if let Err(e) = result {
                 input_error(&format!("{}: {e}", o.model));
             }
-            color.flush(&mut full).ok();
+            band.flush(&mut full).ok();
             let start = (y * w) as usize;
-            depth_full[start..start + (n * w) as usize].copy_from_slice(zbuf.as_slice());
+            depth_full[start..start + (n * w) as usize].copy_from_slice(band.depth().as_slice());
             y += n;
         }
         stats = renderer.stats();

@@ -16,8 +16,8 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{Face, Faces, Materials, Mesh},
     shade::{Light, Shading},
-    BandBuffers, CachedVertex, ColorBuffer, Cull, DepthSort, DepthTest, DrawError, Error,
-    FrameStats, RenderOptions, Renderer, ScreenVertex, ZBuffer,
+    BandBuffers, Bands, CachedVertex, ColorBuffer, Cull, DepthSort, DepthTest, Error, Frame,
+    FrameStats, RenderOptions, Renderer, ScreenVertex, WithDepth, ZBuffer,
 };
 
 /// Reads numbers off the input, yielding zeros once it runs out.
@@ -203,7 +203,7 @@ pub fn pipeline(data: &[u8]) {
     };
     let Ok(mut renderer) = renderer else { return };
     let _ = match mode % 6 {
-        0 => renderer.draw(&mut display, &mut zbuf),
+        0 => renderer.draw(&mut WithDepth::new(&mut display, &mut zbuf)),
         1 => renderer.draw_hidden_line(&mut display, &mut zbuf, Rgb565::WHITE),
         2 => renderer.draw_wireframe(&mut display, Rgb565::WHITE),
         3 => {
@@ -212,10 +212,10 @@ pub fn pipeline(data: &[u8]) {
         }
         4 => {
             let mut pixels = vec![Rgb565::BLACK; n];
-            let Ok(mut frame) = ColorBuffer::new(&mut pixels, w, h) else {
+            let Ok(frame) = ColorBuffer::new(&mut pixels, w, h) else {
                 return;
             };
-            let _ = renderer.draw_buffer(&mut frame, &mut zbuf);
+            let _ = renderer.draw(&mut Frame::from_buffers(frame, zbuf));
             Ok(())
         }
         _ => {
@@ -226,7 +226,7 @@ pub fn pipeline(data: &[u8]) {
             let Ok(mut bands) = BandBuffers::new(&mut c, &mut z, w, rows, h, &mut bins) else {
                 return;
             };
-            renderer.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+            renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK))
         }
     };
     let s = renderer.stats();
@@ -280,12 +280,12 @@ pub fn obj(data: &[u8]) {
             ..Default::default()
         },
     ) {
-        let _ = r.draw(&mut display, &mut zbuf);
+        let _ = r.draw(&mut WithDepth::new(&mut display, &mut zbuf));
     }
 }
 
 /// One frame: its colours, its depths and the renderer's stats.
-type Frame = (Vec<Rgb565>, Vec<u16>, FrameStats);
+type Pictures = (Vec<Rgb565>, Vec<u16>, FrameStats);
 
 /// The whole frame, drawn at once with the fused buffer path (as `tests/bands.rs`).
 fn whole_frame(
@@ -293,16 +293,15 @@ fn whole_frame(
     xf: &Transform,
     opts: RenderOptions,
     (w, h): (u32, u32),
-) -> Result<Frame, Error> {
+) -> Result<Pictures, Error> {
     let mut colour = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth = vec![0u16; (w * h) as usize];
     let mut cache = vec![CachedVertex::EMPTY; mesh.positions.len()];
     let stats = {
-        let mut frame = ColorBuffer::new(&mut colour, w, h)?;
-        let mut zbuf = ZBuffer::new(&mut depth, w, h)?;
-        zbuf.clear();
+        let mut frame = Frame::new(&mut colour, &mut depth, w, h)?;
+        frame.clear(Rgb565::BLACK);
         let mut r = Renderer::with_cache(mesh, xf, opts, &mut cache)?;
-        r.draw_buffer(&mut frame, &mut zbuf)?;
+        r.draw(&mut frame)?;
         r.stats()
     };
     Ok((colour, depth, stats))
@@ -316,7 +315,7 @@ fn banded_frame(
     opts: RenderOptions,
     (w, h, rows): (u32, u32, u32),
     (bins, junk): (usize, u16),
-) -> Result<Frame, Error> {
+) -> Result<Pictures, Error> {
     let mut colour = vec![Rgb565::BLUE; (w * h) as usize];
     let mut depth = vec![7u16; (w * h) as usize];
     let mut cb = vec![Rgb565::BLACK; (w * rows) as usize];
@@ -327,19 +326,17 @@ fn banded_frame(
         let mut display = ColorBuffer::new(&mut colour, w, h)?;
         let mut bands = BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins)?;
         let mut r = Renderer::with_cache(mesh, xf, opts, &mut cache)?;
-        r.draw_banded_with(&mut display, &mut bands, Rgb565::BLACK, |band, z| {
-            let y0 = band.first_row();
-            assert_eq!((z.first_row(), z.rows()), (y0, band.rows()));
-            for y in y0..y0 + band.rows() as i32 {
-                for x in 0..w as i32 {
-                    depth[(y as u32 * w + x as u32) as usize] = z.depth(x, y).unwrap();
+        let mut target =
+            Bands::new(&mut display, &mut bands, Rgb565::BLACK).after_band(|band, z| {
+                let y0 = band.first_row();
+                assert_eq!((z.first_row(), z.rows()), (y0, band.rows()));
+                for y in y0..y0 + band.rows() as i32 {
+                    for x in 0..w as i32 {
+                        depth[(y as u32 * w + x as u32) as usize] = z.depth(x, y).unwrap();
+                    }
                 }
-            }
-        })
-        .map_err(|e| match e {
-            DrawError::Input(e) => e,
-            DrawError::Target(never) => match never {},
-        })?;
+            });
+        r.draw(&mut target)?;
         r.stats()
     };
     Ok((colour, depth, stats))

@@ -1,4 +1,5 @@
-//! Drawing a whole frame band by band, in a fraction of a frame's RAM.
+//! Drawing a whole frame band by band, in a fraction of a frame's RAM: what
+//! [`Renderer::draw`] does for [`Bands`] (defined with [`BandBuffers`] in `buffer/`).
 //!
 //! A frame of `width × height` pixels is drawn in bands of `rows` lines: each band is
 //! cleared, drawn into a band-sized colour buffer and Z-buffer, and sent to the display
@@ -16,18 +17,10 @@ use crate::mesh::Faces;
 use crate::raster::signed_area_guarded;
 use crate::render::{cached_triangle, outside_rows, per_colouring};
 use crate::shade::{Material, Shading};
-use crate::{ColorBuffer, DrawError, Error, FrameStats, Renderer, ZBuffer, MAX_DIMENSION};
-
-/// Caller memory for banded drawing: a colour band, a depth band and (optionally) bins.
-#[derive(Debug)]
-pub struct BandBuffers<'a, C> {
-    color: &'a mut [C],
-    depth: &'a mut [u16],
-    width: u32,
-    rows: u32,
-    height: u32,
-    bins: &'a mut [u16],
-}
+use crate::{
+    AfterBand, BandBuffers, Bands, ColorBuffer, DepthTarget, DrawError, Error, FrameStats,
+    Renderer, ZBuffer,
+};
 
 /// The end of a bin chain (no link to a triangle is this: triangles number at most
 /// 65,534).
@@ -42,65 +35,31 @@ pub struct BandBuffers<'a, C> {
 /// (2 · bands + 1), so that a head is the link "before" the chain's first triangle.
 const END: u16 = u16::MAX;
 
-impl<'a, C: PixelColor> BandBuffers<'a, C> {
-    /// Band buffers for a `width × height` screen drawn `rows` lines at a time.
-    /// `color` and `depth` need `width × rows` entries; `bins` may be empty (every band
-    /// then walks every triangle) or hold at least
-    /// [`bins_needed`](BandBuffers::bins_needed) entries.
-    pub fn new(
-        color: &'a mut [C],
-        depth: &'a mut [u16],
-        width: u32,
-        rows: u32,
-        height: u32,
-        bins: &'a mut [u16],
-    ) -> Result<Self, Error> {
-        if width == 0 || rows == 0 || height == 0 {
-            return Err(Error::ZeroSize);
-        }
-        if width > MAX_DIMENSION || height > MAX_DIMENSION {
-            return Err(Error::TooLarge);
-        }
-        let rows = rows.min(height);
-        let needed = (width * rows) as usize;
-        for got in [color.len(), depth.len()] {
-            if got < needed {
-                return Err(Error::BufferTooSmall { needed, got });
-            }
-        }
-        Ok(BandBuffers {
-            color,
-            depth,
-            width,
-            rows,
-            height,
-            bins,
-        })
-    }
+impl<D: DrawTarget, F> crate::render::sealed::Sealed for Bands<'_, '_, D, F> {}
 
-    /// The number of bands.
-    pub fn bands(&self) -> u32 {
-        self.height.div_ceil(self.rows)
-    }
+impl<D, F> DepthTarget for Bands<'_, '_, D, F>
+where
+    D: DrawTarget,
+    F: AfterBand<D::Color>,
+{
+    type Color = D::Color;
+    type Error = D::Error;
 
-    /// Bin entries needed for a mesh of `triangles` triangles: one per triangle, four
-    /// per band and two more. (Meshes of more than 65,534 triangles are drawn without
-    /// bins.)
-    pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
-        let rows = if rows == 0 { 1 } else { rows };
-        let bands = height.div_ceil(rows) as usize; // < 2³²
-        triangles.saturating_add(2 * (2 * bands + 1))
+    fn draw_mesh<M>(
+        &mut self,
+        renderer: &mut Renderer<'_, '_, M>,
+    ) -> Result<(), DrawError<Self::Error>>
+    where
+        M: Copy + Material<D::Color>,
+    {
+        renderer.draw_bands(self.display, self.buffers, self.background, &mut self.after)
     }
 }
 
 impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
-    /// Draw the frame band by band into `display`: each band cleared to `background`,
-    /// drawn with the Z-buffer (as [`draw_buffer`](Renderer::draw_buffer)) and sent with
-    /// one `fill_contiguous`. The result is pixel-identical to drawing the whole frame.
-    ///
-    /// With a vertex cache ([`Renderer::with_cache`]), a triangle mesh, flat or Lambert
-    /// shading and enough bins, the visible triangles are sorted by band first, so each
-    /// band only visits the triangles that reach it.
+    /// The bench firmware's banded draw (`bench/mcu`), until it draws into
+    /// [`Bands`] with [`Renderer::draw`]; not API.
+    #[doc(hidden)]
     pub fn draw_banded<D>(
         &mut self,
         display: &mut D,
@@ -111,38 +70,23 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         D: DrawTarget,
         M: Material<D::Color>,
     {
-        self.draw_bands::<D, false>(display, bands, background, |_, _| {})
+        self.draw_bands(display, bands, background, &mut ())
     }
 
-    /// [`draw_banded`](Renderer::draw_banded), calling `after(band, depth)` for each
-    /// band once it is drawn and before it is sent: to draw an overlay into it, or to
-    /// look at its depth.
-    pub fn draw_banded_with<D>(
+    /// Draw the frame band by band into `display` (for [`Bands`]): each band cleared to
+    /// `background`, drawn with the Z-buffer, handed to `after` and sent with one
+    /// `fill_contiguous`.
+    fn draw_bands<D, A>(
         &mut self,
         display: &mut D,
         bands: &mut BandBuffers<'_, D::Color>,
         background: D::Color,
-        after: impl FnMut(&mut ColorBuffer<'_, D::Color>, &ZBuffer<'_>),
+        after: &mut A,
     ) -> Result<(), DrawError<D::Error>>
     where
         D: DrawTarget,
         M: Material<D::Color>,
-    {
-        self.draw_bands::<D, true>(display, bands, background, after)
-    }
-
-    /// [`draw_banded_with`](Renderer::draw_banded_with); `OVERLAY` when `after` may draw
-    /// into the colour band.
-    fn draw_bands<D, const OVERLAY: bool>(
-        &mut self,
-        display: &mut D,
-        bands: &mut BandBuffers<'_, D::Color>,
-        background: D::Color,
-        mut after: impl FnMut(&mut ColorBuffer<'_, D::Color>, &ZBuffer<'_>),
-    ) -> Result<(), DrawError<D::Error>>
-    where
-        D: DrawTarget,
-        M: Material<D::Color>,
+        A: AfterBand<D::Color>,
     {
         let nb = bands.bands();
         let binned = self.bin(bands)?;
@@ -159,7 +103,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             // band uses the front of them.
             let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
             let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
-            if !untouched || OVERLAY {
+            if !untouched || A::DRAWS {
                 crate::num::fill(color.data_mut(), background);
             }
             if !untouched {
@@ -186,9 +130,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                     untouched = faces.is_empty();
                     self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
                 }
-                None => self.draw_buffer(&mut color, &mut zbuf)?,
+                None => self.draw_fused(&mut color, &mut zbuf)?,
             }
-            after(&mut color, &zbuf);
+            after.after(&mut color, &zbuf);
             color.flush(display).map_err(DrawError::Target)?;
         }
         Ok(())
@@ -324,7 +268,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         M: Material<C>,
     {
         let Faces::Triangles { indices, materials } = self.mesh.faces else {
-            return self.draw_buffer(frame, zbuf);
+            return self.draw_fused(frame, zbuf);
         };
         let lambert = self.options.shading == Shading::Lambert;
         carry.start_band();

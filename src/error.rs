@@ -97,6 +97,18 @@ impl<E> From<Error> for DrawError<E> {
     }
 }
 
+/// A drawing call that cannot fail in its target (a [`Frame`](crate::Frame), a
+/// [`ColorBuffer`](crate::ColorBuffer)) fails only for its input: `?` turns its error
+/// into that [`Error`].
+impl From<DrawError<core::convert::Infallible>> for Error {
+    fn from(e: DrawError<core::convert::Infallible>) -> Self {
+        match e {
+            DrawError::Input(e) => e,
+            DrawError::Target(never) => match never {},
+        }
+    }
+}
+
 impl<E: fmt::Debug> fmt::Display for DrawError<E> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {

@@ -9,13 +9,14 @@
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 //! use zraster::camera::{Transform, Viewport};
 //! use zraster::math::{Mat4, Vec3};
-//! use zraster::{mesh::CUBE, ColorBuffer, RenderOptions, Renderer, ZBuffer};
+//! use zraster::{mesh::CUBE, Frame, RenderOptions, Renderer};
 //!
 //! const W: u32 = 160;
 //! const H: u32 = 120;
-//! // Memory is yours: a colour buffer and a 16-bit depth buffer (or one band of each).
+//! // Memory is yours: colours and 16-bit depths for the frame (or for one band of it).
 //! let mut pixels = [Rgb565::BLACK; (W * H) as usize];
 //! let mut depth = [0u16; (W * H) as usize];
+//! let mut frame = Frame::new(&mut pixels, &mut depth, W, H)?;
 //!
 //! // The camera: eye, target, vertical field of view in degrees, near and far planes.
 //! let camera = Transform::perspective(
@@ -26,29 +27,30 @@
 //!     // The model matrix turns the unit cube about its centre a little each frame.
 //!     let spin = Mat4::rotation_y(0.3 * frame_number as f32)
 //!         * Mat4::translation(Vec3::new(-0.5, -0.5, -0.5));
-//!     let mut frame = ColorBuffer::new(&mut pixels, W, H)?;
-//!     let mut zbuf = ZBuffer::new(&mut depth, W, H)?;
-//!     frame.clear(Rgb565::BLACK).ok();
-//!     zbuf.clear();
+//!     frame.clear(Rgb565::BLACK);
 //!     let mut renderer = Renderer::new(&CUBE, &camera.with_model(spin), RenderOptions::default())?;
-//!     renderer.draw_buffer(&mut frame, &mut zbuf)?;
+//!     renderer.draw(&mut frame)?;
 //!     // frame.flush(&mut display) would send it in one fill_contiguous.
 //!     assert!(renderer.stats().drawn >= 2); // two or three faces turn to the camera
 //! }
-//! assert_ne!(pixels[(H / 2 * W + W / 2) as usize], Rgb565::BLACK);
+//! assert_ne!(frame.color().pixel(W as i32 / 2, H as i32 / 2), Some(Rgb565::BLACK));
 //! # Ok::<(), zraster::Error>(())
 //! ```
 //!
 //! # What is where
 //! - [`mesh`]: the vertex table and face table (`i16` positions, flash-friendly).
 //! - [`camera`]: the model, view and projection matrices and the [`Viewport`](camera::Viewport).
+//! - [`Renderer`]: draws one mesh; [`Renderer::draw`] with the Z-buffer into a
+//!   [`DepthTarget`], the other methods by depth sorting (the painter's algorithm), as
+//!   hidden-line or as wireframe.
+//! - What to draw into: a [`Frame`] (colour and depth in RAM), a [`WithDepth`] (any
+//!   display and a [`ZBuffer`]) or [`Bands`] (a display drawn band by band through
+//!   [`BandBuffers`], pixel-identical to a whole frame in a few KiB).
 //! - [`ZBuffer`] and [`ColorBuffer`]: caller memory for depth and colour, a whole frame
 //!   or a band of rows.
-//! - [`Renderer`]: draws a mesh with the Z-buffer, by depth sorting (the painter's
-//!   algorithm), as hidden-line or as wireframe; [`BandBuffers`] draws a frame band by
-//!   band in a few KiB, pixel-identical to a whole frame.
 //! - [`shade`]: lights and materials (flat, Lambert, Gouraud; dithering for 1-bit).
 //! - [`fill_triangle`] and [`ScreenVertex`]: single screen-space triangles.
+//! - [`Error`] and [`DrawError`]: what can go wrong; nothing panics on bad input.
 //!
 //! Single triangles need no mesh: screen x, y in pixels (y down), depth 0 (near) ..=
 //! 65535 (far):
@@ -113,12 +115,13 @@ pub mod shade;
 #[cfg(test)]
 mod testing;
 
-pub use band::BandBuffers;
-pub use buffer::{ColorBuffer, DepthTest, ZBuffer};
+pub use buffer::{AfterBand, BandBuffers, Bands, ColorBuffer, DepthTest, Frame, ZBuffer};
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
-pub use render::{CachedVertex, Cull, DepthSort, FrameStats, RenderOptions, Renderer};
+pub use render::{
+    CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
+};
 
 /// For the bench firmware: checks the assembly fill loop against its portable twin on
 /// the target (the number of differing cases; see `src/num/kernel.rs`).

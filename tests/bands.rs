@@ -11,22 +11,22 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{Faces, Materials, Mesh},
     shade::Shading,
-    BandBuffers, CachedVertex, ColorBuffer, Cull, FrameStats, RenderOptions, Renderer, ZBuffer,
+    BandBuffers, Bands, CachedVertex, ColorBuffer, Cull, Frame, FrameStats, RenderOptions,
+    Renderer,
 };
 
 /// One frame: its colours, its depths and the renderer's stats.
-type Frame = (Vec<Rgb565>, Vec<u16>, FrameStats);
+type Pictures = (Vec<Rgb565>, Vec<u16>, FrameStats);
 
-fn whole(mesh: &Mesh<'_, Rgb888>, xf: &Transform, opts: RenderOptions, w: u32, h: u32) -> Frame {
+fn whole(mesh: &Mesh<'_, Rgb888>, xf: &Transform, opts: RenderOptions, w: u32, h: u32) -> Pictures {
     let mut colour = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth = vec![0u16; (w * h) as usize];
     let mut cache = vec![CachedVertex::EMPTY; mesh.positions.len()];
     let stats = {
-        let mut frame = ColorBuffer::new(&mut colour, w, h).unwrap();
-        let mut zbuf = ZBuffer::new(&mut depth, w, h).unwrap();
-        zbuf.clear();
+        let mut frame = Frame::new(&mut colour, &mut depth, w, h).unwrap();
+        frame.clear(Rgb565::BLACK);
         let mut r = Renderer::with_cache(mesh, xf, opts, &mut cache).unwrap();
-        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut frame).unwrap();
         r.stats()
     };
     (colour, depth, stats)
@@ -40,7 +40,7 @@ fn banded(
     opts: RenderOptions,
     (w, h, rows): (u32, u32, u32),
     binned: bool,
-) -> Frame {
+) -> Pictures {
     let mut colour = vec![Rgb565::BLUE; (w * h) as usize];
     let mut depth = vec![7u16; (w * h) as usize];
     let mut cb = vec![Rgb565::BLACK; (w * rows) as usize];
@@ -59,21 +59,22 @@ fn banded(
         let mut display = ColorBuffer::new(&mut colour, w, h).unwrap();
         let mut bands = BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
         let mut r = Renderer::with_cache(mesh, xf, opts, &mut cache).unwrap();
-        r.draw_banded_with(&mut display, &mut bands, Rgb565::BLACK, |band, z| {
-            let y0 = band.first_row();
-            for y in y0..y0 + band.rows() as i32 {
-                for x in 0..w as i32 {
-                    depth[(y as u32 * w + x as u32) as usize] = z.depth(x, y).unwrap();
+        let mut target =
+            Bands::new(&mut display, &mut bands, Rgb565::BLACK).after_band(|band, z| {
+                let y0 = band.first_row();
+                for y in y0..y0 + band.rows() as i32 {
+                    for x in 0..w as i32 {
+                        depth[(y as u32 * w + x as u32) as usize] = z.depth(x, y).unwrap();
+                    }
                 }
-            }
-        })
-        .unwrap();
+            });
+        r.draw(&mut target).unwrap();
         r.stats()
     };
     (colour, depth, stats)
 }
 
-fn assert_identical(a: &Frame, b: &Frame, what: &str) {
+fn assert_identical(a: &Pictures, b: &Pictures, what: &str) {
     let differ = |x: &[_], y: &[_]| x.iter().zip(y).filter(|(p, q)| p != q).count();
     let colours: usize = a.0.iter().zip(&b.0).filter(|(p, q)| p != q).count();
     assert_eq!(colours, 0, "{what}: {colours} pixels of colour differ");

@@ -10,7 +10,7 @@ use std::process::Command;
 
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
-use zraster::{BandBuffers, CachedVertex, ColorBuffer, Renderer, ZBuffer};
+use zraster::{BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, Renderer};
 use zraster_bench_scene::{self as scene, bunny, checksum, H, W};
 
 /// FNV-1a over the frame's Rgb565 values, as the firmware computes it.
@@ -22,13 +22,12 @@ fn the_bench_frame_has_the_bench_checksum() {
     let mut cache = vec![CachedVertex::default(); bunny::BUNNY_POSITIONS.len()];
     let mut pixels = vec![Rgb565::BLACK; (W * H) as usize];
     let mut depth = vec![u16::MAX; (W * H) as usize];
-    let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
-    let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
+    let mut frame = Frame::new(&mut pixels, &mut depth, W, H).unwrap();
     let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-    r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+    r.draw(&mut frame).unwrap();
     assert_eq!(r.stats().drawn, 1481);
     assert_eq!(r.stats().pixels_written, 11177);
-    assert_eq!(checksum(frame.as_slice()), BENCH_CHECKSUM);
+    assert_eq!(checksum(frame.color().as_slice()), BENCH_CHECKSUM);
 
     // The 16-row banded draw gives the same frame.
     let mut band_pixels = vec![Rgb565::BLACK; (W * 16) as usize];
@@ -40,7 +39,8 @@ fn the_bench_frame_has_the_bench_checksum() {
     let mut bands =
         BandBuffers::new(&mut band_pixels, &mut band_depth, W, 16, H, &mut bins).unwrap();
     let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-    r.draw_banded(&mut out, &mut bands, Rgb565::BLACK).unwrap();
+    r.draw(&mut Bands::new(&mut out, &mut bands, Rgb565::BLACK))
+        .unwrap();
     assert_eq!(checksum(out.as_slice()), BENCH_CHECKSUM);
 }
 

@@ -10,7 +10,8 @@ use zraster::{
     camera::{Transform, Viewport},
     math::Vec3,
     mesh::{Face, Mesh},
-    CachedVertex, ColorBuffer, Cull, DepthSort, Error, RenderOptions, Renderer, ZBuffer,
+    CachedVertex, ColorBuffer, Cull, DepthSort, Error, Frame, RenderOptions, Renderer, WithDepth,
+    ZBuffer,
 };
 
 /// A display of any size up to 8192² that only counts what it is sent.
@@ -138,12 +139,13 @@ fn bands_beyond_two_to_the_27_rows_draw_nothing() {
         let mut c = [Rgb565::BLACK; 64 * 4];
         let mut zbuf = ZBuffer::new_band(&mut d, 64, 4, first).unwrap();
         zbuf.clear();
-        let mut frame = ColorBuffer::new_band(&mut c, 64, 4, first).unwrap();
+        let color = ColorBuffer::new_band(&mut c, 64, 4, first).unwrap();
+        let mut frame = Frame::from_buffers(color, zbuf);
         let mut r = Renderer::new(&mesh, &xf, RenderOptions::default()).unwrap();
-        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
-        r.draw(&mut frame, &mut zbuf).unwrap();
-        r.draw_hidden_line(&mut frame, &mut zbuf, Rgb565::WHITE)
-            .unwrap();
+        r.draw(&mut frame).unwrap();
+        let (color, zbuf) = frame.parts_mut();
+        r.draw(&mut WithDepth::new(color, zbuf)).unwrap();
+        r.draw_hidden_line(color, zbuf, Rgb565::WHITE).unwrap();
         assert_eq!(r.stats().pixels_written, 0, "first row {first}");
         assert_eq!(r.stats().drawn, 1, "first row {first}");
         assert!(c.iter().all(|&p| p == Rgb565::BLACK));

@@ -12,8 +12,8 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{Face, Faces, Materials, Mesh, CUBE},
     shade::{Intensity, Light, Shading, ONE},
-    CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, Error, FrameStats, RenderOptions,
-    Renderer, ScreenVertex, ZBuffer,
+    Bands, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, Error, Frame, FrameStats,
+    RenderOptions, Renderer, ScreenVertex, WithDepth, ZBuffer,
 };
 
 const W: u32 = 64;
@@ -33,7 +33,7 @@ fn zbuffer_frame(
         let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
         zbuf.clear();
         let mut r = Renderer::new(mesh, xf, opts).unwrap();
-        r.draw(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)).unwrap();
         stats = r.stats();
     }
     (pixels, stats)
@@ -235,7 +235,7 @@ fn bad_meshes_and_transforms_are_errors() {
     let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
     let mut r = Renderer::new(&bad, &xf, RenderOptions::default()).unwrap();
     assert_eq!(
-        r.draw(&mut frame, &mut zbuf),
+        r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)),
         Err(DrawError::Input(Error::IndexOutOfRange {
             face: 1,
             index: 5
@@ -244,7 +244,7 @@ fn bad_meshes_and_transforms_are_errors() {
     let mut cache = [CachedVertex::EMPTY; 3];
     let mut r = Renderer::with_cache(&bad, &xf, RenderOptions::default(), &mut cache).unwrap();
     assert_eq!(
-        r.draw(&mut frame, &mut zbuf),
+        r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)),
         Err(DrawError::Input(Error::IndexOutOfRange {
             face: 1,
             index: 5
@@ -268,7 +268,7 @@ fn bad_meshes_and_transforms_are_errors() {
     }];
     let mut r = Renderer::new(&Mesh::new(&pos, 1.0, &two), &xf, RenderOptions::default()).unwrap();
     assert_eq!(
-        r.draw(&mut frame, &mut zbuf),
+        r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)),
         Err(DrawError::Input(Error::DegenerateFace { face: 0 }))
     );
     // Capacity of the depth sort.
@@ -423,7 +423,7 @@ fn per_face_materials_and_lambert() {
 }
 
 #[test]
-fn draw_buffer_gives_the_same_pixels_as_draw() {
+fn a_frame_gives_the_same_pixels_as_a_display_with_depth() {
     let bunny = scenes::Bunny::load();
     let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
     for (yaw, shading, test) in [
@@ -453,9 +453,9 @@ fn draw_buffer_gives_the_same_pixels_as_draw() {
                 zbuf.set_test(test);
                 let mut r = Renderer::new(&mesh, &xf, opts).unwrap();
                 if buffered {
-                    r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+                    r.draw(&mut Frame::from_buffers(frame, zbuf)).unwrap();
                 } else {
-                    r.draw(&mut frame, &mut zbuf).unwrap();
+                    r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)).unwrap();
                 }
                 stats = r.stats();
             }
@@ -515,14 +515,13 @@ fn vertices_beyond_the_cache_range_draw_as_without_a_cache() {
     let whole = |cache: Option<&mut [CachedVertex]>| {
         let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
         let mut depth = vec![0u16; (w * h) as usize];
-        let mut frame = ColorBuffer::new(&mut pixels, w, h).unwrap();
-        let mut zbuf = ZBuffer::new(&mut depth, w, h).unwrap();
-        zbuf.clear();
+        let mut frame = Frame::new(&mut pixels, &mut depth, w, h).unwrap();
+        frame.clear(Rgb565::BLACK);
         let mut r = match cache {
             Some(c) => Renderer::with_cache(&mesh, &xf, opts, c).unwrap(),
             None => Renderer::new(&mesh, &xf, opts).unwrap(),
         };
-        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut frame).unwrap();
         let stats = r.stats();
         (pixels, depth, stats)
     };
@@ -548,7 +547,7 @@ fn vertices_beyond_the_cache_range_draw_as_without_a_cache() {
         let mut display = ColorBuffer::new(&mut out, w, h).unwrap();
         let mut bands = zraster::BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
         let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-        r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+        r.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK))
             .unwrap();
         r.stats()
     };
@@ -586,14 +585,15 @@ fn an_overlay_does_not_leak_into_the_empty_bands_below() {
         let mut r = Renderer::with_cache(&mesh, &xf, RenderOptions::default(), cache).unwrap();
         let mut display = ColorBuffer::new(&mut out, w, h).unwrap();
         if overlay {
-            r.draw_banded_with(&mut display, &mut bands, Rgb565::BLACK, |band, depth| {
-                if depth.first_row() == 0 {
-                    Pixel(Point::new(3, 1), Rgb565::RED).draw(band).unwrap();
-                }
-            })
-            .unwrap();
+            let mut target =
+                Bands::new(&mut display, &mut bands, Rgb565::BLACK).after_band(|band, depth| {
+                    if depth.first_row() == 0 {
+                        Pixel(Point::new(3, 1), Rgb565::RED).draw(band).unwrap();
+                    }
+                });
+            r.draw(&mut target).unwrap();
         } else {
-            r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+            r.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK))
                 .unwrap();
         }
         out
@@ -635,11 +635,10 @@ fn banded_against_whole(
     let mut full = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth = vec![0u16; (w * h) as usize];
     let full_stats = {
-        let mut frame = ColorBuffer::new(&mut full, w, h).unwrap();
-        let mut zbuf = ZBuffer::new(&mut depth, w, h).unwrap();
-        zbuf.clear();
+        let mut frame = Frame::new(&mut full, &mut depth, w, h).unwrap();
+        frame.clear(Rgb565::BLACK);
         let mut r = Renderer::with_cache(mesh, &xf, opts, &mut cache).unwrap();
-        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut frame).unwrap();
         r.stats()
     };
     for rows in [1, 7, 16, h] {
@@ -661,7 +660,7 @@ fn banded_against_whole(
                 let mut bands =
                     zraster::BandBuffers::new(&mut cb, &mut zb, w, rows, h, &mut bins).unwrap();
                 let mut r = Renderer::with_cache(mesh, &xf, opts, &mut cache).unwrap();
-                r.draw_banded(&mut display, &mut bands, Rgb565::BLACK)
+                r.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK))
                     .unwrap();
                 r.stats()
             };
@@ -702,11 +701,11 @@ fn banded_against_whole(
     full_stats
 }
 
-/// With a vertex cache, `draw_buffer` into a whole-frame colour buffer through a band
-/// Z-buffer (different geometries: the fused path's general form) gives the pixels and
-/// depths of `draw`, and touches no row outside the band.
+/// With a vertex cache, a [`Frame`] of a whole-frame colour buffer and a band Z-buffer
+/// (different geometries: the fused path's general form) gives the pixels and depths of
+/// a [`WithDepth`] of the same buffers, and touches no row outside the band.
 #[test]
-fn draw_buffer_through_a_band_zbuffer_matches_draw() {
+fn a_frame_with_a_band_zbuffer_matches_a_display_with_depth() {
     let bunny = scenes::Bunny::load();
     let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
     let xf = camera(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), 60.0)
@@ -725,9 +724,9 @@ fn draw_buffer_through_a_band_zbuffer_matches_draw() {
             let mut zbuf = ZBuffer::new_band(&mut depth, W, rows, first).unwrap();
             let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
             if buffered {
-                r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+                r.draw(&mut Frame::from_buffers(frame, zbuf)).unwrap();
             } else {
-                r.draw(&mut frame, &mut zbuf).unwrap();
+                r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)).unwrap();
             }
         }
         (pixels, depth)

@@ -5,7 +5,10 @@ mod common;
 
 use embedded_graphics::{pixelcolor::BinaryColor, prelude::*, primitives::Rectangle, Pixel};
 use proptest::prelude::*;
-use zraster::{fill_triangle, fill_triangle_shaded, ColorBuffer, DepthTest, ScreenVertex, ZBuffer};
+use zraster::{
+    fill_triangle, fill_triangle_shaded, ColorBuffer, DepthTest, Frame, ScreenVertex, WithDepth,
+    ZBuffer,
+};
 
 const W: i32 = 64;
 const H: i32 = 48;
@@ -242,7 +245,7 @@ proptest! {
                 zbuf.clear();
                 let mut cache = vec![zraster::CachedVertex::EMPTY; pos.len()];
                 let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-                if fused { r.draw_buffer(&mut frame, &mut zbuf).unwrap() } else { r.draw(&mut frame, &mut zbuf).unwrap() }
+                if fused { r.draw(&mut Frame::from_buffers(frame, zbuf)).unwrap() } else { r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)).unwrap() }
             }
             (px, depth)
         };
@@ -297,17 +300,17 @@ proptest! {
         let mut zbuf = ZBuffer::new(&mut depth, W as u32, H as u32).unwrap();
         zbuf.set_test(DepthTest::Always);
         let mut counter = Counter::new();
-        Renderer::new(&mesh, &xf, opts).unwrap().draw(&mut BinaryTarget(&mut counter), &mut zbuf).unwrap();
+        Renderer::new(&mesh, &xf, opts).unwrap().draw(&mut WithDepth::new(&mut BinaryTarget(&mut counter), &mut zbuf)).unwrap();
         // Depth sort (no Z-buffer).
         let mut sorted = Counter::new();
         let mut sort = DepthSort::<128>::new();
         Renderer::new(&mesh, &xf, opts).unwrap().draw_depth_sorted(&mut BinaryTarget(&mut sorted), &mut sort).unwrap();
         // Fused: every pixel of the outline written once (pixels_written counts writes).
         let mut px = vec![Rgb565::BLACK; (W * H) as usize];
-        let mut frame = ColorBuffer::new(&mut px, W as u32, H as u32).unwrap();
+        let frame = ColorBuffer::new(&mut px, W as u32, H as u32).unwrap();
         zbuf.fill(0);
         let mut r = Renderer::new(&mesh, &xf, opts).unwrap();
-        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut Frame::from_buffers(frame, zbuf)).unwrap();
         prop_assert_eq!(r.stats().pixels_written, 60 * 44);
         for py in 0..H {
             for px in 0..W {

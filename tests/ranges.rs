@@ -14,7 +14,8 @@ use zraster::{
     fixed::{GUARD_BAND, MAX_DEPTH},
     math::{Mat4, Vec3},
     mesh::{Face, Mesh},
-    BandBuffers, ColorBuffer, DepthTest, Error, RenderOptions, Renderer, ScreenVertex, ZBuffer,
+    BandBuffers, Bands, ColorBuffer, DepthTest, Error, RenderOptions, Renderer, ScreenVertex,
+    WithDepth, ZBuffer,
 };
 
 #[test]
@@ -117,7 +118,7 @@ fn a_4096_square_screen_drawn_in_bands() {
     let mut bands = BandBuffers::new(&mut c, &mut z, 4096, 64, 4096, &mut []).unwrap();
     let mut counter = Coverage { hits: 0 };
     let mut r = Renderer::new(&quad, &xf, RenderOptions::default()).unwrap();
-    r.draw_banded(&mut counter, &mut bands, Rgb565::BLACK)
+    r.draw(&mut Bands::new(&mut counter, &mut bands, Rgb565::BLACK))
         .unwrap();
     assert_eq!(r.stats().pixels_written, 4096 * 4096);
     assert_eq!(counter.hits, 4096 * 4096);
@@ -195,7 +196,7 @@ fn resolved(z: f32, gap: f32, n: f32, f: f32) -> bool {
             let (m, xf) = &draws[(k + order) % 2];
             Renderer::new(m, xf, RenderOptions::default())
                 .unwrap()
-                .draw(&mut frame, &mut zbuf)
+                .draw(&mut WithDepth::new(&mut frame, &mut zbuf))
                 .unwrap();
         }
         frame.as_slice().iter().all(|&c| c == Rgb565::RED)
@@ -223,7 +224,7 @@ fn stored(z: f32, n: f32, f: f32) -> u16 {
     zbuf.clear();
     Renderer::new(&quad, &xf, RenderOptions::default())
         .unwrap()
-        .draw(&mut frame, &mut zbuf)
+        .draw(&mut WithDepth::new(&mut frame, &mut zbuf))
         .unwrap();
     zbuf.depth(4, 4).unwrap()
 }
@@ -312,7 +313,7 @@ fn degenerate_and_non_finite_parameters_are_errors() {
         let mut depth = vec![0u16; 32 * 32];
         let mut frame = ColorBuffer::new(&mut px, 32, 32).unwrap();
         let mut zbuf = ZBuffer::new(&mut depth, 32, 32).unwrap();
-        r.draw(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)).unwrap();
     }
     assert_eq!(Viewport::new(8193, 1), Err(Error::TooLarge));
     assert_eq!(Viewport::at(9000, 0, 10, 10), Err(Error::TooLarge));

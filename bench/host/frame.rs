@@ -18,7 +18,8 @@ use zraster::{
     camera::{Transform, Viewport},
     math::Vec3,
     mesh::CUBE,
-    BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ScreenVertex, ZBuffer,
+    BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, ScreenVertex,
+    ZBuffer,
 };
 
 use zraster_bench_scene::{self as scene, bunny, H, W};
@@ -32,12 +33,10 @@ fn benches(c: &mut Criterion) {
 
     c.bench_function("bunny-320", |b| {
         b.iter(|| {
-            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
-            let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
-            frame.clear(Rgb565::BLACK).unwrap();
-            zbuf.clear();
+            let mut frame = Frame::new(&mut pixels, &mut depth, W, H).unwrap();
+            frame.clear(Rgb565::BLACK);
             let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-            r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+            r.draw(&mut frame).unwrap();
             black_box(r.stats())
         })
     });
@@ -53,7 +52,7 @@ fn benches(c: &mut Criterion) {
             let mut bands =
                 BandBuffers::new(&mut band_px, &mut band_z, W, rows, H, &mut bins).unwrap();
             let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-            r.draw_banded(&mut frame, &mut bands, Rgb565::BLACK)
+            r.draw(&mut Bands::new(&mut frame, &mut bands, Rgb565::BLACK))
                 .unwrap();
             black_box(r.stats())
         })
@@ -70,11 +69,10 @@ fn benches(c: &mut Criterion) {
     .unwrap();
     c.bench_function("fill-bound cube", |b| {
         b.iter(|| {
-            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
-            let mut zbuf = ZBuffer::new(&mut depth, W, H).unwrap();
-            zbuf.clear();
+            let mut frame = Frame::new(&mut pixels, &mut depth, W, H).unwrap();
+            frame.depth_mut().clear();
             let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
-            r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+            r.draw(&mut frame).unwrap();
             black_box(r.stats())
         })
     });

@@ -12,7 +12,7 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Face, Mesh, CUBE},
     shade::{Light, Shading},
-    ColorBuffer, Cull, DepthSort, DepthTest, RenderOptions, Renderer, ZBuffer,
+    ColorBuffer, Cull, DepthSort, DepthTest, RenderOptions, Renderer, WithDepth, ZBuffer,
 };
 use zraster_obj::{fit_scale, parse_obj, quantize};
 
@@ -78,7 +78,7 @@ pub fn cube_culling() -> SimulatorDisplay<Rgb565> {
                 };
                 Renderer::new(&CUBE, &xf, opts)
                     .expect("renderer")
-                    .draw(frame, zbuf)
+                    .draw(&mut WithDepth::new(frame, zbuf))
                     .ok();
             },
         );
@@ -266,7 +266,7 @@ pub fn painter_vs_zbuffer() -> SimulatorDisplay<Rgb565> {
                 |frame, zbuf| {
                     Renderer::new(m, &xf, opts)
                         .expect("renderer")
-                        .draw(frame, zbuf)
+                        .draw(&mut WithDepth::new(frame, zbuf))
                         .ok();
                 },
             );
@@ -334,7 +334,7 @@ pub fn bunny_shading() -> SimulatorDisplay<Rgb565> {
                 };
                 Renderer::new(&mesh, &xf, opts)
                     .expect("renderer")
-                    .draw(frame, zbuf)
+                    .draw(&mut WithDepth::new(frame, zbuf))
                     .ok();
             },
         );
@@ -400,7 +400,7 @@ pub fn mono_oled() -> SimulatorDisplay<BinaryColor> {
             };
             Renderer::new(&mesh, &xf, opts)
                 .expect("renderer")
-                .draw(frame, zbuf)
+                .draw(&mut WithDepth::new(frame, zbuf))
                 .ok();
         },
     );

@@ -2,23 +2,26 @@
 //!
 //! One [`Renderer`] holds a frame's geometry state (the fixed-point transform, the
 //! light in model space and, optionally, a cache of transformed vertices) and draws it
-//! in any of four ways: with the Z-buffer ([`draw`](Renderer::draw)), by depth sorting
-//! ([`draw_depth_sorted`](Renderer::draw_depth_sorted)), as hidden-line
-//! ([`draw_hidden_line`](Renderer::draw_hidden_line)) or as wireframe
-//! ([`draw_wireframe`](Renderer::draw_wireframe)). Each call draws into one target,
-//! which may be the whole screen or one band of it.
+//! in any of four ways: with the Z-buffer ([`draw`](Renderer::draw), into a
+//! [`DepthTarget`]: a frame in RAM, a display with a Z-buffer, or a display drawn in
+//! bands), by depth sorting ([`draw_depth_sorted`](Renderer::draw_depth_sorted)), as
+//! hidden-line ([`draw_hidden_line`](Renderer::draw_hidden_line)) or as wireframe
+//! ([`draw_wireframe`](Renderer::draw_wireframe)).
 
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 mod lines;
 mod painter;
 mod solid;
+mod target;
 mod walk;
 
 pub(crate) use crate::geometry::cull::culled;
 pub use crate::geometry::cull::Cull;
 pub use painter::DepthSort;
 pub(crate) use solid::per_colouring;
+pub(crate) use target::sealed;
+pub use target::{DepthTarget, WithDepth};
 pub(crate) use walk::{cached_triangle, outside_rows};
 use walk::{edges, fan};
 
@@ -67,8 +70,8 @@ pub struct FrameStats {
     pub pixels_tested: u64,
     /// Pixels written.
     pub pixels_written: u64,
-    /// Runs handed to the draw target (the fused path of
-    /// [`Renderer::draw_buffer`] writes pixels directly and hands over none).
+    /// Runs handed to the draw target (drawing into a [`Frame`](crate::Frame) or
+    /// [`Bands`](crate::Bands) writes flat-coloured pixels directly and hands over none).
     pub runs: u64,
 }
 
@@ -189,26 +192,31 @@ impl Default for CachedVertex {
     }
 }
 
-/// Draws one mesh, placed by one transform, into targets with the methods below.
+/// Draws one mesh, placed by one transform, into targets with the methods below:
+/// [`draw`](Renderer::draw) with the Z-buffer into any [`DepthTarget`], or by another
+/// algorithm (depth sorting, hidden-line, wireframe).
+///
+/// A renderer is made for one frame (the transform is applied as it is built) and
+/// counts what it draws ([`stats`](Renderer::stats)); make a new one for the next
+/// frame, or for the next mesh of the same frame.
 ///
 /// ```
 /// use embedded_graphics::pixelcolor::Rgb565;
 /// use embedded_graphics::prelude::*;
 /// use zraster::{math::{Mat4, Vec3}, mesh::CUBE, camera::{Transform, Viewport}};
-/// use zraster::{ColorBuffer, Renderer, RenderOptions, ZBuffer};
+/// use zraster::{Frame, Renderer, RenderOptions};
 ///
 /// let vp = Viewport::new(64, 48)?;
 /// let xf = Transform::perspective(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, vp)?;
 /// let mut pixels = [Rgb565::BLACK; 64 * 48];
 /// let mut depth = [0u16; 64 * 48];
-/// let mut frame = ColorBuffer::new(&mut pixels, 64, 48)?;
-/// let mut zbuf = ZBuffer::new(&mut depth, 64, 48)?;
-/// zbuf.clear();
+/// let mut frame = Frame::new(&mut pixels, &mut depth, 64, 48)?;
+/// frame.clear(Rgb565::BLACK);
 /// let mut renderer = Renderer::new(&CUBE, &xf, RenderOptions::default())?;
-/// renderer.draw(&mut frame, &mut zbuf).unwrap();
-/// // Three faces of the cube face the camera.
+/// renderer.draw(&mut frame)?;
+/// // Three faces of the cube face the camera: six triangles.
 /// assert_eq!(renderer.stats().drawn, 6);
-/// assert_eq!(frame.pixel(32, 24), Some(Rgb565::new(0, 0, 31))); // the blue front face
+/// assert_eq!(frame.color().pixel(32, 24), Some(Rgb565::new(0, 0, 31))); // the blue front face
 /// # Ok::<(), zraster::Error>(())
 /// ```
 pub struct Renderer<'m, 'c, M> {

@@ -1,5 +1,7 @@
 //! Drawing with the Z-buffer: into any draw target run by run, or into a colour buffer
-//! with the depth test and the colour write fused.
+//! with the depth test and the colour write fused (the paths behind
+//! [`Renderer::draw`] for a [`WithDepth`](super::WithDepth) and a
+//! [`Frame`](crate::Frame)).
 
 use super::*;
 
@@ -64,13 +66,15 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         };
         Ok(m.shade(if lambert { self.face_light(f) } else { ONE }, 0, 0))
     }
-    /// Draw with the Z-buffer: every visible triangle, depth-tested per pixel, in the
-    /// mesh's materials and the chosen shading.
+    /// Draw with the Z-buffer into any draw target, run by run (for [`WithDepth`]):
+    /// every visible triangle, depth-tested per pixel, in the mesh's materials and the
+    /// chosen shading.
     ///
     /// `target` and `zbuf` may cover the whole screen or one band of it (rows the
-    /// Z-buffer does not hold are not drawn). Clear both before the first call of a
-    /// frame (or band).
-    pub fn draw<D>(
+    /// Z-buffer does not hold are not drawn).
+    ///
+    /// [`WithDepth`]: super::WithDepth
+    pub(crate) fn draw_runs<D>(
         &mut self,
         target: &mut D,
         zbuf: &mut ZBuffer<'_>,
@@ -103,12 +107,15 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
-    /// Draw with the Z-buffer into a [`ColorBuffer`]: the same pixels as
-    /// [`draw`](Renderer::draw), faster, since the depth test and the colour write
-    /// share one loop instead of handing runs to a `DrawTarget`. Flat-coloured faces
-    /// (flat shading, Lambert) take this path; Gouraud and dithered materials go through
-    /// the buffer's `DrawTarget` runs.
-    pub fn draw_buffer<C>(
+    /// Draw with the Z-buffer into a [`ColorBuffer`] (for a [`Frame`]): the same pixels
+    /// as [`draw_runs`](Renderer::draw_runs), faster, since the depth test and the colour
+    /// write share one loop instead of handing runs to a `DrawTarget`. Flat-coloured
+    /// faces (flat shading, Lambert) take this path; Gouraud and dithered materials go
+    /// through the buffer's `DrawTarget` runs. The two buffers may differ in geometry:
+    /// only the pixels both hold are drawn.
+    ///
+    /// [`Frame`]: crate::Frame
+    pub(crate) fn draw_fused<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
@@ -166,7 +173,21 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
-    /// A face near a clip plane in [`draw_buffer_triangles`]: clipped, culled and drawn
+    /// The bench firmware's whole-frame draw (`bench/mcu`), until it draws into a
+    /// [`Frame`](crate::Frame) with [`Renderer::draw`]; not API.
+    #[doc(hidden)]
+    pub fn draw_buffer<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        self.draw_fused(frame, zbuf)
+    }
+    /// A face near a clip plane in [`draw_buffer_triangles`](Renderer::draw_buffer_triangles): clipped, culled and drawn
     /// by the general path. Out of line, as it is rare.
     #[inline(never)]
     pub(crate) fn draw_clipped_face<C>(
@@ -199,7 +220,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             })?;
         Ok((g, more))
     }
-    /// [`draw_buffer`](Renderer::draw_buffer) for a cached triangle list with flat colours:
+    /// [`draw_fused`](Renderer::draw_fused) for a cached triangle list with flat colours:
     /// one tight loop over the triangles, instantiated for each way of colouring a face
     /// (one colour; one material, lit; a material per face), so that the loop does not
     /// ask which it is for every face. Faces near the clip planes go through the general

@@ -6,8 +6,8 @@
 //! GP13. Build: `cargo build --release` in this folder; flash the ELF with a probe
 //! (`probe-rs run --chip RP2040 …`) or convert it to UF2 (`elf2uf2-rs`).
 //!
-//! RAM: band colour and depth 240 × 16 × (2 + 2) = 15,360 B, vertex cache 1839 × 16 =
-//! 29,424 B, bins 3,706 × 2 = 7,412 B; the bunny's tables stay in flash.
+//! RAM: band colour and depth 240 × 16 × (2 + 2) = 15,360 B, vertex cache 1839 × 8 =
+//! 14,712 B, bins 3,736 × 2 = 7,472 B; the bunny's tables stay in flash.
 #![no_std]
 #![no_main]
 
@@ -25,7 +25,7 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{Faces, Materials, Mesh, CUBE},
     shade::Shading,
-    BandBuffers, CachedVertex, RenderOptions, Renderer,
+    BandBuffers, Bands, CachedVertex, RenderOptions, Renderer,
 };
 use zraster_bench_scene::bunny;
 
@@ -113,12 +113,12 @@ fn main() -> ! {
         if (frame / 60) % 2 == 0 {
             let xf = camera.with_model(spin * Mat4::scaling(Vec3::new(1.2, 1.2, 1.2)) * Mat4::translation(Vec3::new(-0.5, -0.5, -0.5)));
             let mut renderer = Renderer::new(&CUBE, &xf, options).unwrap();
-            renderer.draw_banded(&mut display, &mut bands, Rgb565::BLACK).ok();
+            renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK)).ok();
         } else {
             let fit = bunny::BUNNY_FIT * 1.4;
             let xf = camera.with_model(spin * Mat4::scaling(Vec3::new(fit, fit, fit)));
             let mut renderer = Renderer::with_cache(&bunny, &xf, options, cache).unwrap();
-            renderer.draw_banded(&mut display, &mut bands, Rgb565::BLACK).ok();
+            renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK)).ok();
         }
         frame = frame.wrapping_add(1);
     }
