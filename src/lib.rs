@@ -37,6 +37,11 @@
 //! # Ok::<(), zraster::Error>(())
 //! ```
 //!
+//! The sections below are the manual: [meshes](#meshes), [the camera](#the-camera),
+//! [the depth buffer](#the-depth-buffer-and-what-to-draw-into) and what to draw into,
+//! [bands](#bands-a-frame-in-a-few-kib), the [other renderers](#other-renderers) and
+//! [single triangles](#single-triangles).
+//!
 //! # What is where
 //! - [`mesh`]: the vertex table and face table (`i16` positions, flash-friendly).
 //! - [`camera`]: the model, view and projection matrices and the [`Viewport`](camera::Viewport).
@@ -51,6 +56,198 @@
 //! - [`shade`]: lights and materials (flat, Lambert, Gouraud; dithering for 1-bit).
 //! - [`fill_triangle`] and [`ScreenVertex`]: single screen-space triangles.
 //! - [`Error`] and [`DrawError`]: what can go wrong; nothing panics on bad input.
+//!
+//! # Meshes
+//!
+//! A [`Mesh`](mesh::Mesh) is two tables, as in the seeds' polygon model: a **vertex
+//! table** of positions and a **face table** of polygons, each a list of indices into
+//! the vertex table with a material (for an `Rgb888` material, its colour). Positions
+//! are `i16` triples times one `scale` (6 bytes a vertex: a model's extent in 65536
+//! steps), and the tables are borrowed slices, so a `const` mesh stays in flash. Faces
+//! are listed counter-clockwise as seen from their front; with
+//! [`Cull::Back`] (the default) faces turned away are not drawn. A mesh of triangles
+//! ([`Mesh::triangles`](mesh::Mesh::triangles), 6 bytes a face) takes the fastest paths;
+//! polygons ([`Mesh::new`](mesh::Mesh::new)) are drawn as fans. Optional tables of face
+//! and vertex normals serve lighting ([`shade`]); `examples/obj2rust.rs` turns an OBJ
+//! file into such tables.
+//!
+//! ```
+//! use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+//! use zraster::camera::{Transform, Viewport};
+//! use zraster::{math::Vec3, mesh::Mesh, Frame, RenderOptions, Renderer};
+//!
+//! // A square of side 2 around the origin, facing +z: 16384 steps of 1/16384 are 1.0.
+//! const SQUARE_POSITIONS: [[i16; 3]; 4] =
+//!     [[-16384, -16384, 0], [16384, -16384, 0], [16384, 16384, 0], [-16384, 16384, 0]];
+//! const SQUARE_TRIANGLES: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]]; // counter-clockwise
+//! const SQUARE: Mesh<'static, Rgb888> =
+//!     Mesh::triangles(&SQUARE_POSITIONS, 1.0 / 16384.0, &SQUARE_TRIANGLES, Rgb888::new(255, 0, 0));
+//! SQUARE.validate()?; // every index in range: drawing it cannot fail on its input
+//!
+//! let mut pixels = [Rgb565::new(0, 0, 0); 32 * 32];
+//! let mut depth = [0u16; 32 * 32];
+//! let mut frame = Frame::new(&mut pixels, &mut depth, 32, 32)?;
+//! frame.clear(Rgb565::new(0, 0, 0));
+//! let xf = Transform::perspective(Vec3::new(0.0, 0.0, 4.0), Vec3::default(), 45.0, 0.1, 10.0, Viewport::new(32, 32)?)?;
+//! let mut renderer = Renderer::new(&SQUARE, &xf, RenderOptions::default())?;
+//! renderer.draw(&mut frame)?;
+//! assert_eq!(renderer.stats().drawn, 2);
+//! assert_eq!(frame.color().pixel(16, 16), Some(Rgb565::new(31, 0, 0))); // Rgb888 red, as Rgb565
+//! assert_eq!(frame.color().pixel(1, 1), Some(Rgb565::new(0, 0, 0))); // outside the square
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! # The camera
+//!
+//! A [`Transform`](camera::Transform) places a mesh on the screen: the **model**
+//! matrix puts the mesh in the world (turn, move, scale it; a new one each frame
+//! animates it), the **view** and **projection** matrices are the camera
+//! ([`Transform::perspective`](camera::Transform::perspective): where the eye is, what
+//! it looks at, the vertical field of view and the near and far clip planes), and the
+//! [`Viewport`](camera::Viewport) is the screen rectangle. The matrices are `f32` and
+//! worked out once per frame; each vertex then goes through a fixed-point form of
+//! their product. Parts of faces nearer than the near plane, farther than the far
+//! plane or far outside the screen are clipped.
+//!
+//! The depth buffer's 16 bits are spread between near and far, so the near plane sets
+//! the precision: put it as far out as the scene allows, or let
+//! [`Transform::fit_depth`](camera::Transform::fit_depth) fit both planes to the mesh.
+//!
+//! ```
+//! use embedded_graphics::pixelcolor::Rgb565;
+//! use zraster::camera::{Transform, Viewport};
+//! use zraster::math::{Mat4, Vec3};
+//! use zraster::{mesh::CUBE, Frame, RenderOptions, Renderer};
+//!
+//! let mut pixels = [Rgb565::new(0, 0, 0); 64 * 32];
+//! let mut depth = [0u16; 64 * 32];
+//! let mut frame = Frame::new(&mut pixels, &mut depth, 64, 32)?;
+//! frame.clear(Rgb565::new(0, 0, 0));
+//! // Looking down −z from 5 units away; the unit cube moved to the right of the centre.
+//! let camera = Transform::perspective(Vec3::new(0.0, 0.0, 5.0), Vec3::default(), 40.0, 1.0, 10.0, Viewport::new(64, 32)?)?;
+//! let moved = camera.with_model(Mat4::translation(Vec3::new(1.0, -0.5, -0.5)));
+//! Renderer::new(&CUBE, &moved, RenderOptions::default())?.draw(&mut frame)?;
+//! let lit = |x| frame.color().pixel(x, 16) != Some(Rgb565::new(0, 0, 0));
+//! assert!(lit(48) && !lit(16)); // drawn right of the centre, not left of it
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! # The depth buffer, and what to draw into
+//!
+//! A [`ZBuffer`] holds one 16-bit depth per pixel (2 bytes, in a slice you provide):
+//! 0 is the near plane, 65535 ([`ZBuffer::FAR`]) the far plane and the cleared value. A
+//! pixel of a face is drawn only where it is nearer than what the buffer holds (the
+//! [`DepthTest`] can be changed), and its depth is then stored. So faces may be drawn
+//! in any order, several meshes into the same buffer, and interpenetrating or
+//! cyclically overlapping faces come out right, which depth sorting cannot do.
+//!
+//! [`Renderer::draw`] draws into a [`DepthTarget`]: you say what memory you have and
+//! the renderer picks the way to draw.
+//!
+//! | you have | target | how it draws |
+//! |---|---|---|
+//! | RAM for colour and depth | [`Frame`] | depth test and colour write in one loop; [`Frame::flush`] sends the frame |
+//! | a display, RAM for depth | [`WithDepth`] | each row of a face that passes the test goes to the display as a run (`fill_solid`) |
+//! | a display, a few KiB | [`Bands`] | band by band through [`BandBuffers`] (below) |
+//!
+//! A [`Frame`] or [`WithDepth`] is cleared by you, once a frame; then every mesh of the
+//! frame is drawn into it. Two meshes, the far one drawn last, into a frame and into a
+//! display with a Z-buffer, give the same picture:
+//!
+//! ```
+//! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
+//! use zraster::camera::{Transform, Viewport};
+//! use zraster::math::{Mat4, Vec3};
+//! use zraster::mesh::{Mesh, CUBE_POSITIONS};
+//! use zraster::{Frame, RenderOptions, Renderer, WithDepth, ZBuffer};
+//!
+//! // The unit cube's six faces (mesh::CUBE_FACES) as triangles, in one colour each.
+//! const CUBE_TRIANGLES: [[u16; 3]; 12] = [
+//!     [0, 1, 2], [0, 2, 3], [1, 5, 6], [1, 6, 2], [2, 6, 7], [2, 7, 3],
+//!     [3, 7, 4], [3, 4, 0], [0, 4, 5], [0, 5, 1], [7, 6, 5], [7, 5, 4],
+//! ];
+//! let near = Mesh::triangles(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_TRIANGLES, Rgb888::new(255, 0, 0));
+//! let far = Mesh::triangles(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_TRIANGLES, Rgb888::new(0, 0, 255));
+//! let camera = Transform::perspective(Vec3::new(0.5, 0.5, 4.0), Vec3::new(0.5, 0.5, 0.0), 40.0, 1.0, 10.0, Viewport::new(64, 64)?)?;
+//! let (near_xf, far_xf) = (camera, camera.with_model(Mat4::translation(Vec3::new(0.4, 0.4, -1.0))));
+//! let options = RenderOptions::default();
+//!
+//! // Into a frame in RAM.
+//! let mut pixels = [Rgb565::BLACK; 64 * 64];
+//! let mut depth = [0u16; 64 * 64];
+//! let mut frame = Frame::new(&mut pixels, &mut depth, 64, 64)?;
+//! frame.clear(Rgb565::BLACK);
+//! Renderer::new(&near, &near_xf, options)?.draw(&mut frame)?;
+//! Renderer::new(&far, &far_xf, options)?.draw(&mut frame)?;
+//! assert_eq!(frame.color().pixel(32, 32), Some(Rgb565::RED)); // the near cube hides the far one
+//!
+//! // Into a display, with only the depths in RAM.
+//! let mut display = MockDisplay::<Rgb565>::new();
+//! display.set_allow_overdraw(true); // runs of the far cube land on pixels already drawn
+//! let mut zdepth = [0u16; 64 * 64];
+//! let mut zbuf = ZBuffer::new(&mut zdepth, 64, 64)?;
+//! zbuf.clear();
+//! Renderer::new(&near, &near_xf, options)?.draw(&mut WithDepth::new(&mut display, &mut zbuf)).unwrap();
+//! Renderer::new(&far, &far_xf, options)?.draw(&mut WithDepth::new(&mut display, &mut zbuf)).unwrap();
+//! for (x, y) in [(32, 32), (20, 50), (50, 14), (2, 2)] {
+//!     let shown = display.get_pixel(Point::new(x, y)).unwrap_or(Rgb565::BLACK);
+//!     assert_eq!(Some(shown), frame.color().pixel(x, y), "pixel ({x}, {y})");
+//! }
+//! assert_eq!(zbuf.as_slice(), frame.depth().as_slice());
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! # Bands: a frame in a few KiB
+//!
+//! A 320×240 RGB565 frame and its depths take 300 KiB; most microcontrollers have far
+//! less. [`Bands`] draws the frame in horizontal bands of a few rows instead: each band
+//! is cleared, drawn into [`BandBuffers`] (one band of colour and depth) and sent to the
+//! display with one `fill_contiguous`. The picture, its depths and the stats are
+//! exactly those of a whole [`Frame`]. Each band walks the mesh again, so for larger
+//! meshes give the renderer a vertex cache ([`Renderer::with_cache`], 8 bytes a vertex:
+//! each vertex transformed once a frame) and the band buffers bins
+//! ([`BandBuffers::bins_needed`] `u16`s: the visible triangles sorted by band once a
+//! frame, so that a band visits only those that reach it).
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+//! use zraster::camera::{Transform, Viewport};
+//! use zraster::{math::Vec3, mesh::CUBE, BandBuffers, Bands, CachedVertex, Frame, RenderOptions, Renderer};
+//!
+//! let xf = Transform::perspective(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, Viewport::new(48, 40)?)?;
+//! // The whole frame, for comparison: 48 × 40 × 4 bytes.
+//! let (mut pixels, mut depth) = ([Rgb565::BLACK; 48 * 40], [0u16; 48 * 40]);
+//! let mut whole = Frame::new(&mut pixels, &mut depth, 48, 40)?;
+//! whole.clear(Rgb565::BLACK);
+//! Renderer::new(&CUBE, &xf, RenderOptions::default())?.draw(&mut whole)?;
+//!
+//! // Bands of 8 rows: 48 × 8 × 4 bytes, a vertex cache and bins. The display here is a
+//! // colour buffer; on a device it is the display driver.
+//! let mut shown = [Rgb565::WHITE; 48 * 40];
+//! let mut display = zraster::ColorBuffer::new(&mut shown, 48, 40)?;
+//! let (mut band_color, mut band_depth) = ([Rgb565::BLACK; 48 * 8], [0u16; 48 * 8]);
+//! let mut bins = [0u16; BandBuffers::<Rgb565>::bins_needed(12, 40, 8)]; // at most 12 triangles
+//! let mut buffers = BandBuffers::new(&mut band_color, &mut band_depth, 48, 8, 40, &mut bins)?;
+//! let mut cache = [CachedVertex::EMPTY; 8];
+//! let mut renderer = Renderer::with_cache(&CUBE, &xf, RenderOptions::default(), &mut cache)?;
+//! renderer.draw(&mut Bands::new(&mut display, &mut buffers, Rgb565::BLACK))?;
+//! assert_eq!(display.as_slice(), whole.color().as_slice());
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! [`Bands::after_band`] calls a closure with each band before it is sent, to draw an
+//! overlay (text, a cursor) into it or to read its depths.
+//!
+//! # Other renderers
+//!
+//! Besides the Z-buffer, a [`Renderer`] draws by depth sorting
+//! ([`draw_depth_sorted`](Renderer::draw_depth_sorted), the painter's algorithm: no
+//! depth buffer, faces sorted far to near; wrong for interpenetrating or cyclically
+//! overlapping faces), as hidden-line ([`draw_hidden_line`](Renderer::draw_hidden_line):
+//! the edges a Z-buffer leaves visible) or as wireframe
+//! ([`draw_wireframe`](Renderer::draw_wireframe)), each into any `DrawTarget`.
+//!
+//! # Single triangles
 //!
 //! Single triangles need no mesh: screen x, y in pixels (y down), depth 0 (near) ..=
 //! 65535 (far):
