@@ -299,6 +299,7 @@ extern crate std;
 mod band;
 mod buffer;
 pub mod camera;
+pub mod damage;
 mod error;
 mod fill;
 pub mod fixed;

@@ -143,3 +143,77 @@ fn bad_fits_are_errors() {
     assert!(d(1.0) > -1.01 && d(1.0) < -0.99, "{}", d(1.0));
     assert!(d(-1.0) < 1.01 && d(-1.0) > 0.99, "{}", d(-1.0));
 }
+
+/// Two squares 1/8192 of a unit apart, seen from 5 units: with near 0.1 and far 100
+/// their depths round to the same 16-bit values (z-fighting: the one drawn first keeps
+/// the pixel); fitted to the squares, every pixel shows the nearer one.
+#[test]
+fn fitting_the_depth_range_ends_z_fighting() {
+    use embedded_graphics::{
+        pixelcolor::{Rgb565, Rgb888},
+        prelude::RgbColor,
+    };
+    use zraster::{mesh::Face, shade::Shading, Cull, Frame, RenderOptions, Renderer};
+    // Far square first (blue), then the near one (red), both facing the camera.
+    const P: [[i16; 3]; 8] = [
+        [-8192, -8192, -2],
+        [8192, -8192, -2],
+        [8192, 8192, -2],
+        [-8192, 8192, -2],
+        [-8192, -8192, 0],
+        [8192, -8192, 0],
+        [8192, 8192, 0],
+        [-8192, 8192, 0],
+    ];
+    const FACES: [Face<'static, Rgb888>; 2] = [
+        Face {
+            vertices: &[0, 1, 2, 3],
+            material: Rgb888::BLUE,
+        },
+        Face {
+            vertices: &[4, 5, 6, 7],
+            material: Rgb888::RED,
+        },
+    ];
+    let mesh = Mesh::new(&P, 1.0 / 16384.0, &FACES);
+    let (w, h) = (64u32, 48u32);
+    let vp = Viewport::new(w, h).unwrap();
+    let xf = Transform::perspective(
+        Vec3::new(0.1, 0.2, 5.0),
+        Vec3::default(),
+        20.0,
+        0.1,
+        100.0,
+        vp,
+    )
+    .unwrap();
+    let (lo, hi) = mesh.bounds().unwrap();
+    let opts = RenderOptions {
+        shading: Shading::Flat,
+        cull: Cull::None,
+        ..Default::default()
+    };
+    let blue_pixels = |xf: &Transform| {
+        let mut pixels = vec![Rgb565::BLACK; (w * h) as usize];
+        let mut depth = vec![0u16; (w * h) as usize];
+        let mut frame = Frame::new(&mut pixels, &mut depth, w, h).unwrap();
+        frame.clear(Rgb565::BLACK);
+        Renderer::new(&mesh, xf, opts)
+            .unwrap()
+            .draw(&mut frame)
+            .unwrap();
+        let red = pixels.iter().filter(|&&c| c == Rgb565::RED).count();
+        let blue = pixels.iter().filter(|&&c| c == Rgb565::BLUE).count();
+        (blue, red)
+    };
+    let (fighting, shown) = blue_pixels(&xf);
+    let (after, covered) = blue_pixels(&xf.fit_depth(lo, hi, 0.01).unwrap());
+    println!(
+        "z-fighting pixels: {fighting} of {} with near 0.1, far 100; {after} of {} fitted",
+        fighting + shown,
+        after + covered
+    );
+    assert!(fighting > 500, "{fighting}");
+    assert_eq!(after, 0);
+    assert_eq!(after + covered, fighting + shown);
+}
