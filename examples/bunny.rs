@@ -4,5 +4,5 @@
 mod common;
 
 fn main() {
-    common::present(&common::scenes::bunny_shading(), "bunny", 2);
+    common::present(&zraster_scenes::bunny_shading(), "bunny", 2);
 }

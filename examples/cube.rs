@@ -5,5 +5,5 @@
 mod common;
 
 fn main() {
-    common::present(&common::scenes::cube_culling(), "cube", 2);
+    common::present(&zraster_scenes::cube_culling(), "cube", 2);
 }

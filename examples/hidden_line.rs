@@ -4,5 +4,5 @@
 mod common;
 
 fn main() {
-    common::present(&common::scenes::cube_hidden_line(), "hidden_line", 2);
+    common::present(&zraster_scenes::cube_hidden_line(), "hidden_line", 2);
 }

@@ -5,5 +5,5 @@
 mod common;
 
 fn main() {
-    common::present(&common::scenes::mono_oled(), "oled", 4);
+    common::present(&zraster_scenes::mono_oled(), "oled", 4);
 }

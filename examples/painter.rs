@@ -5,5 +5,5 @@
 mod common;
 
 fn main() {
-    common::present(&common::scenes::painter_vs_zbuffer(), "painter", 2);
+    common::present(&zraster_scenes::painter_vs_zbuffer(), "painter", 2);
 }

@@ -2,8 +2,7 @@
 //! every input the fuzzers kept — including any that once found a bug — is checked on
 //! stable Rust in `cargo test`.
 
-#[path = "../fuzz/harness.rs"]
-mod harness;
+use zraster_fuzz_harness as harness;
 
 use std::path::Path;
 use zraster::FrameStats;

@@ -3,8 +3,7 @@
 //! After a deliberate change to a scene or to the renderer, regenerate them with
 //! `ZRASTER_BLESS=1 cargo test --test golden` and commit the new images with the change.
 
-#[path = "../examples/common/scenes.rs"]
-mod scenes;
+use zraster_scenes as scenes;
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};

@@ -1,7 +1,6 @@
 //! The 3D pipeline: clipping, culling, the renderers and their errors.
 
-#[path = "../examples/common/scenes.rs"]
-mod scenes;
+use zraster_scenes as scenes;
 
 use embedded_graphics::{
     pixelcolor::{Rgb565, Rgb888},

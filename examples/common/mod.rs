@@ -1,11 +1,10 @@
-//! Shared by the examples: show a finished frame.
+//! Shared by the examples: show a finished frame. (The scenes they show are the
+//! internal crate `zraster_scenes`, in `examples/scenes`, which the tests use too.)
 //!
 //! Headless by default: the frame is written as a PNG (one image pixel per display
 //! pixel). With `--features window` it opens an SDL window instead (Debian's
 //! `libsdl2-dev` is needed to build that).
 #![allow(dead_code)]
-
-pub mod scenes;
 
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};

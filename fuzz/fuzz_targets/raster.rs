@@ -1,7 +1,6 @@
 #![no_main]
 //! cargo fuzz run raster
 
-#[path = "../harness.rs"]
-mod harness;
+use zraster_fuzz_harness as harness;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| harness::raster(data));

@@ -1,10 +1,10 @@
 //! Fuzz harnesses: arbitrary bytes into zraster's public API. Shared by the cargo-fuzz
 //! targets (`fuzz/fuzz_targets/`) and by `tests/fuzz_corpus.rs`, which replays the
-//! committed corpus in `cargo test` so CI checks the regressions on stable Rust.
+//! committed corpus in `cargo test` so CI checks the regressions on stable Rust. An
+//! internal crate (`publish = false`), so that both use it as a dependency.
 //!
 //! Every harness asserts what must hold whatever the input: no panic, nothing drawn
 //! outside the target (`MockDisplay` panics on that), and the invariants noted below.
-#![allow(dead_code)]
 
 use embedded_graphics::{
     mock_display::MockDisplay,

@@ -1,6 +1,7 @@
 //! The example scenes, shared by the examples (which show them) and the golden-image
-//! tests (which compare them pixel for pixel with `tests/golden/`).
-#![allow(dead_code)]
+//! tests (which compare them pixel for pixel with `tests/golden/`), and the bunny the
+//! pipeline tests draw. An internal crate (`publish = false`), so that both use it as
+//! a dependency instead of including this file.
 
 use embedded_graphics::{
     pixelcolor::{BinaryColor, Rgb565, Rgb888},
@@ -17,7 +18,7 @@ use zraster::{
 use zraster_obj::{fit_scale, parse_obj, quantize};
 
 /// The Stanford bunny (public domain; see the licence line at the top of the file).
-pub const BUNNY_OBJ: &str = include_str!("../models/bunny.obj");
+pub const BUNNY_OBJ: &str = include_str!("../../models/bunny.obj");
 
 /// Render into a `w × h` `Rgb565` frame with a fresh colour and depth buffer and paste
 /// it into `display` at `at`.
