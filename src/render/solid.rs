@@ -187,8 +187,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     {
         self.draw_fused(frame, zbuf)
     }
-    /// A face near a clip plane in [`draw_buffer_triangles`](Renderer::draw_buffer_triangles): clipped, culled and drawn
-    /// by the general path. Out of line, as it is rare.
+    /// A face near a clip plane in
+    /// [`draw_buffer_triangles`](Renderer::draw_buffer_triangles): clipped, culled and
+    /// drawn by the general path. Out of line, as it is rare.
     #[inline(never)]
     pub(crate) fn draw_clipped_face<C>(
         &self,
