@@ -17,10 +17,11 @@ use std::io::Write;
 use std::path::Path;
 use std::process::exit;
 
-use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zraster::{
     camera::{Transform, Viewport},
+    damage::Damage,
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
     shade::{Intensity, Light, Material, Shading, ONE},
@@ -48,6 +49,11 @@ usage: render MODEL.obj [options]
   --spin DEG          yaw added per frame (default 0)
   --band ROWS         render in bands of ROWS rows (output identical)
   --stats             print the last frame's stats as one JSON line
+  --damage            send each frame to a model ST7789 display through damage
+                      tracking (only the changed spans); --stats adds
+                      damage_pixels and bus_bytes of the last frame
+  --depth-fit         near and far from the model's bounds each frame (--near
+                      stays the lowest near allowed, --far is ignored)
 Material libraries (mtllib) are read from MODEL.obj's folder: regular files only,
 of at most 16 MiB, each once. One that cannot be read is a warning, and faces whose
 material it would have defined take --color.";
@@ -74,6 +80,8 @@ struct Options {
     spin: f32,
     band: Option<u32>,
     stats: bool,
+    damage: bool,
+    depth_fit: bool,
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -130,6 +138,8 @@ fn parse_args(args: &[String]) -> Options {
         spin: 0.0,
         band: None,
         stats: false,
+        damage: false,
+        depth_fit: false,
     };
     let mut model = None;
     let mut it = args.iter();
@@ -230,6 +240,8 @@ fn parse_args(args: &[String]) -> Options {
                 }
             }
             "--stats" => o.stats = true,
+            "--damage" => o.damage = true,
+            "--depth-fit" => o.depth_fit = true,
             s if s.starts_with('-') && s.len() > 1 => usage_error(&format!("unknown option {s}")),
             s => {
                 if model.replace(s.to_string()).is_some() {
@@ -413,10 +425,35 @@ fn main() {
         sort = Some(Box::default());
     }
     let mut stats = FrameStats::default();
+    // --depth-fit: the model's box, for near and far each frame.
+    let bounds = mesh.bounds();
+    // --damage: a display model behind a damage tracker (the display starts black).
+    let mut shown = ShownDisplay::new(w, h);
+    let (mut last_spans, mut damage_row) = (
+        vec![(0u16, 0u16); h as usize],
+        vec![Rgb565::BLACK; w as usize],
+    );
+    let mut damage = Damage::new(&mut last_spans, &mut damage_row, Rgb565::BLACK)
+        .unwrap_or_else(|e| input_error(&e.to_string()));
+    let mut sent = 0u64;
     for frame in 0..o.frames {
         let yaw = o.yaw + o.spin * frame as f32;
         let model = Mat4::rotation_x(radians(o.pitch)) * Mat4::rotation_y(radians(yaw)) * place;
-        let xf = camera.with_model(model);
+        let mut xf = camera.with_model(model);
+        if o.depth_fit {
+            if let Some((lo, hi)) = bounds {
+                xf = xf
+                    .fit_depth(lo, hi, o.near)
+                    .unwrap_or_else(|e| input_error(&format!("--depth-fit: {e}")));
+            }
+        }
+        if o.damage && frame > 0 {
+            // The previous frame goes to the display (the last one after the loop).
+            let prev = ColorBuffer::new(&mut frame_pixels, w, h)
+                .unwrap_or_else(|e| input_error(&e.to_string()));
+            shown.bytes = 0;
+            prev.flush(&mut damage.target(&mut shown)).ok();
+        }
         let mut renderer = Renderer::with_cache(&mesh, &xf, options, &mut cache)
             .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
         if o.band.is_none() {
@@ -492,6 +529,17 @@ fn main() {
     let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(w, h));
     let full =
         ColorBuffer::new(&mut frame_pixels, w, h).unwrap_or_else(|e| input_error(&e.to_string()));
+    if o.damage {
+        // The last frame through the tracker; the picture written is the display's,
+        // which must be the frame itself.
+        shown.bytes = 0;
+        full.flush(&mut damage.target(&mut shown)).ok();
+        sent = damage.sent();
+        if shown.pixels != full.as_slice() {
+            eprintln!("render: the display after damage tracking differs from the frame");
+            exit(1);
+        }
+    }
     full.flush(&mut display).ok();
     if let Err(e) = display
         .to_rgb_output_image(&OutputSettings::default())
@@ -507,8 +555,13 @@ fn main() {
         }
     }
     if o.stats {
+        let damage = if o.damage {
+            format!(",\"damage_pixels\":{sent},\"bus_bytes\":{}", shown.bytes)
+        } else {
+            String::new()
+        };
         println!(
-            "{{\"triangles_in\":{},\"culled\":{},\"outside\":{},\"clipped\":{},\"drawn\":{},\"pixels_tested\":{},\"pixels_written\":{},\"runs\":{}}}",
+            "{{\"triangles_in\":{},\"culled\":{},\"outside\":{},\"clipped\":{},\"drawn\":{},\"pixels_tested\":{},\"pixels_written\":{},\"runs\":{}{damage}}}",
             stats.triangles_in,
             stats.culled,
             stats.outside,
@@ -518,6 +571,75 @@ fn main() {
             stats.pixels_written,
             stats.runs
         );
+    }
+}
+
+/// For `--damage`: a display that keeps what it is sent and counts the bytes an ST7789
+/// on SPI receives for it (CASET, RASET and RAMWR, 11 bytes, per address window, then 2
+/// bytes a pixel; a lone pixel opens a window of its own).
+struct ShownDisplay {
+    w: u32,
+    pixels: Vec<Rgb565>,
+    bytes: u64,
+}
+
+impl ShownDisplay {
+    fn new(w: u32, h: u32) -> Self {
+        ShownDisplay {
+            w,
+            pixels: vec![Rgb565::BLACK; (w * h) as usize],
+            bytes: 0,
+        }
+    }
+
+    fn put(&mut self, p: Point, c: Rgb565) {
+        if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.w {
+            if let Some(slot) = self
+                .pixels
+                .get_mut((p.y as u32 * self.w + p.x as u32) as usize)
+            {
+                *slot = c;
+            }
+        }
+    }
+}
+
+impl OriginDimensions for ShownDisplay {
+    fn size(&self) -> Size {
+        Size::new(self.w, self.pixels.len() as u32 / self.w)
+    }
+}
+
+impl DrawTarget for ShownDisplay {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
+        &mut self,
+        pixels: I,
+    ) -> Result<(), Self::Error> {
+        for Pixel(p, c) in pixels {
+            self.bytes += 13;
+            self.put(p, c);
+        }
+        Ok(())
+    }
+
+    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
+        &mut self,
+        area: &Rectangle,
+        colors: I,
+    ) -> Result<(), Self::Error> {
+        self.bytes += 11;
+        for (p, c) in area.points().zip(colors) {
+            self.bytes += 2;
+            self.put(p, c);
+        }
+        Ok(())
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: Rgb565) -> Result<(), Self::Error> {
+        self.fill_contiguous(area, core::iter::repeat(color))
     }
 }
 

@@ -694,3 +694,73 @@ fn no_fit_keeps_raw_coordinates() {
     assert_eq!(fit.get_pixel(Point::new(120, 100)), white);
     assert_eq!(raw.get_pixel(Point::new(120, 100)), Rgb888::BLACK);
 }
+
+/// The number after `"key":` in a stats line.
+fn stat(stats: &str, key: &str) -> u64 {
+    let at = stats
+        .find(&format!("\"{key}\":"))
+        .unwrap_or_else(|| panic!("{key} in {stats}"));
+    let rest = &stats[at + key.len() + 3..];
+    rest[..rest.find([',', '}']).unwrap()].parse().unwrap()
+}
+
+/// `--damage` sends the last frame of a turning bunny-320 through damage tracking: the
+/// same picture, depth and counts, a fraction of the bus bytes of a whole frame
+/// (153,611 = 11 + 2 · 320 · 240), whole or banded.
+#[test]
+fn damage_tracking_sends_a_fraction_and_the_same_picture() {
+    let base = [
+        BUNNY,
+        "--yaw",
+        "30",
+        "--distance",
+        "1.6",
+        "--color",
+        "1,0.8,0.6",
+        "--frames",
+        "4",
+        "--spin",
+        "3",
+    ];
+    let (png, pgm, stats) = render_all("nodamage", &base);
+    for extra in [&["--damage"][..], &["--damage", "--band", "16"]] {
+        let (p, d, s) = render_all("damage", &[&base[..], extra].concat());
+        assert!(p == png && d == pgm, "{extra:?}: the picture differs");
+        assert!(
+            s.starts_with(stats.trim_end().trim_end_matches('}')),
+            "{s} vs {stats}"
+        );
+        let (pixels, bytes) = (stat(&s, "damage_pixels"), stat(&s, "bus_bytes"));
+        assert!(pixels > 1000 && pixels < 320 * 240 / 4, "{s}");
+        assert!(bytes > 2 * pixels && bytes * 3 < 153_611, "{s}");
+    }
+    assert!(!stats.contains("damage"), "{stats}");
+}
+
+/// `--depth-fit` sets near and far from the bunny's bounds: the same picture, and its
+/// depths spread over more than half the 16-bit range (2,318 units without).
+#[test]
+fn depth_fit_spreads_the_depths_over_the_range() {
+    let base = [
+        BUNNY,
+        "--yaw",
+        "30",
+        "--distance",
+        "1.6",
+        "--color",
+        "1,0.8,0.6",
+    ];
+    let depths = |pgm: &[u8]| -> Vec<u16> {
+        pgm[b"P5\n320 240\n65535\n".len()..]
+            .chunks_exact(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]))
+            .filter(|&d| d != 65535)
+            .collect()
+    };
+    let span = |d: &[u16]| d.iter().max().unwrap() - d.iter().min().unwrap();
+    let (png, pgm, _) = render_all("nofit", &base);
+    let (fpng, fpgm, _) = render_all("fit", &[&base[..], &["--depth-fit"]].concat());
+    assert_eq!(png, fpng, "the picture differs");
+    let (before, after) = (span(&depths(&pgm)), span(&depths(&fpgm)));
+    assert!(before < 3000 && after > 32768, "{before} -> {after}");
+}
