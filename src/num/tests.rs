@@ -1,0 +1,394 @@
+//! Each backend form against the plain operation it replaces, on the host.
+
+use super::armv6m::recip32_small;
+use super::*;
+
+#[test]
+fn div_floor_pair32_agrees_with_div_floor_pair() {
+    let mut rnd = crate::testing::xorshift32(0x0bad_cafe);
+    let edges = [
+        i32::MIN,
+        i32::MIN + 1,
+        -65536,
+        -17,
+        -1,
+        0,
+        1,
+        17,
+        65535,
+        i32::MAX,
+    ];
+    for i in 0..200_000u32 {
+        let pick = |r: u32, k: usize| {
+            if i % 5 == 0 {
+                edges[(r as usize + k) % edges.len()]
+            } else {
+                r as i32 >> (r % 24)
+            }
+        };
+        let (n1, n2) = (pick(rnd(), 0), pick(rnd(), 3));
+        let d = match pick(rnd(), 7) {
+            0 => 1,
+            d => d,
+        };
+        let (n1, n2) = (i64::from(n1), i64::from(n2));
+        match div_floor_pair32(n1, n2, d) {
+            Some((a, b)) => {
+                assert_eq!(
+                    (i64::from(a), i64::from(b)),
+                    div_floor_pair(n1, n2, i64::from(d))
+                )
+            }
+            // Only where a quotient or a negation leaves i32 (or on ARMv6-M).
+            None => assert!(
+                !DIVIDE || d == i32::MIN || n1 == i64::from(i32::MIN) || n2 == i64::from(i32::MIN)
+            ),
+        }
+    }
+    assert_eq!(div_floor_pair32(1 << 40, 1, 3), None);
+}
+
+#[test]
+fn recip62_is_the_exact_quotient() {
+    let check = |d: u32| assert_eq!(recip62(d), (1u64 << 62) / u64::from(d), "{d}");
+    for d in [
+        1 << 30,
+        (1 << 30) + 1,
+        (1 << 30) + 2,
+        0x5555_5555,
+        (1 << 31) - 2,
+        (1 << 31) - 1,
+    ] {
+        check(d);
+    }
+    // Both ends of every interval of the first guess.
+    for i in 0..256u32 {
+        let d = (1 << 30) + (i << 22);
+        for d in [
+            d.wrapping_sub(1),
+            d,
+            d + 1,
+            d + (1 << 21),
+            d + (1 << 22) - 1,
+        ] {
+            if d > 0 && d < 1 << 31 {
+                check(d);
+            }
+        }
+    }
+    let mut rnd = crate::testing::xorshift32(0x2545_f491);
+    for _ in 0..100_000 {
+        check((1 << 30) | (rnd() >> 2));
+    }
+}
+
+#[test]
+fn wide_products_are_exact() {
+    let edges = [
+        0u32,
+        1,
+        0xffff,
+        0x1_0000,
+        0x1_0001,
+        0x8000_0000,
+        u32::MAX - 1,
+        u32::MAX,
+    ];
+    let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut pairs = edges
+        .iter()
+        .flat_map(|&a| edges.iter().map(move |&b| (a, b)))
+        .collect::<std::vec::Vec<_>>();
+    for _ in 0..100_000 {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        pairs.push(((x >> 32) as u32, x as u32 >> (x % 31)));
+    }
+    for (a, b) in pairs {
+        let want = u64::from(a) * u64::from(b);
+        assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
+        assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+    }
+}
+
+#[test]
+fn bits_beyond_31_counts_them() {
+    let want = |w: i64| (64 - w.leading_zeros()).saturating_sub(31);
+    let mut cases = std::vec![
+        0i64,
+        1,
+        (1 << 31) - 1,
+        1 << 31,
+        (1 << 32) - 1,
+        1 << 32,
+        i64::MAX
+    ];
+    for k in 0..63 {
+        cases.extend([1i64 << k, (1i64 << k) - 1, (1i64 << k) + 1]);
+    }
+    let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+    for _ in 0..100_000 {
+        let x = next();
+        cases.push((x >> 1) as i64 >> (x % 63));
+    }
+    for w in cases {
+        assert_eq!(bits_beyond_31_parts(w), want(w), "{w}");
+        assert_eq!(bits_beyond_31(w), want(w), "{w}");
+    }
+}
+
+#[test]
+fn split_shifts_are_shifts() {
+    let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+    for _ in 0..20_000 {
+        let x = next();
+        let v = x as i64 >> (x % 40);
+        for s in 0..32 {
+            assert_eq!(shl64_parts(v, s), v.wrapping_shl(s), "{v} << {s}");
+            assert_eq!(shr64_parts(v, s), v >> s, "{v} >> {s}");
+            assert_eq!(shl64(v, s), v.wrapping_shl(s));
+            assert_eq!(shr64(v, s), v >> s);
+        }
+    }
+    for v in [0i64, -1, 1, i64::MIN, i64::MAX] {
+        for s in 0..32 {
+            assert_eq!(shl64_parts(v, s), v.wrapping_shl(s));
+            assert_eq!(shr64_parts(v, s), v >> s);
+        }
+    }
+}
+
+#[test]
+fn small_products_wrap_as_i64_does() {
+    let mut x = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut cases = std::vec![];
+    for a in [
+        0i64,
+        1,
+        -1,
+        i64::MAX,
+        i64::MIN,
+        1 << 47,
+        -(1 << 53) + 5,
+        0xffff_ffff,
+    ] {
+        for b in [0i32, 1, -1, 8, -8, 65535, -65535, 65536, i32::MIN, i32::MAX] {
+            cases.push((a, b));
+        }
+    }
+    for _ in 0..100_000 {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        cases.push((x as i64 >> (x % 17), (x >> 40) as i32 >> (x % 23)));
+    }
+    for (a, b) in cases {
+        let want = a.wrapping_mul(i64::from(b));
+        assert_eq!(mul_i64_i32(a, b), want, "{a} * {b}");
+        if b.unsigned_abs() < 1 << 16 {
+            assert_eq!(mul_small_parts(a, b), want, "{a} * {b}");
+        }
+    }
+}
+
+#[test]
+fn signless_division_is_floor_division() {
+    // The floor of n/d from Euclid's division (d ≠ 0).
+    let floor = |n: i64, d: i64| {
+        let q = n.div_euclid(d);
+        if d < 0 && n.rem_euclid(d) != 0 {
+            q - 1
+        } else {
+            q
+        }
+    };
+    let edge_n = [
+        0i64,
+        1,
+        -1,
+        (1 << 48) - 1,
+        -(1 << 48) + 1,
+        -(1 << 48),
+        1 << 48,
+        -(1 << 48) - 1,
+        i64::from(i32::MAX),
+        i64::from(i32::MIN),
+        1 << 52,
+    ];
+    let edge_d = [1i64, -1, 2, -3, 65535, -65535, 65536, -65536, 1 << 20];
+    for &n in &edge_n {
+        for &d in &edge_d {
+            assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
+        }
+    }
+    let mut next = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
+    for _ in 0..300_000 {
+        let v = next();
+        let n = ((v >> 12) as i64) >> (v % 48); // |n| < 2⁵¹
+        let d = (((next() % (1 << 18)) as i64 + 1) >> (next() % 18)).max(1);
+        let d = if next().is_multiple_of(2) { d } else { -d };
+        assert_eq!(div_floor_signless(n, d), floor(n, d), "{n} / {d}");
+    }
+}
+
+#[test]
+fn small_reciprocal_is_exact_for_every_divisor() {
+    for d in 1..1u32 << 16 {
+        assert_eq!(recip32_small(d), u32::MAX / d, "d = {d}");
+    }
+    assert_eq!(recip32_small(1 << 16), u32::MAX >> 16);
+    assert_eq!(recip32_small(0), u32::MAX);
+}
+
+#[test]
+fn reciprocal_pair_division_is_div_floor() {
+    let ds = [
+        1i64, 2, 3, 7, 255, 256, 4095, 65534, 65535, -1, -2, -3, -65535,
+    ];
+    let ns = [
+        0i64,
+        1,
+        -1,
+        65535,
+        -65536,
+        (1 << 32) - 1,
+        1 << 32,
+        -(1 << 40) - 3,
+        (1 << 48) - 1,
+        -(1 << 48) + 1,
+    ];
+    let check = |n1: i64, n2: i64, d: i64| {
+        let want = (n1.div_euclid(d), n2.div_euclid(d));
+        let want = if d < 0 {
+            // div_euclid rounds toward −∞ only for positive divisors.
+            ((-n1).div_euclid(-d), (-n2).div_euclid(-d))
+        } else {
+            want
+        };
+        assert_eq!(
+            div_floor_pair_recip(n1, n2, d),
+            Some(want),
+            "{n1} {n2} / {d}"
+        );
+        assert_eq!(div_floor_pair(n1, n2, d), want);
+        assert_eq!((div_floor(n1, d), div_floor(n2, d)), want);
+    };
+    for &d in &ds {
+        for &n1 in &ns {
+            for &n2 in &ns {
+                check(n1, n2, d);
+            }
+        }
+    }
+    let mut next = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+    for _ in 0..200_000 {
+        let d = (next() % 65535) as i64 + 1;
+        let d = if next().is_multiple_of(2) { d } else { -d };
+        let n = |v: u64| ((v >> 16) as i64) >> (v % 40); // |n| < 2⁴⁸
+        check(n(next()), n(next()), d);
+    }
+    // Outside its range: None.
+    assert_eq!(div_floor_pair_recip(1, 1, 1 << 16), None);
+    assert_eq!(div_floor_pair_recip(1 << 48, 1, 3), None);
+    assert_eq!(div_floor_pair_recip(1, -(1 << 48), 3), None);
+    assert_eq!(div_floor_pair_recip(1, 1, 0), None);
+}
+
+#[test]
+fn shift_and_subtract_division_is_exact() {
+    let edges = [
+        0u32,
+        1,
+        2,
+        3,
+        7,
+        8,
+        255,
+        256,
+        65535,
+        65536,
+        1 << 31,
+        u32::MAX - 1,
+        u32::MAX,
+    ];
+    for &n in &edges {
+        for &d in edges.iter().filter(|&&d| d > 0) {
+            assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+        }
+    }
+    let mut x = 0x9e37_79b9_u64;
+    for _ in 0..100_000 {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let n = (x >> 32) as u32 >> (x % 32);
+        let d = ((x >> 7) as u32 >> ((x >> 3) % 32)).max(1);
+        assert_eq!(udivrem(n, d), (n / d, n % d), "{n} / {d}");
+        let (ni, di) = (n as i32, (d >> 1).max(1) as i32);
+        assert_eq!(floor_div32_soft(ni, di), ni.div_euclid(di), "{ni} / {di}");
+    }
+}
+
+#[test]
+fn floor_and_ceil_division_round_the_right_way() {
+    assert_eq!(div_floor(7, 2), 3);
+    assert_eq!(div_floor(-7, 2), -4);
+    assert_eq!(div_floor(7, -2), -4);
+    assert_eq!(div_floor(-7, -2), 3);
+    assert_eq!(div_ceil(7, 2), 4);
+    assert_eq!(div_ceil(-7, 2), -3);
+    assert_eq!(div_ceil(8, 2), 4);
+    for (n, d) in [
+        (7, 2),
+        (-7, 2),
+        (-8, 2),
+        (0, 5),
+        (i32::MIN, 3),
+        (i32::MAX, 7),
+    ] {
+        assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+        assert_eq!(floor_div32_flip(n, d), n.div_euclid(d), "{n} / {d}");
+        assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
+    }
+    let mut x = 0x853c_49e6_748f_ea9b_u64;
+    for _ in 0..100_000 {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let (n, d) = (
+            (x >> 32) as i32,
+            ((x as u32 & i32::MAX as u32) >> (x % 31)).max(1) as i32,
+        );
+        assert_eq!(floor_div32(n, d), n.div_euclid(d), "{n} / {d}");
+        assert_eq!(floor_div32_flip(n, d), n.div_euclid(d), "{n} / {d}");
+        assert_eq!(floor_div32_soft(n, d), n.div_euclid(d), "{n} / {d}");
+    }
+    // The 64-bit and two-digit paths agree with plain division.
+    assert_eq!(div_floor(-(1 << 40) - 1, 1 << 20), -(1 << 20) - 1);
+    let mut x = 0x1234_5678_9abc_u64;
+    for _ in 0..20_000 {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let n = ((x >> 14) as i64) - (1 << 49);
+        let d = ((x >> 3) % 70_000) as i64 - 35_000;
+        if d != 0 {
+            assert_eq!(
+                div_floor(n, d),
+                n.div_euclid(d) - i64::from(d < 0 && n.rem_euclid(d) != 0),
+                "{n} / {d}"
+            );
+        }
+    }
+    assert_eq!(div_floor_wide(-7, 2), -4);
+}
+
+#[test]
+fn rounding_and_saturation() {
+    assert_eq!(round_f32(2.5), 3);
+    assert_eq!(round_f32(-2.5), -3);
+    assert_eq!(round_f32(2.49), 2);
+    assert_eq!(sat_i32(1 << 40), i32::MAX);
+    assert_eq!(sat_i32(-(1 << 40)), i32::MIN);
+}
