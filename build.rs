@@ -9,9 +9,12 @@
 //! - `zraster_wide`: 64-bit registers with a 64-bit divide instruction (x86-64, AArch64);
 //! - `zraster_thumb`: Thumb code (every Cortex-M target: the target name starts with
 //!   `thumb`; Arm's instruction-set mode is not a cfg), for which `src/num/kernel.rs`
-//!   has assembly loops.
+//!   has assembly loops;
+//! - `zraster_dsp`: the DSP extension's SIMD instructions (ARMv7E-M: Cortex-M4, M7; the
+//!   target name starts with `thumbv7em`, since stable Rust does not expose Arm target
+//!   features to `cfg`), for `src/num/kernel.rs`'s span loop.
 fn main() {
-    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb)");
+    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb, zraster_dsp)");
     println!("cargo::rerun-if-changed=build.rs");
     let var = |k: &str| std::env::var(k).unwrap_or_default();
     let arm = var("CARGO_CFG_TARGET_ARCH") == "arm";
@@ -30,6 +33,7 @@ fn main() {
         arm && var("CARGO_CFG_TARGET_ABI") != "eabihf",
     );
     set("zraster_thumb", arm && var("TARGET").starts_with("thumb"));
+    set("zraster_dsp", arm && var("TARGET").starts_with("thumbv7em"));
     set(
         "zraster_wide",
         var("CARGO_CFG_TARGET_POINTER_WIDTH") == "64",

@@ -11,6 +11,7 @@ use embedded_graphics::{
     primitives::Rectangle,
 };
 
+use crate::num::kernel;
 use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup, SpanStats};
 use crate::shade::{Intensity, Material};
 mod small;
@@ -358,12 +359,28 @@ pub(crate) fn flat_span<C: Copy>(
     write: bool,
     pass: &impl Fn(u16, u16) -> bool,
 ) -> u32 {
+    // The default depth test with depth writes, a 16-bit colour and a span long enough:
+    // the target's assembly loop, if it has one.
+    if write && is_less(pass) && kernel::span_kernel_pays(zrow.len()) {
+        if let Some(failed) = kernel::span_less_as_u16(zrow, crow, acc, dz, color) {
+            return failed;
+        }
+    }
     // Rows of small triangles are mostly 1 to 3 pixels: they take a plain loop here,
     // which needs few registers (a cheap call); longer ones the two-a-turn loop.
     if zrow.len() >= LONG_SPAN {
         return flat_span_long(zrow, crow, acc, dz, color, write, pass);
     }
     span_pixels(zrow, crow, acc, dz, color, write, pass)
+}
+
+/// Whether `pass` is [`DepthTest::Less`]'s comparison. The pixel loops get only the
+/// comparisons `per_depth_test!` binds, and of those `Less` alone passes 0 against 1
+/// but neither 1 against 1 (`LessEqual`, `Always`) nor 2 against 1 (`Greater`): a
+/// constant once `pass` is inlined.
+#[inline(always)]
+fn is_less(pass: &impl Fn(u16, u16) -> bool) -> bool {
+    pass(0, 1) && !pass(1, 1) && !pass(2, 1)
 }
 
 /// Spans at least this long take [`flat_span_long`].
@@ -571,6 +588,16 @@ fn scan<E>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `is_less` picks out `Less` among the comparisons `per_depth_test!` binds.
+    #[test]
+    fn is_less_knows_the_less_test() {
+        use DepthTest::*;
+        for test in [Less, LessEqual, Greater, Equal, Always, Never] {
+            let less = per_depth_test!(test, false, |pass| is_less(&pass));
+            assert_eq!(less, test == Less, "{test:?}");
+        }
+    }
 
     /// The unrolled loop of long spans gives the depths, colours and failure counts of
     /// the plain loop, for every length, with and without depth writes.
