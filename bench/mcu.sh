@@ -2,9 +2,10 @@
 # Instruction counts of zraster on the Cortex-M4F (thumbv7em) and Cortex-M0+ (thumbv6m)
 # instruction sets, under QEMU's mps2-an386 board with -icount shift=0 (exact and
 # repeatable). Needs qemu-system-arm (Debian) and the two rustup targets.
-# Fails when a firmware fails, when banded and whole-frame pictures differ, when the
-# frame is not the host's (its checksum is tests/bench_scene.rs's BENCH_CHECKSUM), or
-# when a bunny-320 whole frame costs more than 2 % over bench/baseline.txt.
+# Fails when a firmware fails, when an assembly loop (the fill or the span) differs from
+# its portable twin, when banded and whole-frame pictures differ, when the frame is not
+# the host's (its checksum is tests/bench_scene.rs's BENCH_CHECKSUM), or when a
+# bunny-320 whole frame costs more than 2 % over bench/baseline.txt.
 # UPDATE_BASELINE=1 bash bench/mcu.sh rewrites bench/baseline.txt with this run's figures
 # (see bench/README.md: a change that moves them updates it in the same commit).
 set -euo pipefail
@@ -36,6 +37,7 @@ for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   fi
   grep -Ev '^warning|^ *\||^ *=|^$|^ +-->' "$out" || true
   grep -q "fill kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly fill loop differs from its portable twin on $target"; status=1; }
+  grep -q "span kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly span loop differs from its portable twin on $target"; status=1; }
   grep -q "same picture: true" "$out" || { echo "banded and whole-frame pictures differ on $target"; status=1; }
   grep -q "checksum $want " "$out" || { echo "the frame on $target is not the host's picture (checksum $want)"; status=1; }
 

@@ -57,22 +57,6 @@ where
 }
 
 impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
-    /// The bench firmware's banded draw (`bench/mcu`), until it draws into
-    /// [`Bands`] with [`Renderer::draw`]; not API.
-    #[doc(hidden)]
-    pub fn draw_banded<D>(
-        &mut self,
-        display: &mut D,
-        bands: &mut BandBuffers<'_, D::Color>,
-        background: D::Color,
-    ) -> Result<(), DrawError<D::Error>>
-    where
-        D: DrawTarget,
-        M: Material<D::Color>,
-    {
-        self.draw_bands(display, bands, background, &mut ())
-    }
-
     /// Draw the frame band by band into `display` (for [`Bands`]): each band cleared to
     /// `background`, drawn with the Z-buffer, handed to `after` and sent with one
     /// `fill_contiguous`.

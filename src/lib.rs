@@ -321,10 +321,11 @@ pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };
 
-/// For the bench firmware: checks the assembly fill loop against its portable twin on
-/// the target (the number of differing cases; see `src/num/kernel.rs`).
+/// For the bench firmware: check the assembly fill and span loops against their
+/// portable twins on the target (the number of differing cases; see
+/// `src/num/kernel.rs`).
 #[doc(hidden)]
-pub use num::kernel::check_fill_kernel;
+pub use num::kernel::{check_fill_kernel, check_span_kernel};
 
 /// The largest width or height of a Z-buffer or colour buffer, in pixels (8192).
 ///

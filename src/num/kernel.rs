@@ -569,13 +569,6 @@ fn span_less_armv6m(z: &mut [u16], c: &mut [u16], acc: u32, dz: u32, color: u16)
 /// around, compared with [`span_less_u16_portable`] (depths, colours and the failure
 /// count). `buf` holds the four rows (at least `4 · (max + 5)` halfwords; a shorter
 /// one is a failure). Returns the number of cases that differ.
-#[cfg_attr(
-    not(test),
-    expect(
-        dead_code,
-        reason = "for bench/mcu, once src/lib.rs re-exports it as it does check_fill_kernel"
-    )
-)]
 pub fn check_span_kernel(buf: &mut [u16], max: usize) -> usize {
     let q = (max + 5) & !1; // even: rows at the same offset have the same address modulo 4
     let Some(buf) = buf.get_mut(..4 * q) else {

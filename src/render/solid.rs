@@ -173,20 +173,6 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         self.stats.add_pixel_counts(&pixels);
         Ok(())
     }
-    /// The bench firmware's whole-frame draw (`bench/mcu`), until it draws into a
-    /// [`Frame`](crate::Frame) with [`Renderer::draw`]; not API.
-    #[doc(hidden)]
-    pub fn draw_buffer<C>(
-        &mut self,
-        frame: &mut ColorBuffer<'_, C>,
-        zbuf: &mut ZBuffer<'_>,
-    ) -> Result<(), Error>
-    where
-        C: PixelColor,
-        M: Material<C>,
-    {
-        self.draw_fused(frame, zbuf)
-    }
     /// A face near a clip plane in
     /// [`draw_buffer_triangles`](Renderer::draw_buffer_triangles): clipped, culled and
     /// drawn by the general path. Out of line, as it is rare.

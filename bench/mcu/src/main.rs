@@ -17,7 +17,7 @@ use zraster::{
     camera::{Transform, Viewport},
     math::Vec3,
     mesh::CUBE,
-    BandBuffers, CachedVertex, ColorBuffer, RenderOptions, Renderer, ZBuffer,
+    BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, ZBuffer,
 };
 use zraster_bench_scene::{self as scene, bunny, checksum, H, W};
 
@@ -131,12 +131,11 @@ fn main() -> ! {
     let (pixels, depth, cache) = unsafe { (&mut *addr_of_mut!(PIXELS), &mut *addr_of_mut!(DEPTH), &mut *addr_of_mut!(CACHE)) };
     if cfg!(feature = "only-fill") {
         // The fill-bound cube alone (to profile the pixel loop).
-        let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
-        let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
-        zbuf.clear();
+        let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
+        frame.depth_mut().clear();
         let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
         let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
-        r.draw_buffer(&mut frame, &mut zbuf).unwrap();
+        r.draw(&mut frame).unwrap();
         debug::exit(debug::EXIT_SUCCESS);
     }
     let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
@@ -145,49 +144,50 @@ fn main() -> ! {
     // up to 200 (bench/mcu.sh fails unless none differ).
     let bad = zraster::check_fill_kernel(&mut depth[..256], 200);
     hprintln!("fill kernel cases differing from the portable twin: {}", bad);
+    // The assembly span loop likewise: every length up to 64 (every entry point of the
+    // M0+ loop, every remainder of the M4 one) at every relative alignment.
+    let bad = zraster::check_span_kernel(&mut depth[..512], 64);
+    hprintln!("span kernel cases differing from the portable twin: {}", bad);
 
     // ---- bunny-320, full frame.
-    let mut frame = ColorBuffer::new(pixels, W, H).unwrap();
-    let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
-    let (_, clear) = measure(|| {
-        frame.clear(Rgb565::BLACK).unwrap();
-        zbuf.clear();
-    });
+    let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
+    let (_, clear) = measure(|| frame.clear(Rgb565::BLACK));
     let (renderer, transform) = measure(|| Renderer::with_cache(&mesh, &xf, opts, cache).unwrap());
     let mut renderer = renderer;
-    let (_, draw) = measure(|| renderer.draw_buffer(&mut frame, &mut zbuf).unwrap());
-    drop(zbuf);
+    let (_, draw) = measure(|| renderer.draw(&mut frame).unwrap());
     let stats = renderer.stats();
     if cfg!(feature = "only-full") {
         // For profiling the full-frame path alone (see bench/README.md).
         debug::exit(debug::EXIT_SUCCESS);
     }
-    let sum = checksum(frame.as_slice());
+    let sum = checksum(frame.color().as_slice());
     // Culling alone: the same draw into a one-row band that no triangle reaches (the
     // first draw of a renderer culls every triangle before it looks at rows; setup
     // happens only for triangles inside the band, so it counts with the raster).
     let (mut setup_only, _) = measure(|| Renderer::with_cache(&mesh, &xf, opts, cache).unwrap());
     let mut row = [0u16; W as usize];
-    let mut zrow = ZBuffer::new_band(&mut row, W, 1, -1000).unwrap();
-    let (_, setup) = measure(|| setup_only.draw_buffer(&mut frame, &mut zrow).unwrap());
+    let zrow = ZBuffer::new_band(&mut row, W, 1, -1000).unwrap();
+    let mut culling = Frame::from_buffers(frame.into_parts().0, zrow);
+    let (_, setup) = measure(|| setup_only.draw(&mut culling).unwrap());
     hprintln!("bunny-320 full: clear {} transform {} cull {} setup+raster+output {} total {}",
         clear, transform, setup, draw - setup, clear + transform + draw);
     hprintln!("bunny-320 stats: drawn {} written {} runs {} checksum {:08x}", stats.drawn, stats.pixels_written, stats.runs, sum);
 
     // ---- bunny-320, banded (16 rows): colour and depth band, flushed to the frame.
+    let mut frame = ColorBuffer::new(&mut pixels[..], W, H).unwrap();
     let (band_pixels, _) = pixels_band();
     let bins = bins_band();
     let (_, banded) = measure(|| {
         let mut renderer = Renderer::with_cache(&mesh, &xf, opts, cache).unwrap();
         let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, &mut bins[..]).unwrap();
-        renderer.draw_banded(&mut frame, &mut bands, Rgb565::BLACK).unwrap();
+        renderer.draw(&mut Bands::new(&mut frame, &mut bands, Rgb565::BLACK)).unwrap();
     });
     // The same into a display that takes the bands and does nothing with them: the
     // whole-frame figure has no transfer in it either, so this is the like-for-like one.
     let (_, banded_sink) = measure(|| {
         let mut renderer = Renderer::with_cache(&mesh, &xf, opts, cache).unwrap();
         let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, &mut bins[..]).unwrap();
-        renderer.draw_banded(&mut Sink, &mut bands, Rgb565::BLACK).unwrap();
+        renderer.draw(&mut Bands::new(&mut Sink, &mut bands, Rgb565::BLACK)).unwrap();
     });
     let banded_sum = checksum(frame.as_slice());
     hprintln!("bunny-320 banded-16: total {} checksum {:08x} (same picture: {})", banded, banded_sum, banded_sum == sum);
@@ -199,12 +199,11 @@ fn main() -> ! {
 
     // ---- Fill-bound: the seeds' cube close up, covering the whole screen.
 
-    frame.clear(Rgb565::BLACK).unwrap();
-    let mut zbuf = ZBuffer::new(&mut depth[..], W, H).unwrap();
-    zbuf.clear();
+    let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
+    frame.clear(Rgb565::BLACK);
     let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
     let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
-    let (_, fill) = measure(|| r.draw_buffer(&mut frame, &mut zbuf).unwrap());
+    let (_, fill) = measure(|| r.draw(&mut frame).unwrap());
     let written = r.stats().pixels_written.max(1) as u32; // one frame: far below 2³²
     hprintln!("fill-bound cube: {} instructions, {} pixels written, {}.{:02} per pixel",
         fill, written, fill / written, (fill % written) * 100 / written);
