@@ -566,7 +566,7 @@ fn span_less_armv6m(z: &mut [u16], c: &mut [u16], acc: u32, dz: u32, color: u16)
 /// On-target check of the span assembly against its twin, for the bench firmware:
 /// spans of every length up to `max` at every alignment of the depth and colour rows
 /// (the same modulo 4 and not), over depths that pass, fail and mix, with guard values
-/// around, compared with [`span_less_u16_portable`] (depths, colours and the failure
+/// around, compared with the portable twin (depths, colours and the failure
 /// count). `buf` holds the four rows (at least `4 · (max + 5)` halfwords; a shorter
 /// one is a failure). Returns the number of cases that differ.
 pub fn check_span_kernel(buf: &mut [u16], max: usize) -> usize {
