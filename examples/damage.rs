@@ -3,10 +3,10 @@
 //! screen, near (as bunny-320) and far (half the size).
 //!
 //! `cargo run --release --example damage` prints a table: bytes per frame counted as an
-//! ST7789 on SPI takes them (CASET, RASET and RAMWR, 11 bytes, per address window, then
-//! 2 bytes a pixel) and the frame rate the bus alone allows at 62.5 MHz.
+//! ST7789 on SPI takes them (`zraster_scenes::bus`: CASET, RASET and RAMWR, 11 bytes, per
+//! address window, then 2 bytes a pixel) and the frame rate the bus alone allows at 62.5 MHz.
 
-use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle, Pixel};
+use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use zraster::{
     camera::{Transform, Viewport},
     damage::Damage,
@@ -14,41 +14,7 @@ use zraster::{
     CachedVertex, Frame, Renderer,
 };
 use zraster_bench_scene::{self as scene, bunny, H, W};
-
-/// A display that only counts the bytes an ST7789 on SPI would receive.
-struct Bus {
-    bytes: u64,
-}
-
-impl OriginDimensions for Bus {
-    fn size(&self) -> Size {
-        Size::new(W, H)
-    }
-}
-
-impl DrawTarget for Bus {
-    type Color = Rgb565;
-    type Error = core::convert::Infallible;
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        self.bytes += 13 * pixels.into_iter().count() as u64;
-        Ok(())
-    }
-    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
-        &mut self,
-        area: &Rectangle,
-        _: I,
-    ) -> Result<(), Self::Error> {
-        self.bytes += 11 + 2 * u64::from(area.size.width) * u64::from(area.size.height);
-        Ok(())
-    }
-    fn fill_solid(&mut self, area: &Rectangle, _: Rgb565) -> Result<(), Self::Error> {
-        self.bytes += 11 + 2 * u64::from(area.size.width) * u64::from(area.size.height);
-        Ok(())
-    }
-}
+use zraster_scenes::bus::SpiDisplay;
 
 /// Mean bytes per frame (after the first) over `frames` frames turning 3° each, whole
 /// and through damage tracking; and the share of the screen the bunny covers.
@@ -80,7 +46,7 @@ fn measure(distance: f32, frames: u32) -> (u64, u64, f64) {
         frame.clear(bg);
         let mut r = Renderer::with_cache(&mesh, &xf, scene::options(), &mut cache).unwrap();
         r.draw(&mut frame).unwrap();
-        let (mut full, mut bus) = (Bus { bytes: 0 }, Bus { bytes: 0 });
+        let (mut full, mut bus) = (SpiDisplay::new(W, H, bg), SpiDisplay::new(W, H, bg));
         frame.flush(&mut full).unwrap();
         frame.flush(&mut damage.target(&mut bus)).unwrap();
         if i > 0 {

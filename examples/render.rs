@@ -17,7 +17,7 @@ use std::io::Write;
 use std::path::Path;
 use std::process::exit;
 
-use embedded_graphics::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zraster::{
     camera::{Transform, Viewport},
@@ -29,6 +29,7 @@ use zraster::{
     RenderOptions, Renderer, ZBuffer,
 };
 use zraster_obj::{fit_scale_f64, parse_obj_with, quantize, MtlLoader};
+use zraster_scenes::bus::SpiDisplay;
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]
@@ -428,7 +429,7 @@ fn main() {
     // --depth-fit: the model's box, for near and far each frame.
     let bounds = mesh.bounds();
     // --damage: a display model behind a damage tracker (the display starts black).
-    let mut shown = ShownDisplay::new(w, h);
+    let mut shown = SpiDisplay::new(w, h, Rgb565::BLACK);
     let (mut last_spans, mut damage_row) = (
         vec![(0u16, 0u16); h as usize],
         vec![Rgb565::BLACK; w as usize],
@@ -535,7 +536,7 @@ fn main() {
         shown.bytes = 0;
         full.flush(&mut damage.target(&mut shown)).ok();
         sent = damage.sent();
-        if shown.pixels != full.as_slice() {
+        if shown.pixels != full.as_slice() || shown.outside != 0 {
             eprintln!("render: the display after damage tracking differs from the frame");
             exit(1);
         }
@@ -571,75 +572,6 @@ fn main() {
             stats.pixels_written,
             stats.runs
         );
-    }
-}
-
-/// For `--damage`: a display that keeps what it is sent and counts the bytes an ST7789
-/// on SPI receives for it (CASET, RASET and RAMWR, 11 bytes, per address window, then 2
-/// bytes a pixel; a lone pixel opens a window of its own).
-struct ShownDisplay {
-    w: u32,
-    pixels: Vec<Rgb565>,
-    bytes: u64,
-}
-
-impl ShownDisplay {
-    fn new(w: u32, h: u32) -> Self {
-        ShownDisplay {
-            w,
-            pixels: vec![Rgb565::BLACK; (w * h) as usize],
-            bytes: 0,
-        }
-    }
-
-    fn put(&mut self, p: Point, c: Rgb565) {
-        if p.x >= 0 && p.y >= 0 && (p.x as u32) < self.w {
-            if let Some(slot) = self
-                .pixels
-                .get_mut((p.y as u32 * self.w + p.x as u32) as usize)
-            {
-                *slot = c;
-            }
-        }
-    }
-}
-
-impl OriginDimensions for ShownDisplay {
-    fn size(&self) -> Size {
-        Size::new(self.w, self.pixels.len() as u32 / self.w)
-    }
-}
-
-impl DrawTarget for ShownDisplay {
-    type Color = Rgb565;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
-        &mut self,
-        pixels: I,
-    ) -> Result<(), Self::Error> {
-        for Pixel(p, c) in pixels {
-            self.bytes += 13;
-            self.put(p, c);
-        }
-        Ok(())
-    }
-
-    fn fill_contiguous<I: IntoIterator<Item = Rgb565>>(
-        &mut self,
-        area: &Rectangle,
-        colors: I,
-    ) -> Result<(), Self::Error> {
-        self.bytes += 11;
-        for (p, c) in area.points().zip(colors) {
-            self.bytes += 2;
-            self.put(p, c);
-        }
-        Ok(())
-    }
-
-    fn fill_solid(&mut self, area: &Rectangle, color: Rgb565) -> Result<(), Self::Error> {
-        self.fill_contiguous(area, core::iter::repeat(color))
     }
 }
 

@@ -3,6 +3,8 @@
 //! pipeline tests draw. An internal crate (`publish = false`), so that both use it as
 //! a dependency instead of including this file.
 
+pub mod bus;
+
 use embedded_graphics::{
     pixelcolor::{BinaryColor, Rgb565, Rgb888},
     prelude::*,
