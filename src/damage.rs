@@ -114,18 +114,27 @@ impl<'a, C: PixelColor> Damage<'a, C> {
 
     /// Mark the columns `x0..x1` (clipped to the row) of row `y` as changed.
     fn touch(&mut self, y: i32, x0: i32, x1: i32) {
-        let (Ok(y), Some(x0), Some(x1)) = (usize::try_from(y), clamp_u16(x0), clamp_u16(x1)) else {
+        let Ok(y) = usize::try_from(y) else {
             return;
         };
         if let Some(s) = self.last.get_mut(y) {
-            *s = union(*s, (x0, x1));
+            *s = union(*s, (clamp_u16(x0), clamp_u16(x1)));
         }
+    }
+
+    /// `area` goes out whole: its pixels counted as sent, its rows marked changed.
+    fn sent_whole(&mut self, area: &Rectangle) {
+        let (x0, w) = (area.top_left.x, area.size.width as i32);
+        for y in area.rows() {
+            self.touch(y, x0, x0.saturating_add(w));
+        }
+        self.sent += u64::from(area.size.width) * u64::from(area.size.height);
     }
 }
 
 /// `v` clamped into `u16`.
-fn clamp_u16(v: i32) -> Option<u16> {
-    Some(v.clamp(0, i32::from(u16::MAX)) as u16)
+fn clamp_u16(v: i32) -> u16 {
+    v.clamp(0, i32::from(u16::MAX)) as u16
 }
 
 /// The smallest span holding both.
@@ -162,12 +171,7 @@ impl<D: DrawTarget<Color = C>, C: PixelColor> DrawTarget for DamageTarget<'_, '_
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), D::Error> {
-        let w = area.size.width as i32;
-        for y in area.rows() {
-            self.damage
-                .touch(y, area.top_left.x, area.top_left.x.saturating_add(w));
-        }
-        self.damage.sent += u64::from(area.size.width) * u64::from(area.size.height);
+        self.damage.sent_whole(area);
         self.display.fill_solid(area, color)
     }
 
@@ -180,11 +184,7 @@ impl<D: DrawTarget<Color = C>, C: PixelColor> DrawTarget for DamageTarget<'_, '_
         let x0 = area.top_left.x;
         if width > self.damage.row.len() {
             // Wider than the row buffer: sent whole, rows marked changed.
-            let w = area.size.width as i32;
-            for y in area.rows() {
-                self.damage.touch(y, x0, x0.saturating_add(w));
-            }
-            self.damage.sent += u64::from(area.size.width) * u64::from(area.size.height);
+            self.damage.sent_whole(area);
             return self.display.fill_contiguous(area, colors);
         }
         let mut colors = colors.into_iter();
@@ -209,7 +209,7 @@ impl<D: DrawTarget<Color = C>, C: PixelColor> DrawTarget for DamageTarget<'_, '_
                         .iter()
                         .rposition(|c| c != background)
                         .map_or(i, |e| e + 1);
-                    let s = |v: usize| clamp_u16(x0.saturating_add(v as i32)).unwrap_or(0);
+                    let s = |v: usize| clamp_u16(x0.saturating_add(v as i32));
                     (s(i), s(end))
                 }
                 None => (0, 0),
