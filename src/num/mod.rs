@@ -57,8 +57,8 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
 /// divide instruction on 64-bit hosts; on ARMv6-M, which has no divide instruction,
 /// when `|d| < 2¹⁶` and both `|n| < 2⁴⁸` (the depth slopes of every small triangle),
 /// by a reciprocal of `d` and each 16-bit digit of the two long divisions by a multiply
-/// and at most three corrections, instead of four library divisions; elsewhere by two
-/// [`div_floor_signless`]s.
+/// and at most three corrections, instead of four library divisions; elsewhere by
+/// [`div_floor_pair32`] when everything fits 32 bits, else two [`div_floor_signless`]s.
 #[inline]
 pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
     if ARMV6M {
@@ -71,9 +71,11 @@ pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
         // A 64-bit divide instruction: one each, cheaper than the digit method.
         return (n1.div_euclid(d), n2.div_euclid(d));
     }
-    if let (Ok(a), Ok(b), Ok(d)) = (i32::try_from(n1), i32::try_from(n2), i32::try_from(d)) {
-        // One 32-bit division each (the usual small triangle's depth steps).
-        return (i64::from(floor_div32(a, d)), i64::from(floor_div32(b, d)));
+    if let Some((a, b)) = i32::try_from(d)
+        .ok()
+        .and_then(|d| div_floor_pair32(n1, n2, d))
+    {
+        return (i64::from(a), i64::from(b));
     }
     (div_floor_signless(n1, d), div_floor_signless(n2, d))
 }
