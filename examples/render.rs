@@ -16,6 +16,7 @@
 use std::io::Write;
 use std::path::Path;
 use std::process::exit;
+use std::time::{Duration, Instant};
 
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
@@ -46,7 +47,10 @@ usage: render MODEL.obj [options]
   --mode zbuffer|painter|hidden-line|wireframe  (default zbuffer)
   --shade none|lambert|gouraud                  (default lambert)
   --color R,G,B       colour of faces without a material, 0..1 (default 1,1,1)
-  --frames N          render N frames, write the last (default 1)
+  --frames N          render N frames, write the last (default 1); prints
+                      'frames N: X ms/frame, Y fps' to stdout (to stderr with
+                      --stats, whose JSON line stays stdout's only line), and
+                      'render: frame K/N' to stderr each second after the first
   --spin DEG          yaw added per frame (default 0)
   --band ROWS         render in bands of ROWS rows (output identical)
   --stats             print the last frame's stats as one JSON line
@@ -78,6 +82,8 @@ struct Options {
     shade: Shade,
     color: [f32; 3],
     frames: u32,
+    /// `--frames` was given: print the frame time.
+    timed: bool,
     spin: f32,
     band: Option<u32>,
     stats: bool,
@@ -136,6 +142,7 @@ fn parse_args(args: &[String]) -> Options {
         shade: Shade::Lambert,
         color: [1.0; 3],
         frames: 1,
+        timed: false,
         spin: 0.0,
         band: None,
         stats: false,
@@ -231,7 +238,8 @@ fn parse_args(args: &[String]) -> Options {
                 o.frames = match v.parse::<u32>() {
                     Ok(n) if n >= 1 => n,
                     _ => usage_error(&format!("--frames needs a whole number ≥ 1, got {v:?}")),
-                }
+                };
+                o.timed = true;
             }
             "--band" => {
                 let v = value(a);
@@ -437,7 +445,10 @@ fn main() {
     let mut damage = Damage::new(&mut last_spans, &mut damage_row, Rgb565::BLACK)
         .unwrap_or_else(|e| input_error(&e.to_string()));
     let mut sent = 0u64;
+    let start = Instant::now();
+    let mut progress = Progress::new(start, o.frames);
     for frame in 0..o.frames {
+        progress.tick(frame);
         let yaw = o.yaw + o.spin * frame as f32;
         let model = Mat4::rotation_x(radians(o.pitch)) * Mat4::rotation_y(radians(yaw)) * place;
         let mut xf = camera.with_model(model);
@@ -526,6 +537,8 @@ fn main() {
         stats = renderer.stats();
     }
 
+    let elapsed = start.elapsed();
+
     // ---- Output.
     let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(w, h));
     let full =
@@ -555,6 +568,14 @@ fn main() {
             exit(1);
         }
     }
+    if o.timed {
+        let line = frame_time_line(o.frames, elapsed);
+        if o.stats {
+            eprintln!("render: {line}");
+        } else {
+            println!("{line}");
+        }
+    }
     if o.stats {
         let damage = if o.damage {
             format!(",\"damage_pixels\":{sent},\"bus_bytes\":{}", shown.bytes)
@@ -572,6 +593,39 @@ fn main() {
             stats.pixels_written,
             stats.runs
         );
+    }
+}
+
+/// `frames N: X ms/frame, Y fps` for N frames drawn in `elapsed`.
+fn frame_time_line(frames: u32, elapsed: Duration) -> String {
+    let secs = elapsed.as_secs_f64().max(1e-9);
+    let ms = secs * 1000.0 / f64::from(frames);
+    let fps = f64::from(frames) / secs;
+    format!("frames {frames}: {ms:.2} ms/frame, {fps:.1} fps")
+}
+
+/// `render: frame K/N` on stderr once a second, from the first second on: long
+/// renders show they are moving.
+struct Progress {
+    next: Instant,
+    frames: u32,
+}
+
+impl Progress {
+    fn new(start: Instant, frames: u32) -> Progress {
+        Progress {
+            next: start + Duration::from_secs(1),
+            frames,
+        }
+    }
+
+    /// Before drawing frame `done` (0-based): `done` frames are finished.
+    fn tick(&mut self, done: u32) {
+        let now = Instant::now();
+        if now >= self.next {
+            eprintln!("render: frame {done}/{}", self.frames);
+            self.next = now + Duration::from_secs(1);
+        }
     }
 }
 

@@ -764,3 +764,137 @@ fn depth_fit_spreads_the_depths_over_the_range() {
     let (before, after) = (span(&depths(&pgm)), span(&depths(&fpgm)));
     assert!(before < 3000 && after > 32768, "{before} -> {after}");
 }
+
+/// `frames N: X ms/frame, Y fps`, the line `--frames N` prints: N, X and Y.
+fn frame_time(line: &str) -> (u32, f64, f64) {
+    let parse = || -> Option<(u32, f64, f64)> {
+        let rest = line.strip_prefix("frames ")?;
+        let (n, rest) = rest.split_once(": ")?;
+        let (ms, rest) = rest.split_once(" ms/frame, ")?;
+        let fps = rest.strip_suffix(" fps")?;
+        // Two decimals for the milliseconds, one for the rate.
+        let decimals = |s: &str| s.split_once('.').map(|(_, d)| d.len());
+        if decimals(ms) != Some(2) || decimals(fps) != Some(1) {
+            return None;
+        }
+        Some((n.parse().ok()?, ms.parse().ok()?, fps.parse().ok()?))
+    };
+    parse().unwrap_or_else(|| panic!("not a frame-time line: {line:?}"))
+}
+
+/// `--frames N` draws the same frame N times (no `--spin`): the picture is the single
+/// frame's, and stdout is one line with the time a frame and the frame rate.
+#[test]
+fn frames_print_the_frame_time_and_keep_the_picture() {
+    let (one, many) = (tmp("frames-1.png"), tmp("frames-12.png"));
+    let plain = run_ok(&[&BUNNY_320[..], &["--out", one.to_str().unwrap()]].concat());
+    assert_eq!(plain, "", "without --frames stdout stays empty");
+    let out = run_ok(
+        &[
+            &BUNNY_320[..],
+            &["--frames", "12", "--out", many.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 1, "{out}");
+    let (n, ms, fps) = frame_time(lines[0]);
+    assert_eq!(n, 12);
+    assert!(ms > 0.0 && fps > 0.0, "{out}");
+    // The same measurement both ways, up to the printed rounding.
+    let implied = 1000.0 / fps;
+    assert!((implied - ms).abs() <= 0.006 + implied * 0.001, "{out}");
+    assert!(std::fs::read(&one).unwrap() == std::fs::read(&many).unwrap());
+    assert!(load(&one).diff(&load(&many)).is_none());
+    // `--frames 1` given: the line too.
+    let out = run_ok(&[
+        BUNNY,
+        "--size",
+        "32x24",
+        "--frames",
+        "1",
+        "--out",
+        "/dev/null",
+    ]);
+    assert_eq!(frame_time(out.trim_end()).0, 1);
+}
+
+/// With `--stats`, stdout stays its one JSON line and the frame time goes to stderr.
+#[test]
+fn frames_with_stats_keep_stdout_one_json_line() {
+    let png = tmp("frames-stats.png");
+    let args = [
+        BUNNY,
+        "--size",
+        "96x72",
+        "--frames",
+        "3",
+        "--spin",
+        "10",
+        "--stats",
+        "--out",
+        png.to_str().unwrap(),
+    ];
+    let o = render(&args);
+    assert!(o.status.success());
+    let (out, err) = (
+        String::from_utf8(o.stdout).unwrap(),
+        String::from_utf8(o.stderr).unwrap(),
+    );
+    assert_eq!(out.lines().count(), 1, "{out}");
+    assert!(out.starts_with("{\"triangles_in\":3674,") && out.ends_with("}\n"));
+    let line = err
+        .lines()
+        .find_map(|l| l.strip_prefix("render: frames "))
+        .unwrap_or_else(|| panic!("no frame time on stderr: {err}"));
+    assert_eq!(frame_time(&format!("frames {line}")).0, 3);
+}
+
+/// A render longer than a second says how far it is on stderr, once a second:
+/// `render: frame K/N` with K rising. (More frames until it takes over 1.5 s.)
+#[test]
+fn long_renders_print_progress() {
+    let mut frames = 400u32;
+    loop {
+        let n = frames.to_string();
+        let args = [
+            BUNNY,
+            "--size",
+            "320x240",
+            "--frames",
+            &n,
+            "--spin",
+            "1",
+            "--out",
+            "/dev/null",
+        ];
+        let o = render(&args);
+        assert!(o.status.success());
+        let (_, ms, _) = frame_time(String::from_utf8(o.stdout).unwrap().trim_end());
+        let seconds = ms * f64::from(frames) / 1000.0;
+        let err = String::from_utf8(o.stderr).unwrap();
+        let done: Vec<u32> = err
+            .lines()
+            .map(|l| {
+                let k = l
+                    .strip_prefix("render: frame ")
+                    .and_then(|r| r.strip_suffix(&format!("/{frames}")))
+                    .unwrap_or_else(|| panic!("unexpected stderr line {l:?}"));
+                k.parse().unwrap()
+            })
+            .collect();
+        // One a second after the first: none under a second, about one per second.
+        if seconds < 1.0 {
+            assert!(done.is_empty(), "{seconds} s: {err}");
+        }
+        assert!(done.len() as f64 <= seconds + 0.5, "{seconds} s: {err}");
+        assert!(done.windows(2).all(|w| w[0] < w[1]), "{err}");
+        assert!(done.iter().all(|&k| k > 0 && k < frames), "{err}");
+        if seconds > 1.5 {
+            assert!(!done.is_empty(), "{seconds} s and no progress line");
+            break;
+        }
+        assert!(frames < 1 << 20, "rendering never took 1.5 s");
+        frames *= 4;
+    }
+}
