@@ -14,12 +14,11 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
-use crate::raster::signed_area_guarded;
-use crate::render::{cached_triangle, outside_rows, per_colouring};
+use crate::render::{cached_triangle, outside_rows, per_colouring, CachedWalk};
 use crate::shade::{Material, Shading};
 use crate::{
-    AfterBand, BandBuffers, Bands, ColorBuffer, DepthTarget, DrawError, Error, FrameStats,
-    Renderer, ZBuffer,
+    AfterBand, BandBuffers, Bands, CachedVertex, ColorBuffer, DepthTarget, DrawError, Error,
+    FrameStats, Renderer, ZBuffer,
 };
 
 /// The end of a bin chain (no link to a triangle is this: triangles number at most
@@ -156,13 +155,11 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         for (c, t) in tails.iter_mut().enumerate() {
             *t = (nt + c) as u16;
         }
-        let cull = self.options.cull;
         // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
         // shift there when `rows` is a power of two.
         let shift = rows.trailing_zeros();
         let pow2 = crate::num::ARMV6M && rows.count_ones() == 1;
         let band_of = |row: i32| if pow2 { row >> shift } else { row / rows };
-        let mut st = FrameStats::default();
         let mut append = |c: usize, f: usize| {
             if let Some(tail) = tails.get_mut(c) {
                 if let Some(slot) = slots.get_mut(usize::from(*tail)) {
@@ -171,59 +168,36 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 *tail = f as u16;
             }
         };
-        let (mut n_clipped, mut outside, mut culled) = (0usize, 0u32, 0u32);
-        let mut faces = indices.iter().enumerate();
-        loop {
-            // All but the faces near a clip plane in a loop of their own, with no call
-            // in it (as in the whole-frame draw).
-            let clipped = loop {
-                let Some((f, t)) = faces.next() else {
-                    break None;
-                };
-                let [a, b, c] = cached_triangle(cache, f, t)?;
-                // Counted here: faces outside and culled. The others not sent to the
-                // general path below are drawn; all are counted in after the loop.
-                if a.code() & b.code() & c.code() != 0 {
-                    outside += 1;
-                    continue;
-                }
-                if a.marked() | b.marked() | c.marked() {
-                    break Some(f);
-                }
-                if cull.drops(signed_area_guarded(a.xy(), b.xy(), c.xy())) {
-                    culled += 1;
-                    continue;
-                }
-                let [p, q, r] = [a.placed(), b.placed(), c.placed()];
-                let ymin = p.y().min(q.y()).min(r.y());
-                let ymax = p.y().max(q.y()).max(r.y());
-                let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
-                if bottom <= 0 || top >= height || top >= bottom {
-                    continue;
-                }
-                let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
-                match bb - tb {
-                    0 => append(2 * tb as usize + 1, f),
-                    1 => append(2 * tb as usize, f),
-                    _ => append(chains - 1, f),
-                }
+        let mut walk = CachedWalk::new(indices, 0..nt, cache, None, self.options.cull);
+        let mut clipped = FrameStats::default();
+        for next in walk.by_ref() {
+            let (f, tri) = next?;
+            let Some([p, q, r]) = tri.map(|t| t.map(CachedVertex::placed)) else {
+                // Near a clip plane: drawn by the general path in every band; counted
+                // now as that path counts it.
+                let g = self.count_one(f).map_err(|e| match e {
+                    DrawError::Input(e) => e,
+                    DrawError::Target(never) => match never {},
+                })?;
+                clipped.add_geometry(&g);
+                append(chains - 1, f);
+                continue;
             };
-            let Some(f) = clipped else { break };
-            // Near a clip plane: drawn by the general path in every band; counted now as
-            // that path counts it (clipped, and the pieces that survive culling).
-            let g = self.count_one(f).map_err(|e| match e {
-                DrawError::Input(e) => e,
-                DrawError::Target(never) => match never {},
-            })?;
-            st.add_geometry(&g);
-            n_clipped += 1;
-            append(chains - 1, f);
+            let ymin = p.y().min(q.y()).min(r.y());
+            let ymax = p.y().max(q.y()).max(r.y());
+            let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
+            if bottom <= 0 || top >= height || top >= bottom {
+                continue;
+            }
+            let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
+            match bb - tb {
+                0 => append(2 * tb as usize + 1, f),
+                1 => append(2 * tb as usize, f),
+                _ => append(chains - 1, f),
+            }
         }
-        let unclipped = (nt - n_clipped) as u32; // nt < 2¹⁶
-        st.triangles_in += unclipped;
-        st.outside += outside;
-        st.culled += culled;
-        st.drawn += unclipped - outside - culled;
+        let mut st = walk.stats();
+        st.add_geometry(&clipped);
         // End every chain: after its last triangle, or at its head when empty.
         for c in 0..chains {
             if let Some(slot) = tails.get(c).and_then(|&t| slots.get_mut(usize::from(t))) {

@@ -1,7 +1,5 @@
 //! Face culling: the classic back-face test on a triangle's winding on screen.
 
-use crate::raster::{signed_area_guarded, ScreenVertex};
-
 /// Which faces are dropped before rasterization, by their winding on screen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Cull {
@@ -25,10 +23,4 @@ impl Cull {
             Cull::None => area == 0,
         }
     }
-}
-/// Whether `cull` drops `tri`.
-#[inline(always)]
-pub(crate) fn culled(tri: &[ScreenVertex; 3], cull: Cull) -> bool {
-    let p = |v: &ScreenVertex| (v.x(), v.y());
-    cull.drops(signed_area_guarded(p(&tri[0]), p(&tri[1]), p(&tri[2])))
 }

@@ -34,25 +34,22 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let mut bias = 1u16;
             for (i0, i1, i2) in fan(vs) {
                 let (v0, v1, v2) = (self.fetch(i0, f)?, self.fetch(i1, f)?, self.fetch(i2, f)?);
-                if v0.code | v1.code | v2.code != 0 {
+                match decide([&v0, &v1, &v2], None, self.options.cull) {
                     // Near the clip planes: decide by the clip-space winding instead.
-                    visible |= self.clipped_face_visible(&[v0.index, v1.index, v2.index]);
-                    continue;
-                }
-                let tri = [v0.screen, v1.screen, v2.screen];
-                let p = |v: &ScreenVertex| (v.x(), v.y());
-                if !self
-                    .options
-                    .cull
-                    .drops(signed_area_guarded(p(&tri[0]), p(&tri[1]), p(&tri[2])))
-                {
-                    visible = true;
-                    if let Some(pl) = Plane::new(&tri, [tri[0].z(), tri[1].z(), tri[2].z()]) {
-                        // |step| ≤ 2³¹ each: their sum needs 33 bits.
-                        let steep = u64::from(pl.step_x().unsigned_abs())
-                            + u64::from(pl.step_y().unsigned_abs());
-                        let slope = (steep >> 16) + 1;
-                        bias = bias.max(slope.min(u64::from(u16::MAX)) as u16);
+                    Seen::Clip => {
+                        visible |= self.clipped_face_visible(&[v0.index, v1.index, v2.index]);
+                    }
+                    Seen::Outside | Seen::OffRows | Seen::Culled => {}
+                    Seen::Front => {
+                        visible = true;
+                        let tri = [v0.screen, v1.screen, v2.screen];
+                        if let Some(pl) = Plane::new(&tri, [tri[0].z(), tri[1].z(), tri[2].z()]) {
+                            // |step| ≤ 2³¹ each: their sum needs 33 bits.
+                            let steep = u64::from(pl.step_x().unsigned_abs())
+                                + u64::from(pl.step_y().unsigned_abs());
+                            let slope = (steep >> 16) + 1;
+                            bias = bias.max(slope.min(u64::from(u16::MAX)) as u16);
+                        }
                     }
                 }
             }

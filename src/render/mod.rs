@@ -16,14 +16,13 @@ mod solid;
 mod target;
 mod walk;
 
-pub(crate) use crate::geometry::cull::culled;
 pub use crate::geometry::cull::Cull;
 pub use painter::DepthSort;
 pub(crate) use solid::per_colouring;
 pub(crate) use target::sealed;
 pub use target::{DepthTarget, WithDepth};
-pub(crate) use walk::{cached_triangle, outside_rows};
-use walk::{edges, fan};
+pub(crate) use walk::{cached_triangle, outside_rows, CachedWalk};
+use walk::{decide, edges, fan, Seen};
 
 use crate::camera::Transform;
 use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget};
@@ -235,7 +234,7 @@ pub struct Renderer<'m, 'c, M> {
 
 /// A fetched vertex: screen position if inside (code 0), and its light.
 #[derive(Clone, Copy)]
-struct Fetched {
+pub(crate) struct Fetched {
     index: u16,
     code: u8,
     screen: ScreenVertex,

@@ -218,7 +218,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         zbuf: &mut ZBuffer<'_>,
         indices: &'m [[u16; 3]],
         materials: crate::mesh::Materials<'m, M>,
-        faces: impl Iterator<Item = usize>,
+        faces: core::ops::Range<usize>,
     ) -> Result<(), Error>
     where
         C: PixelColor,
@@ -240,7 +240,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
         indices: &'m [[u16; 3]],
-        faces: impl Iterator<Item = usize>,
+        faces: core::ops::Range<usize>,
         shade: impl Fn(usize) -> Result<C, Error>,
     ) -> Result<(FrameStats, FrameStats), Error>
     where
@@ -249,48 +249,31 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     {
         let clip = clip_of(frame, zbuf);
         let first = !self.counted;
-        let cull = self.options.cull;
-        let (row0, row1) = clip.subpixel_rows();
-        let mut st = FrameStats::default();
         let mut px = FrameStats::default();
         let Some(cache) = self.cache.as_deref() else {
-            return Ok((st, px));
+            return Ok((FrameStats::default(), px));
         };
+        // A band drawn without bins skips the triangles off its rows.
+        let rows = (!first).then(|| clip.subpixel_rows());
+        let mut walk = CachedWalk::new(indices, faces, cache, rows, self.options.cull);
         let mut target = FlatTarget::new(frame, zbuf, &clip);
-        let mut faces = faces;
-        loop {
-            // The faces up to the next one to draw, in a loop of their own: most are
-            // culled, and without the drawing's calls in it the loop keeps its state in
-            // registers.
-            let next = loop {
-                let Some(f) = faces.next() else { break None };
-                let Some(t) = indices.get(f) else { continue };
-                let [a, b, c] = cached_triangle(cache, f, t)?;
-                if a.marked() | b.marked() | c.marked() {
-                    break Some((f, None));
+        let mut clipped = FrameStats::default();
+        for next in walk.by_ref() {
+            match next? {
+                (f, Some([a, b, c])) => {
+                    let tri = [a.placed(), b.placed(), c.placed()];
+                    px.add_fill(target.fill(tri.each_ref(), shade(f)?));
                 }
-                st.triangles_in += 1;
-                if !first && outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
-                    continue;
+                // Across a clip plane or far outside the screen: the general path (rare).
+                (f, None) => {
+                    let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
+                    clipped.add_geometry(&g);
+                    px.add_pixels(more);
                 }
-                // The test of `culled`, written out (the helper's array copy costs).
-                if cull.drops(signed_area_guarded(a.xy(), b.xy(), c.xy())) {
-                    st.culled += 1;
-                    continue;
-                }
-                st.drawn += 1;
-                break Some((f, Some([a.placed(), b.placed(), c.placed()])));
-            };
-            let Some((f, tri)) = next else { break };
-            let Some(tri) = tri else {
-                // Outside or across a clip plane: the general path (rare).
-                let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
-                st.add_geometry(&g);
-                px.add_pixels(more);
-                continue;
-            };
-            px.add_fill(target.fill(tri.each_ref(), shade(f)?));
+            }
         }
+        let mut st = walk.stats();
+        st.add_geometry(&clipped);
         Ok((st, px))
     }
 }

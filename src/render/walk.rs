@@ -1,5 +1,8 @@
-//! The face walk: every face of a mesh fetched, tested against the view volume and
-//! the cull mode, clipped where it must be, and handed on as screen triangles.
+//! The face walk: one place decides, for every triangle of every face, whether it is
+//! outside the view volume, needs clipping, lies off the rows asked for, is culled,
+//! or is drawn ([`decide`]). Every renderer walks through it: the Z-buffer paths
+//! ([`CachedWalk`] over a cached triangle mesh, [`Renderer::for_each_triangle`] over
+//! any mesh, which also clips), band binning, depth sorting and hidden-line.
 
 use super::*;
 
@@ -11,6 +14,186 @@ pub(crate) fn outside_rows(tri: &[ScreenVertex; 3], row0: i32, row1: i32) -> boo
     let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
     ymax + 8 < row0 || ymin + 8 > row1
 }
+
+/// A triangle corner as the walk sees it: a cache entry or a vertex fetched on demand.
+pub(crate) trait Corner {
+    /// Whether the corner has no screen position the rasterizer can take as it is.
+    fn needs_clip(&self) -> bool;
+    /// Its outcode (0 inside the view volume).
+    fn code(&self) -> u8;
+    /// Its screen x and y (1/16 pixel), when it does not need clipping.
+    fn xy(&self) -> (i32, i32);
+}
+
+impl Corner for CachedVertex {
+    #[inline(always)]
+    fn needs_clip(&self) -> bool {
+        self.marked()
+    }
+    #[inline(always)]
+    fn code(&self) -> u8 {
+        CachedVertex::code(self)
+    }
+    #[inline(always)]
+    fn xy(&self) -> (i32, i32) {
+        CachedVertex::xy(self)
+    }
+}
+
+impl Corner for Fetched {
+    #[inline(always)]
+    fn needs_clip(&self) -> bool {
+        self.code != 0
+    }
+    #[inline(always)]
+    fn code(&self) -> u8 {
+        self.code
+    }
+    #[inline(always)]
+    fn xy(&self) -> (i32, i32) {
+        (self.screen.x(), self.screen.y())
+    }
+}
+
+/// What [`decide`] made of a triangle.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Seen {
+    /// Drawn.
+    Front,
+    /// To be clipped (and counted) by the general path.
+    Clip,
+    /// Outside the view volume.
+    Outside,
+    /// Off the rows asked for (later passes only: not counted).
+    OffRows,
+    /// Dropped by the cull mode.
+    Culled,
+}
+
+impl Seen {
+    /// Count a decision other than [`Seen::Clip`] into `st`.
+    #[inline(always)]
+    pub(crate) fn count(self, st: &mut FrameStats) {
+        st.triangles_in += u32::from(self != Seen::Clip);
+        match self {
+            Seen::Front => st.drawn += 1,
+            Seen::Outside => st.outside += 1,
+            Seen::Culled => st.culled += 1,
+            Seen::Clip | Seen::OffRows => {}
+        }
+    }
+}
+
+/// The decision for one triangle: outside the view volume, to be clipped, outside
+/// rows `rows` (in 1/16 pixel), culled, or drawn.
+#[inline(always)]
+pub(crate) fn decide<V: Corner>([a, b, c]: [&V; 3], rows: Option<(i32, i32)>, cull: Cull) -> Seen {
+    if a.needs_clip() | b.needs_clip() | c.needs_clip() {
+        if a.code() & b.code() & c.code() != 0 {
+            return Seen::Outside;
+        }
+        return Seen::Clip;
+    }
+    let (pa, pb, pc) = (a.xy(), b.xy(), c.xy());
+    if let Some((row0, row1)) = rows {
+        let ymin = pa.1.min(pb.1).min(pc.1);
+        let ymax = pa.1.max(pb.1).max(pc.1);
+        if ymax + 8 < row0 || ymin + 8 > row1 {
+            return Seen::OffRows;
+        }
+    }
+    if cull.drops(signed_area_guarded(pa, pb, pc)) {
+        return Seen::Culled;
+    }
+    Seen::Front
+}
+
+/// The faces `first..` of a cached triangle mesh through [`decide`]: yields each face
+/// to draw (`Some` corners) or to clip (`None`), in face order. Its loop holds no call,
+/// and counts only the rare outcomes and the drawn faces (the culled ones, most of
+/// them, are what is left over), so the compiler keeps its state in registers.
+pub(crate) struct CachedWalk<'a> {
+    faces: core::slice::Iter<'a, [u16; 3]>,
+    /// The number of the next face.
+    f: usize,
+    walked: usize,
+    cache: &'a [CachedVertex],
+    rows: Option<(i32, i32)>,
+    cull: Cull,
+    /// Faces by outcome: clipped (counted by the general path), outside, off the rows,
+    /// drawn.
+    tally: [u32; 4],
+}
+
+impl<'a> CachedWalk<'a> {
+    /// A walk over faces `faces` of `indices`, placed by `cache`; faces off rows `rows`
+    /// (1/16 pixel) skipped when given.
+    #[inline(always)]
+    pub(crate) fn new(
+        indices: &'a [[u16; 3]],
+        faces: core::ops::Range<usize>,
+        cache: &'a [CachedVertex],
+        rows: Option<(i32, i32)>,
+        cull: Cull,
+    ) -> Self {
+        let first = faces.start;
+        let faces = indices.get(faces).unwrap_or(&[]);
+        CachedWalk {
+            faces: faces.iter(),
+            f: first,
+            walked: faces.len(),
+            cache,
+            rows,
+            cull,
+            tally: [0; 4],
+        }
+    }
+
+    /// The geometry counts of the walk, once it has ended: every face walked but the
+    /// clipped ones, which the general path counts.
+    pub(crate) fn stats(&self) -> FrameStats {
+        let [clip, outside, off_rows, drawn] = self.tally;
+        let triangles_in = self.walked as u32 - clip;
+        FrameStats {
+            triangles_in,
+            outside,
+            drawn,
+            culled: triangles_in - outside - off_rows - drawn,
+            ..FrameStats::default()
+        }
+    }
+}
+
+impl<'a> Iterator for CachedWalk<'a> {
+    type Item = Result<(usize, Option<[&'a CachedVertex; 3]>), Error>;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<Self::Item> {
+        loop {
+            let t = self.faces.next()?;
+            let f = self.f;
+            self.f += 1;
+            let v = match cached_triangle(self.cache, f, t) {
+                Ok(v) => v,
+                Err(e) => return Some(Err(e)),
+            };
+            match decide(v, self.rows, self.cull) {
+                Seen::Culled => continue,
+                Seen::Front => {
+                    self.tally[3] += 1;
+                    return Some(Ok((f, Some(v))));
+                }
+                Seen::Clip => {
+                    self.tally[0] += 1;
+                    return Some(Ok((f, None)));
+                }
+                Seen::Outside => self.tally[1] += 1,
+                Seen::OffRows => self.tally[2] += 1,
+            }
+        }
+    }
+}
+
 /// The cached vertices of triangle `f` (indices `t`), or the error naming the index
 /// the cache does not hold.
 #[inline(always)]
@@ -59,24 +242,17 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 let v0 = self.fetch(i0, f)?;
                 let v1 = self.fetch(i1, f)?;
                 let v2 = self.fetch(i2, f)?;
-                st.triangles_in += 1;
-                if v0.code & v1.code & v2.code != 0 {
-                    st.outside += 1;
-                    continue;
-                }
-                if v0.code | v1.code | v2.code == 0 {
+                let rows = (!first).then_some((row0, row1));
+                let seen = decide([&v0, &v1, &v2], rows, cull);
+                seen.count(&mut st);
+                if seen == Seen::Front {
                     let tri = [v0.screen, v1.screen, v2.screen];
-                    if !first && outside_rows(&tri, row0, row1) {
-                        continue;
-                    }
-                    if culled(&tri, cull) {
-                        st.culled += 1;
-                        continue;
-                    }
-                    st.drawn += 1;
                     emit(f, mat, &tri, [v0.light, v1.light, v2.light])?;
+                }
+                if seen != Seen::Clip {
                     continue;
                 }
+                st.triangles_in += 1;
                 st.clipped += 1;
                 let mut poly = ClipPolygon::new();
                 for v in [&v0, &v1, &v2] {
