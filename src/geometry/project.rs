@@ -7,7 +7,8 @@ use super::transform::Clip4;
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::num::{
-    bits_beyond_31, mul_i64_i32, mul_wide, recip62, round_f32, shr64, INTEGER_PROJECTION,
+    bits_beyond_31, mul_i64_i32, mul_wide, mul_wide_narrow, recip62, round_f32, shr64,
+    INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
 
@@ -181,14 +182,14 @@ impl ScreenMap {
         }
         // Inside: 1 ≤ w < 2⁴⁵, 0 ≤ z + w ≤ 2w, |x|, |y| ≤ 64w. Shift everything so that
         // w fits 31 bits; the ratios keep 30 bits or more.
-        let sh = bits_beyond_31(w);
-        let wn = shr64(w, sh); // 1 ..< 2³¹ (≥ 2³⁰ unless w itself is small)
-                               // |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
-        let (xn, yn, un) = (shr64(x, sh), shr64(y, sh), shr64(z + w, sh)); // sh ≤ 14
-                                                                           // One division: r = ⌊2⁶²/wn⌋ (≤ 2³² when wn ≥ 2³⁰; below that the exact
-                                                                           // divisions further down run instead). Each quotient n/wn is then n·r/2⁶², formed
-                                                                           // from 32-bit halves of n (no 128-bit arithmetic), exact to within one unit of the
-                                                                           // result's last place.
+        let sh = bits_beyond_31(w); // ≤ 14
+                                    // 1 ≤ wn < 2³¹ (≥ 2³⁰ unless w itself is small); |xn|, |yn| ≤ 2³⁷; 0 ≤ un ≤ 2³².
+        let wn = shr64(w, sh);
+        let (xn, yn, un) = (shr64(x, sh), shr64(y, sh), shr64(z + w, sh));
+        // One division: r = ⌊2⁶²/wn⌋ (≤ 2³² when wn ≥ 2³⁰; below that the exact
+        // divisions further down run instead). Each quotient n/wn is then n·r/2⁶²,
+        // formed from 32-bit halves of n (no 128-bit arithmetic), exact to within one
+        // unit of the result's last place.
         let r = if wn >= 1 << 30 { recip62(wn as u32) } else { 0 };
         let times_r = |n: u64| -> u64 {
             // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴; with 32×32-bit products
@@ -196,7 +197,7 @@ impl ScreenMap {
             let (hi, lo) = (n >> 32, n & 0xffff_ffff);
             if r >> 32 == 0 {
                 let (hi, lo, r) = (hi as u32, lo as u32, r as u32);
-                mul_wide(hi, r)
+                mul_wide_narrow(hi, r)
                     .wrapping_shl(2)
                     .wrapping_add(mul_wide(lo, r) >> 30)
             } else {

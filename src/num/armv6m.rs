@@ -176,6 +176,12 @@ pub(crate) fn mul_wide_parts(a: u32, b: u32) -> u64 {
     (u64::from(high) << 32) | u64::from(low)
 }
 
+/// [`mul_wide`] for `a < 2¹⁶`: two products, `b`'s halves times `a`.
+#[inline(always)]
+pub(crate) fn mul_narrow_parts(a: u32, b: u32) -> u64 {
+    (u64::from((b >> 16) * a) << 16) + u64::from((b & 0xffff) * a)
+}
+
 /// `(n / d, n % d)` for `d > 0` by restoring shift-and-subtract division, one step per
 /// quotient bit: the divisor is doubled while it stays at most `n / 2` (so it never
 /// overflows), then halved back down, subtracting where it fits.

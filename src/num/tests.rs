@@ -109,6 +109,11 @@ fn wide_products_are_exact() {
         let want = u64::from(a) * u64::from(b);
         assert_eq!(mul_wide_parts(a, b), want, "{a} * {b}");
         assert_eq!(mul_wide(a, b), want, "{a} * {b}");
+        assert_eq!(mul_wide_narrow(a, b), want, "{a} * {b}");
+        assert_eq!(
+            mul_narrow_parts(a & 0xffff, b),
+            u64::from(a & 0xffff) * u64::from(b)
+        );
     }
 }
 
