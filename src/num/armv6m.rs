@@ -125,22 +125,25 @@ pub(crate) fn mul_small_parts(a: i64, b: i32) -> i64 {
     }
 }
 
-/// [`bits_beyond_31`] by a binary search over the high half.
+/// [`bits_beyond_31`]: the bit length of the high half by two comparisons and a byte
+/// table (the projection's w has at most 13 bits there).
 #[inline]
 pub(crate) fn bits_beyond_31_parts(w: i64) -> u32 {
     let (lo, hi) = (w as u32, (w as u64 >> 32) as u32);
     if hi == 0 {
         return lo >> 31;
     }
-    // 32 + bits(hi) bits in all, bits(x) = b + x after the halvings below.
-    let (mut x, mut b) = (hi, 0);
-    for k in [16, 8, 4, 2, 1] {
-        if x >= 1 << k {
-            x >>= k;
-            b += k;
-        }
+    // 32 + bits(hi) bits in all.
+    let (mut x, mut b) = (hi, 1);
+    if x >> 16 != 0 {
+        x >>= 16;
+        b += 16;
     }
-    1 + b + x
+    if x >> 8 != 0 {
+        x >>= 8;
+        b += 8;
+    }
+    b + 8 - u32::from(LEADING_ZEROS8.get(x as usize).copied().unwrap_or(0))
 }
 
 /// [`shl64`] from 32-bit halves.
