@@ -1,5 +1,9 @@
 //! The camera: where a mesh is placed (model, view and projection matrices) and the
 //! screen rectangle it is drawn into.
+//!
+//! Angles are in radians here as everywhere in zraster; [`radians`](crate::math::radians)
+//! turns degrees into radians (and an embedded-graphics `Angle` gives its own with
+//! `to_radians()`).
 
 use crate::math::{Mat4, Vec3};
 use crate::{Error, MAX_DIMENSION};
@@ -64,11 +68,35 @@ impl Viewport {
 /// Everything that places a mesh on the screen: model, view and projection matrices
 /// and the viewport.
 ///
+/// Build one from where the eye is and what it looks at, then a lens:
+/// [`Camera::look_at`] gives a [`LookAt`], and [`LookAt::perspective`] or
+/// [`LookAt::orthographic`] the camera. Angles are in radians, as everywhere in zraster
+/// ([`radians`](crate::math::radians) converts degrees).
+///
+/// ```
+/// use zraster::camera::{Camera, Viewport};
+/// use zraster::math::{radians, Vec3};
+///
+/// let vp = Viewport::new(160, 120)?;
+/// let eye = Vec3::new(2.0, 1.5, 3.0);
+/// let camera = Camera::look_at(eye, Vec3::default(), Vec3::Y)?.perspective(radians(45.0), 0.1, 10.0, vp)?;
+/// // Looking straight down with +Y up does not say which way is up on the screen.
+/// let top_down = Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::default(), Vec3::Y);
+/// assert_eq!(top_down.err(), Some(zraster::Error::DegenerateView));
+/// // +Z as up works from there.
+/// let top_down = Camera::look_at(Vec3::new(0.0, 5.0, 0.0), Vec3::default(), -Vec3::Z)?;
+/// let plan = top_down.orthographic(4.0, 1.0, 10.0, vp)?; // 4 units tall, 4 × 160/120 wide
+/// # let _ = (camera, plan);
+/// # Ok::<(), zraster::Error>(())
+/// ```
+///
 /// The model matrix should be a rotation, translation and uniform scale (lighting
-/// turns the light into model space with its transpose); view and projection are any
-/// `gluLookAt`/`gluPerspective`/`glOrtho`-style matrices.
+/// turns the light into model space with its transpose); view and projection may also
+/// be set directly to any `gluLookAt`/`gluPerspective`/`glOrtho`-style matrices.
+///
+/// Named `Camera` rather than `Transform`, which the embedded-graphics prelude exports.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Transform {
+pub struct Camera {
     /// Model to world.
     pub model: Mat4,
     /// World to eye (the camera looks down −Z).
@@ -79,13 +107,135 @@ pub struct Transform {
     pub viewport: Viewport,
 }
 
-impl Transform {
-    /// A camera at `eye` looking at `target` (+Y up) with a `fovy_deg` degree vertical
-    /// field of view and clip planes at `near` and `far`, over `viewport`; the model
+/// The old name of [`Camera`], kept so that existing code compiles. It is not exported
+/// at the crate root: `embedded_graphics::prelude::Transform` has the name there.
+pub type Transform = Camera;
+
+/// Where a camera stands and what it looks at (a view matrix known to be well defined),
+/// waiting for its lens: [`perspective`](LookAt::perspective) or
+/// [`orthographic`](LookAt::orthographic). Made by [`Camera::look_at`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LookAt {
+    view: Mat4,
+}
+
+/// The sine of the smallest angle between the line of sight and the up vector that
+/// [`Camera::look_at`] accepts (about 0.06°): below it, which way is up on the screen
+/// depends on rounding.
+const MIN_UP_SINE: f32 = 1e-3;
+
+impl LookAt {
+    /// The view matrix (world to eye; the camera looks down −Z).
+    pub fn view(&self) -> Mat4 {
+        self.view
+    }
+
+    /// A perspective camera: `fovy` is the vertical field of view in **radians**,
+    /// `near` and `far` the distances of the clip planes (gluPerspective); the model
     /// matrix is the identity.
     ///
-    /// Errors: [`Error::InvalidParameter`] unless `0 < near < far` and `0 < fovy < 180`,
-    /// [`Error::NotFinite`] for NaN or infinite inputs.
+    /// Errors: [`Error::NotFinite`] for NaN or infinite inputs,
+    /// [`Error::InvalidParameter`] unless `0 < near < far` and `0 < fovy < π`.
+    pub fn perspective(
+        self,
+        fovy: f32,
+        near: f32,
+        far: f32,
+        viewport: Viewport,
+    ) -> Result<Camera, Error> {
+        if !(fovy.is_finite() && near.is_finite() && far.is_finite()) {
+            return Err(Error::NotFinite);
+        }
+        check_planes(near, far)?;
+        if !(fovy > 0.0 && fovy < core::f32::consts::PI) {
+            return Err(Error::InvalidParameter("need 0 < fov < π radians"));
+        }
+        Ok(self.with_projection(
+            Mat4::perspective(fovy, viewport.aspect(), near, far),
+            viewport,
+        ))
+    }
+
+    /// An orthographic (parallel) camera: the view volume is `height` world units tall,
+    /// `height` × the viewport's width / height wide, centred on the line of sight, from
+    /// `near` to `far` along it (glOrtho); the model matrix is the identity. Sizes on the
+    /// screen do not shrink with distance, as in plans and elevations.
+    ///
+    /// Errors: [`Error::NotFinite`] for NaN or infinite inputs,
+    /// [`Error::InvalidParameter`] unless `height > 0` and `near < far` (near may be
+    /// zero or negative: behind the eye).
+    pub fn orthographic(
+        self,
+        height: f32,
+        near: f32,
+        far: f32,
+        viewport: Viewport,
+    ) -> Result<Camera, Error> {
+        if !(height.is_finite() && near.is_finite() && far.is_finite()) {
+            return Err(Error::NotFinite);
+        }
+        if !(height > 0.0 && near < far) {
+            return Err(Error::InvalidParameter("need height > 0 and near < far"));
+        }
+        let (h, w) = (height * 0.5, height * 0.5 * viewport.aspect());
+        let projection = Mat4::orthographic(-w, w, -h, h, near, far);
+        if !projection.is_finite() {
+            // A box too thin (or wide) for f32: 2 / (far − near) overflows.
+            return Err(Error::InvalidParameter("view volume too thin"));
+        }
+        Ok(self.with_projection(projection, viewport))
+    }
+
+    fn with_projection(self, projection: Mat4, viewport: Viewport) -> Camera {
+        Camera {
+            model: Mat4::IDENTITY,
+            view: self.view,
+            projection,
+            viewport,
+        }
+    }
+}
+
+/// `0 < near < far`, for perspective projections.
+fn check_planes(near: f32, far: f32) -> Result<(), Error> {
+    if near > 0.0 && far > near {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter("need 0 < near < far"))
+    }
+}
+
+impl Camera {
+    /// An eye at `eye` looking at `target`, with `up` pointing up on the screen (it need
+    /// not be a unit vector nor at right angles to the line of sight; gluLookAt).
+    /// Then give it a lens: [`LookAt::perspective`] or [`LookAt::orthographic`].
+    ///
+    /// Errors: [`Error::NotFinite`] for NaN or infinite inputs, and
+    /// [`Error::DegenerateView`] when the view has no direction (`eye == target`) or no
+    /// up (`up` is zero or within about 0.06° of the line of sight, as +Y is when
+    /// looking straight down).
+    pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Result<LookAt, Error> {
+        if !(eye.is_finite() && target.is_finite() && up.is_finite()) {
+            return Err(Error::NotFinite);
+        }
+        let forward = (target - eye).normalize();
+        let side = forward.cross(up.normalize());
+        // Zero (and overflowing) vectors normalise to zero: both degenerate cases end here.
+        if side.length() < MIN_UP_SINE {
+            return Err(Error::DegenerateView);
+        }
+        let view = Mat4::look_at(eye, target, up);
+        if !view.is_finite() {
+            return Err(Error::NotFinite); // eye · axis overflows f32
+        }
+        Ok(LookAt { view })
+    }
+
+    /// The old form, kept for existing callers: an eye at `eye` looking at `target` with
+    /// +Y up and a vertical field of view in **degrees**. It is
+    /// `Camera::look_at(eye, target, Vec3::Y)?.perspective(radians(fovy_deg), near, far, viewport)`;
+    /// use that, whose angle is in radians like every other angle in zraster.
+    #[doc(hidden)]
     pub fn perspective(
         eye: Vec3,
         target: Vec3,
@@ -93,7 +243,7 @@ impl Transform {
         near: f32,
         far: f32,
         viewport: Viewport,
-    ) -> Result<Transform, Error> {
+    ) -> Result<Camera, Error> {
         if !(eye.is_finite()
             && target.is_finite()
             && fovy_deg.is_finite()
@@ -102,30 +252,25 @@ impl Transform {
         {
             return Err(Error::NotFinite);
         }
-        if !(near > 0.0 && far > near) {
-            return Err(Error::InvalidParameter("need 0 < near < far"));
-        }
+        check_planes(near, far)?;
         if !(fovy_deg > 0.0 && fovy_deg < 180.0) {
             return Err(Error::InvalidParameter("need 0 < fov < 180 degrees"));
         }
-        let projection =
-            Mat4::perspective(crate::math::radians(fovy_deg), viewport.aspect(), near, far);
-        let view = Mat4::look_at(eye, target, Vec3::new(0.0, 1.0, 0.0));
-        Ok(Transform {
-            model: Mat4::IDENTITY,
-            view,
-            projection,
+        Camera::look_at(eye, target, Vec3::Y)?.perspective(
+            crate::math::radians(fovy_deg),
+            near,
+            far,
             viewport,
-        })
+        )
     }
 
-    /// The same transform with another model matrix.
-    pub fn with_model(mut self, model: Mat4) -> Transform {
+    /// The same camera with another model matrix.
+    pub fn with_model(mut self, model: Mat4) -> Camera {
         self.model = model;
         self
     }
 
-    /// This transform with its near and far planes moved to enclose a box (its lowest
+    /// This camera with its near and far planes moved to enclose a box (its lowest
     /// and highest corners in model space, as [`Mesh::bounds`](crate::mesh::Mesh::bounds)
     /// gives them): the box's nearest and farthest corners in eye space, so the depths
     /// the mesh covers use most of the 16-bit range instead of a sliver of a fixed
@@ -135,14 +280,15 @@ impl Transform {
     /// nothing of it. Eight corners transformed: cheap enough for every frame.
     ///
     /// Works for perspective and orthographic projections (as built by
-    /// [`perspective`](Transform::perspective) and [`Mat4::orthographic`]); other
+    /// [`LookAt::perspective`], [`LookAt::orthographic`] and [`Mat4::orthographic`]); other
     /// projection matrices, a `min_near` that is not positive or corners in the wrong
     /// order are an [`Error::InvalidParameter`].
     ///
     /// ```
-    /// use zraster::{camera::{Transform, Viewport}, math::Vec3, mesh::CUBE};
+    /// use zraster::{camera::{Camera, Viewport}, math::{radians, Vec3}, mesh::CUBE};
     /// let vp = Viewport::new(64, 48)?;
-    /// let xf = Transform::perspective(Vec3::new(0.5, 0.5, 4.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 100.0, vp)?;
+    /// let eye = Camera::look_at(Vec3::new(0.5, 0.5, 4.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?;
+    /// let xf = eye.perspective(radians(45.0), 0.1, 100.0, vp)?;
     /// let (lo, hi) = CUBE.bounds().unwrap();
     /// let fitted = xf.fit_depth(lo, hi, 0.1)?;
     /// // The cube's front face now lies at depth 0 and its back face at 1.
@@ -150,7 +296,7 @@ impl Transform {
     /// assert!(depth(Vec3::new(0.5, 0.5, 1.0)) < 0.01 && depth(Vec3::new(0.5, 0.5, 0.0)) > 0.99);
     /// # Ok::<(), zraster::Error>(())
     /// ```
-    pub fn fit_depth(mut self, lo: Vec3, hi: Vec3, min_near: f32) -> Result<Transform, Error> {
+    pub fn fit_depth(mut self, lo: Vec3, hi: Vec3, min_near: f32) -> Result<Camera, Error> {
         if !(lo.is_finite() && hi.is_finite() && min_near.is_finite()) {
             return Err(Error::NotFinite);
         }

@@ -1,4 +1,11 @@
-//! The crate's error type.
+//! The crate's errors: one family.
+//!
+//! [`Error`] is what can be wrong with the input; [`DrawError`] is what a drawing call
+//! returns, the input error or the draw target's own. Both implement
+//! [`Display`](core::fmt::Display) and [`core::error::Error`] (a `DrawError`'s
+//! [`source`](core::error::Error::source) is its input error), and `?` turns an
+//! `Error` into a `DrawError`, or a `DrawError` of a target that cannot fail (a
+//! [`Frame`](crate::Frame)) back into an `Error`.
 
 use core::fmt;
 
@@ -6,7 +13,7 @@ use core::fmt;
 ///
 /// Drawing errors of the display itself are not in here: functions that draw return the
 /// target's own `D::Error` (or [`DrawError`] where both kinds can occur), never a panic.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[non_exhaustive]
 pub enum Error {
     /// A width or height of zero.
@@ -43,6 +50,13 @@ pub enum Error {
     },
     /// A parameter is outside its valid range (for example near ≥ far, or a zero field of view).
     InvalidParameter(&'static str),
+    /// A look-at camera that does not say which way it looks: the eye is at the target,
+    /// or the up vector is zero or parallel to the line of sight (looking straight up or
+    /// down with +Y up). See [`Camera::look_at`](crate::camera::Camera::look_at).
+    DegenerateView,
+    /// Gouraud shading of a mesh without vertex normals (it would be drawn unlit).
+    /// [`compute_vertex_normals`](crate::mesh::compute_vertex_normals) makes them.
+    MissingNormals,
 }
 
 impl fmt::Display for Error {
@@ -72,6 +86,10 @@ impl fmt::Display for Error {
                 write!(f, "fixed capacity of {capacity} exceeded")
             }
             Error::InvalidParameter(what) => write!(f, "invalid parameter: {what}"),
+            Error::DegenerateView => f.write_str(
+                "degenerate view: eye at the target, or up parallel to the line of sight",
+            ),
+            Error::MissingNormals => f.write_str("Gouraud shading needs the mesh's vertex normals"),
         }
     }
 }
@@ -79,7 +97,7 @@ impl fmt::Display for Error {
 impl core::error::Error for Error {}
 
 /// An error from a drawing call: either the input was wrong or the display failed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum DrawError<E> {
     /// The input was rejected. Parameters (transform, light, buffer sizes) are checked
     /// before anything is drawn; a face table is checked as it is walked, so the faces
@@ -118,9 +136,69 @@ impl<E: fmt::Debug> fmt::Display for DrawError<E> {
     }
 }
 
+/// Display targets' errors implement `Debug` (embedded-graphics asks no more), so that is
+/// all this needs; the input error is the [`source`](core::error::Error::source).
+impl<E: fmt::Debug> core::error::Error for DrawError<E> {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        match self {
+            DrawError::Input(e) => Some(e),
+            DrawError::Target(_) => None,
+        }
+    }
+}
+
+impl<E> DrawError<E> {
+    /// The input error, if that is what this is.
+    pub fn input(&self) -> Option<Error> {
+        match self {
+            DrawError::Input(e) => Some(*e),
+            DrawError::Target(_) => None,
+        }
+    }
+
+    /// The target's error, if that is what this is.
+    pub fn target(self) -> Option<E> {
+        match self {
+            DrawError::Input(_) => None,
+            DrawError::Target(e) => Some(e),
+        }
+    }
+}
+
 /// The first `n` entries of a caller slice, or [`Error::BufferTooSmall`].
 pub(crate) fn prefix_mut<T>(s: &mut [T], n: usize) -> Result<&mut [T], Error> {
     let got = s.len();
     s.get_mut(..n)
         .ok_or(Error::BufferTooSmall { needed: n, got })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use core::error::Error as _;
+    use std::string::ToString;
+
+    #[test]
+    fn errors_display_and_chain() {
+        assert_eq!(
+            Error::BufferTooSmall { needed: 6, got: 5 }.to_string(),
+            "buffer too small: 6 entries needed, 5 given"
+        );
+        assert_eq!(
+            Error::MissingNormals.to_string(),
+            "Gouraud shading needs the mesh's vertex normals"
+        );
+        let input: DrawError<u8> = Error::DegenerateView.into();
+        assert_eq!(input.to_string(), Error::DegenerateView.to_string());
+        assert_eq!(input.input(), Some(Error::DegenerateView));
+        let source = input.source().map(|s| s.to_string());
+        assert_eq!(source, Some(Error::DegenerateView.to_string()));
+        let target: DrawError<u8> = DrawError::Target(7);
+        assert_eq!(target.to_string(), "draw target error: 7");
+        assert!(target.source().is_none());
+        assert_eq!(target.target(), Some(7));
+        // Both are `core::error::Error`s: they box into `dyn Error`.
+        let boxed: std::boxed::Box<dyn core::error::Error> = std::boxed::Box::new(target);
+        assert_eq!(boxed.to_string(), "draw target error: 7");
+    }
 }

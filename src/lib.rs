@@ -7,9 +7,8 @@
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-//! use zraster::camera::{Transform, Viewport};
-//! use zraster::math::{Mat4, Vec3};
-//! use zraster::{mesh::CUBE, Frame, RenderOptions, Renderer};
+//! use zraster::math::{radians, Mat4, Vec3};
+//! use zraster::{mesh::CUBE, Camera, Frame, RenderOptions, Renderer, Viewport};
 //!
 //! const W: u32 = 160;
 //! const H: u32 = 120;
@@ -18,11 +17,9 @@
 //! let mut depth = [0u16; (W * H) as usize];
 //! let mut frame = Frame::new(&mut pixels, &mut depth, W, H)?;
 //!
-//! // The camera: eye, target, vertical field of view in degrees, near and far planes.
-//! let camera = Transform::perspective(
-//!     Vec3::new(0.0, 1.2, 3.0), Vec3::new(0.0, 0.0, 0.0),
-//!     45.0, 0.1, 10.0, Viewport::new(W, H)?,
-//! )?;
+//! // The camera: eye, target and up; vertical field of view, near and far planes.
+//! let camera = Camera::look_at(Vec3::new(0.0, 1.2, 3.0), Vec3::new(0.0, 0.0, 0.0), Vec3::Y)?
+//!     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(W, H)?)?;
 //! for frame_number in 0..3 {
 //!     // The model matrix turns the unit cube about its centre a little each frame.
 //!     let spin = Mat4::rotation_y(0.3 * frame_number as f32)
@@ -44,7 +41,7 @@
 //!
 //! # What is where
 //! - [`mesh`]: the vertex table and face table (`i16` positions, flash-friendly).
-//! - [`camera`]: the model, view and projection matrices and the [`Viewport`](camera::Viewport).
+//! - [`camera`]: [`Camera`] (the model, view and projection matrices) and the [`Viewport`].
 //! - [`Renderer`]: draws one mesh; [`Renderer::draw`] with the Z-buffer into a
 //!   [`DepthTarget`], the other methods by depth sorting (the painter's algorithm), as
 //!   hidden-line or as wireframe.
@@ -73,8 +70,7 @@
 //!
 //! ```
 //! use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-//! use zraster::camera::{Transform, Viewport};
-//! use zraster::{math::Vec3, mesh::Mesh, Frame, RenderOptions, Renderer};
+//! use zraster::{math::{radians, Vec3}, mesh::Mesh, Camera, Frame, RenderOptions, Renderer, Viewport};
 //!
 //! // A square of side 2 around the origin, facing +z: 16384 steps of 1/16384 are 1.0.
 //! const SQUARE_POSITIONS: [[i16; 3]; 4] =
@@ -88,7 +84,8 @@
 //! let mut depth = [0u16; 32 * 32];
 //! let mut frame = Frame::new(&mut pixels, &mut depth, 32, 32)?;
 //! frame.clear(Rgb565::new(0, 0, 0));
-//! let xf = Transform::perspective(Vec3::new(0.0, 0.0, 4.0), Vec3::default(), 45.0, 0.1, 10.0, Viewport::new(32, 32)?)?;
+//! let xf = Camera::look_at(Vec3::new(0.0, 0.0, 4.0), Vec3::default(), Vec3::Y)?
+//!     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(32, 32)?)?;
 //! let mut renderer = Renderer::new(&SQUARE, &xf, RenderOptions::default())?;
 //! renderer.draw(&mut frame)?;
 //! assert_eq!(renderer.stats().drawn, 2);
@@ -99,32 +96,38 @@
 //!
 //! # The camera
 //!
-//! A [`Transform`](camera::Transform) places a mesh on the screen: the **model**
-//! matrix puts the mesh in the world (turn, move, scale it; a new one each frame
-//! animates it), the **view** and **projection** matrices are the camera
-//! ([`Transform::perspective`](camera::Transform::perspective): where the eye is, what
-//! it looks at, the vertical field of view and the near and far clip planes), and the
-//! [`Viewport`](camera::Viewport) is the screen rectangle. The matrices are `f32` and
+//! A [`Camera`] places a mesh on the screen: the **model** matrix puts the mesh in the
+//! world (turn, move, scale it; a new one each frame animates it), the **view** matrix
+//! is where the eye is, what it looks at and which way is up
+//! ([`Camera::look_at`]), the **projection** is the lens
+//! ([`perspective`](camera::LookAt::perspective): the vertical field of view and the
+//! near and far clip planes; or [`orthographic`](camera::LookAt::orthographic): a
+//! box, for plans and elevations), and the [`Viewport`] is the screen rectangle. A
+//! view that does not say which way it looks (the eye at the target, or up along the
+//! line of sight) is an [`Error::DegenerateView`], not a blank frame.
+//!
+//! **Angles are radians**, everywhere: fields of view and [`Mat4`](math::Mat4)
+//! rotations alike; [`math::radians`] converts degrees (`radians(45.0)`). The matrices are `f32` and
 //! worked out once per frame; each vertex then goes through a fixed-point form of
 //! their product. Parts of faces nearer than the near plane, farther than the far
 //! plane or far outside the screen are clipped.
 //!
 //! The depth buffer's 16 bits are spread between near and far, so the near plane sets
 //! the precision: put it as far out as the scene allows, or let
-//! [`Transform::fit_depth`](camera::Transform::fit_depth) fit both planes to the mesh.
+//! [`Camera::fit_depth`] fit both planes to the mesh.
 //!
 //! ```
 //! use embedded_graphics::pixelcolor::Rgb565;
-//! use zraster::camera::{Transform, Viewport};
-//! use zraster::math::{Mat4, Vec3};
-//! use zraster::{mesh::CUBE, Frame, RenderOptions, Renderer};
+//! use zraster::math::{radians, Mat4, Vec3};
+//! use zraster::{mesh::CUBE, Camera, Frame, RenderOptions, Renderer, Viewport};
 //!
 //! let mut pixels = [Rgb565::new(0, 0, 0); 64 * 32];
 //! let mut depth = [0u16; 64 * 32];
 //! let mut frame = Frame::new(&mut pixels, &mut depth, 64, 32)?;
 //! frame.clear(Rgb565::new(0, 0, 0));
 //! // Looking down −z from 5 units away; the unit cube moved to the right of the centre.
-//! let camera = Transform::perspective(Vec3::new(0.0, 0.0, 5.0), Vec3::default(), 40.0, 1.0, 10.0, Viewport::new(64, 32)?)?;
+//! let camera = Camera::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::default(), Vec3::Y)?
+//!     .perspective(radians(40.0), 1.0, 10.0, Viewport::new(64, 32)?)?;
 //! let moved = camera.with_model(Mat4::translation(Vec3::new(1.0, -0.5, -0.5)));
 //! Renderer::new(&CUBE, &moved, RenderOptions::default())?.draw(&mut frame)?;
 //! let lit = |x| frame.color().pixel(x, 16) != Some(Rgb565::new(0, 0, 0));
@@ -156,10 +159,9 @@
 //!
 //! ```
 //! use embedded_graphics::{mock_display::MockDisplay, pixelcolor::{Rgb565, Rgb888}, prelude::*};
-//! use zraster::camera::{Transform, Viewport};
-//! use zraster::math::{Mat4, Vec3};
+//! use zraster::math::{radians, Mat4, Vec3};
 //! use zraster::mesh::{Mesh, CUBE_POSITIONS};
-//! use zraster::{Frame, RenderOptions, Renderer, WithDepth, ZBuffer};
+//! use zraster::{Camera, Frame, RenderOptions, Renderer, Viewport, WithDepth, ZBuffer};
 //!
 //! // The unit cube's six faces (mesh::CUBE_FACES) as triangles, in one colour each.
 //! const CUBE_TRIANGLES: [[u16; 3]; 12] = [
@@ -168,7 +170,8 @@
 //! ];
 //! let near = Mesh::triangles(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_TRIANGLES, Rgb888::new(255, 0, 0));
 //! let far = Mesh::triangles(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_TRIANGLES, Rgb888::new(0, 0, 255));
-//! let camera = Transform::perspective(Vec3::new(0.5, 0.5, 4.0), Vec3::new(0.5, 0.5, 0.0), 40.0, 1.0, 10.0, Viewport::new(64, 64)?)?;
+//! let camera = Camera::look_at(Vec3::new(0.5, 0.5, 4.0), Vec3::new(0.5, 0.5, 0.0), Vec3::Y)?
+//!     .perspective(radians(40.0), 1.0, 10.0, Viewport::new(64, 64)?)?;
 //! let (near_xf, far_xf) = (camera, camera.with_model(Mat4::translation(Vec3::new(0.4, 0.4, -1.0))));
 //! let options = RenderOptions::default();
 //!
@@ -211,10 +214,10 @@
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
-//! use zraster::camera::{Transform, Viewport};
-//! use zraster::{math::Vec3, mesh::CUBE, BandBuffers, Bands, CachedVertex, Frame, RenderOptions, Renderer};
+//! use zraster::{math::{radians, Vec3}, mesh::CUBE, BandBuffers, Bands, CachedVertex, Camera, Frame, RenderOptions, Renderer, Viewport};
 //!
-//! let xf = Transform::perspective(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, Viewport::new(48, 40)?)?;
+//! let xf = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?
+//!     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(48, 40)?)?;
 //! // The whole frame, for comparison: 48 × 40 × 4 bytes.
 //! let (mut pixels, mut depth) = ([Rgb565::BLACK; 48 * 40], [0u16; 48 * 40]);
 //! let mut whole = Frame::new(&mut pixels, &mut depth, 48, 40)?;
@@ -314,6 +317,7 @@ pub mod shade;
 mod testing;
 
 pub use buffer::{AfterBand, BandBuffers, Bands, ColorBuffer, DepthTest, Frame, ZBuffer};
+pub use camera::{Camera, Viewport};
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};

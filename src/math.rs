@@ -24,6 +24,13 @@ pub struct Vec3 {
 }
 
 impl Vec3 {
+    /// The unit vector along +X.
+    pub const X: Vec3 = Vec3::new(1.0, 0.0, 0.0);
+    /// The unit vector along +Y (up, for a camera looking along the horizon).
+    pub const Y: Vec3 = Vec3::new(0.0, 1.0, 0.0);
+    /// The unit vector along +Z (towards a camera at the default orientation).
+    pub const Z: Vec3 = Vec3::new(0.0, 0.0, 1.0);
+
     /// A vector from components.
     pub const fn new(x: f32, y: f32, z: f32) -> Vec3 {
         Vec3 { x, y, z }
@@ -259,7 +266,8 @@ impl Mul for Mat4 {
     }
 }
 
-/// Degrees to radians.
+/// Degrees to radians: zraster takes every angle in radians (rotations, fields of
+/// view), so `radians(45.0)` is how to say 45°.
 pub fn radians(deg: f32) -> f32 {
     deg * (core::f32::consts::PI / 180.0)
 }

@@ -303,8 +303,15 @@ fn degenerate_and_non_finite_parameters_are_errors() {
             Some(Error::NotFinite)
         );
     }
-    // The eye at the target gives a degenerate view: no panic, an error or a blank frame.
-    let xf = Transform::perspective(o, o, 60.0, 0.1, 10.0, vp).unwrap();
+    // The eye at the target is a degenerate view: an error, not a blank frame.
+    assert_eq!(
+        Transform::perspective(o, o, 60.0, 0.1, 10.0, vp),
+        Err(Error::DegenerateView)
+    );
+    // A view matrix set by hand to nothing useful (all zeros): no panic, an error or a
+    // blank frame.
+    let mut xf = Transform::perspective(e, o, 60.0, 0.1, 10.0, vp).unwrap();
+    xf.view = Mat4 { m: [[0.0; 4]; 4] };
     let pos = [[0i16, 0, 0], [1, 0, 0], [0, 1, 0]];
     let tris = [[0u16, 1, 2]];
     let m = Mesh::triangles(&pos, 1.0, &tris, Rgb888::WHITE);
@@ -314,6 +321,7 @@ fn degenerate_and_non_finite_parameters_are_errors() {
         let mut frame = ColorBuffer::new(&mut px, 32, 32).unwrap();
         let mut zbuf = ZBuffer::new(&mut depth, 32, 32).unwrap();
         r.draw(&mut WithDepth::new(&mut frame, &mut zbuf)).unwrap();
+        assert!(px.iter().all(|&p| p == Rgb565::BLACK));
     }
     assert_eq!(Viewport::new(8193, 1), Err(Error::TooLarge));
     assert_eq!(Viewport::at(9000, 0, 10, 10), Err(Error::TooLarge));
