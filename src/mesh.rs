@@ -3,7 +3,8 @@
 use embedded_graphics::pixelcolor::Rgb888;
 
 use crate::error::prefix_mut;
-use crate::math::Vec3;
+use crate::math::{Mat4, Vec3};
+use crate::shade::Shading;
 use crate::Error;
 
 /// One polygon of the face table: three or more vertex indices and a material.
@@ -64,6 +65,25 @@ pub struct Mesh<'a, M = Rgb888> {
 
 /// Q14 fixed point: 16384 = 1.0.
 pub const NORMAL_ONE: i32 = 1 << 14;
+
+/// The rule for a mesh's `scale`, checked by [`Mesh::validate`], [`Mesh::check_for`]
+/// and [`quantize`] alike: finite ([`Error::NotFinite`] otherwise, as for every other
+/// `f32` input) and positive ([`Error::InvalidParameter`]`(`[`SCALE_RULE`]`)`). A
+/// negative scale would mirror the mesh and turn every face's winding, so culling would
+/// hide the wrong faces; zero collapses it to a point.
+pub const fn check_scale(scale: f32) -> Result<(), Error> {
+    if !scale.is_finite() {
+        Err(Error::NotFinite)
+    } else if scale > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::InvalidParameter(SCALE_RULE))
+    }
+}
+
+/// The message of the [`Error::InvalidParameter`] that [`check_scale`] returns for a
+/// scale of zero or below.
+pub const SCALE_RULE: &str = "mesh scale must be finite and positive";
 
 impl<'a, M: Copy> Mesh<'a, M> {
     /// A mesh of polygons, without normal tables.
@@ -139,7 +159,7 @@ impl<'a, M: Copy> Mesh<'a, M> {
 
     /// The box around every vertex, in model units: its lowest and highest corners.
     /// `None` for a mesh without vertices (or with a scale that is not finite). For
-    /// [`Transform::fit_depth`](crate::camera::Transform::fit_depth).
+    /// [`Camera::fit_depth`](crate::camera::Camera::fit_depth).
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
         let first = self.positions.first()?;
         let (mut lo, mut hi) = (*first, *first);
@@ -163,11 +183,7 @@ impl<'a, M: Copy> Mesh<'a, M> {
     /// The renderer checks faces as it draws them too (and returns the same errors), so
     /// calling this is optional; it reports a problem before anything is drawn.
     pub fn validate(&self) -> Result<(), Error> {
-        if !(self.scale.is_finite() && self.scale > 0.0) {
-            return Err(Error::InvalidParameter(
-                "mesh scale must be finite and positive",
-            ));
-        }
+        self.check_tables()?;
         let n = self.face_count();
         for i in 0..n {
             let (vs, _) = self
@@ -183,7 +199,39 @@ impl<'a, M: Copy> Mesh<'a, M> {
                 });
             }
         }
-        if self.face_normals.is_some_and(|f| f.len() < n) {
+        Ok(())
+    }
+
+    /// What a renderer checks of a mesh before drawing it with `shading`, in a few
+    /// comparisons (no walk over the tables): the [scale rule](check_scale), normal
+    /// tables as long as their faces and vertices, and vertex normals for
+    /// [`Shading::Gouraud`] ([`Error::MissingNormals`]: without them every vertex would
+    /// be fully lit, the mesh drawn unlit; [`compute_vertex_normals`] makes them).
+    ///
+    /// ```
+    /// use zraster::{mesh::{compute_vertex_normals, CUBE}, math::Vec3, shade::Shading, Error};
+    /// assert_eq!(CUBE.check_for(Shading::Lambert), Ok(())); // face normals from the positions
+    /// assert_eq!(CUBE.check_for(Shading::Gouraud), Err(Error::MissingNormals));
+    /// let (mut scratch, mut normals) = ([Vec3::default(); 8], [[0i16; 3]; 8]);
+    /// compute_vertex_normals(&CUBE, &mut scratch, &mut normals)?;
+    /// assert_eq!(CUBE.with_normals(None, Some(&normals)).check_for(Shading::Gouraud), Ok(()));
+    /// # Ok::<(), Error>(())
+    /// ```
+    pub fn check_for(&self, shading: Shading) -> Result<(), Error> {
+        self.check_tables()?;
+        if shading == Shading::Gouraud && self.vertex_normals.is_none() {
+            return Err(Error::MissingNormals);
+        }
+        Ok(())
+    }
+
+    /// The scale rule and the lengths of the normal tables.
+    fn check_tables(&self) -> Result<(), Error> {
+        check_scale(self.scale)?;
+        if self
+            .face_normals
+            .is_some_and(|f| f.len() < self.face_count())
+        {
             return Err(Error::InvalidParameter("fewer face normals than faces"));
         }
         if self
@@ -195,6 +243,108 @@ impl<'a, M: Copy> Mesh<'a, M> {
             ));
         }
         Ok(())
+    }
+}
+
+/// How [`quantize`] stored positions: a model-space point is `position × scale + offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Quantized {
+    /// Model units per position step: the mesh's [`scale`](Mesh::scale).
+    pub scale: f32,
+    /// What was subtracted before scaling (the bounding box's centre, or zero).
+    pub offset: Vec3,
+}
+
+impl Quantized {
+    /// The model matrix that puts the offset back: `Mat4::translation(offset)`. Multiply
+    /// it into the model matrix on the right (`spin * q.model()`), or ignore it to have the
+    /// mesh centred on the origin.
+    pub fn model(&self) -> Mat4 {
+        Mat4::translation(self.offset)
+    }
+}
+
+/// Quantise `f32` positions into `i16` vertex-table entries in `out` (one per point):
+/// the largest coordinate (after subtracting the bounding box's centre, when `centre`)
+/// becomes ±32767, every other the nearest step (halves away from zero). Returns the
+/// scale and offset; the scale obeys [`check_scale`]. No heap: `out` is yours (a
+/// `static mut` table, a stack array).
+///
+/// Errors: [`Error::BufferTooSmall`] for a short `out` (nothing written),
+/// [`Error::NotFinite`] for a NaN or infinite coordinate, and
+/// [`Error::InvalidParameter`] for points so close together (below ~10⁻⁴⁰) that their
+/// step is not a positive `f32`. No points, or all at one place, give scale 1 and zeros.
+///
+/// ```
+/// use zraster::mesh::{quantize, Mesh};
+/// use embedded_graphics::pixelcolor::Rgb888;
+///
+/// let points = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 1.2, 0.5]];
+/// let mut table = [[0i16; 3]; 3];
+/// let q = quantize(&points, false, &mut table)?;
+/// // 2.0 is the largest: 32767 steps; 1.2 is 19660.2 steps, 0.5 is 8191.75.
+/// assert_eq!(table, [[0, 0, 0], [32767, 0, 0], [0, 19660, 8192]]);
+/// assert_eq!(q.scale, 2.0 / 32767.0);
+/// let mesh = Mesh::triangles(&table, q.scale, &[[0, 1, 2]], Rgb888::new(255, 255, 255));
+/// mesh.validate()?;
+/// # Ok::<(), zraster::Error>(())
+/// ```
+pub fn quantize(
+    points: &[[f32; 3]],
+    centre: bool,
+    out: &mut [[i16; 3]],
+) -> Result<Quantized, Error> {
+    let out = prefix_mut(out, points.len())?;
+    if !points.iter().flatten().all(|v| v.is_finite()) {
+        return Err(Error::NotFinite);
+    }
+    let mut offset = [0.0f32; 3];
+    if let (Some(first), true) = (points.first(), centre) {
+        let (mut lo, mut hi) = (*first, *first);
+        for p in points {
+            for ((l, h), &v) in lo.iter_mut().zip(hi.iter_mut()).zip(p) {
+                *l = l.min(v);
+                *h = h.max(v);
+            }
+        }
+        // In f64: lo + hi overflows f32 near ±f32::MAX.
+        for ((o, &l), &h) in offset.iter_mut().zip(&lo).zip(&hi) {
+            *o = ((f64::from(l) + f64::from(h)) * 0.5) as f32;
+        }
+    }
+    // Around the centre a point is at most half the extent away: within f32.
+    let mut reach = 0.0f32;
+    for p in points {
+        for (&v, &o) in p.iter().zip(&offset) {
+            reach = reach.max((v - o).abs());
+        }
+    }
+    let scale = if reach > 0.0 { reach / 32767.0 } else { 1.0 };
+    check_scale(scale)?;
+    let step = |v: f32| round_half_away(v / scale).clamp(-32767, 32767) as i16;
+    for (o, p) in out.iter_mut().zip(points) {
+        for ((q, &v), &off) in o.iter_mut().zip(p).zip(&offset) {
+            *q = step(v - off);
+        }
+    }
+    Ok(Quantized {
+        scale,
+        offset: Vec3::new(offset[0], offset[1], offset[2]),
+    })
+}
+
+/// `v` rounded to the nearest integer, halves away from zero (as `f32::round`), for
+/// |v| below 2²⁴ (larger values are clamped to ±2²⁴, which the caller clamps further).
+fn round_half_away(v: f32) -> i32 {
+    let v = v.clamp(-16_777_216.0, 16_777_216.0);
+    let t = v as i32; // towards zero
+    let frac = v - t as f32; // exact below 2²⁴
+    if frac >= 0.5 {
+        t + 1
+    } else if frac <= -0.5 {
+        t - 1
+    } else {
+        t
     }
 }
 
@@ -368,7 +518,7 @@ mod tests {
         );
         let ok = [[0u16, 1, 2]];
         let m = Mesh::triangles(&pos, f32::NAN, &ok, Rgb888::new(0, 0, 0));
-        assert!(matches!(m.validate(), Err(Error::InvalidParameter(_))));
+        assert_eq!(m.validate(), Err(Error::NotFinite));
         let mats: [Rgb888; 0] = [];
         let m = Mesh {
             faces: Faces::Triangles {
@@ -395,5 +545,129 @@ mod tests {
             compute_face_normals(&CUBE, &mut fnorm[..5]),
             Err(Error::BufferTooSmall { needed: 6, got: 5 })
         );
+    }
+
+    #[test]
+    fn one_scale_rule() {
+        let not_positive = Err(Error::InvalidParameter(SCALE_RULE));
+        for (bad, want) in [
+            (0.0, not_positive),
+            (-0.0, not_positive),
+            (-1.0, not_positive),
+            (f32::NAN, Err(Error::NotFinite)),
+            (f32::INFINITY, Err(Error::NotFinite)),
+            (f32::NEG_INFINITY, Err(Error::NotFinite)),
+        ] {
+            assert_eq!(check_scale(bad), want);
+            let m = Mesh { scale: bad, ..CUBE };
+            assert_eq!(m.validate(), want, "{bad}");
+            assert_eq!(m.check_for(Shading::Flat), want, "{bad}");
+        }
+        assert_eq!(check_scale(f32::MIN_POSITIVE / 4.0), Ok(())); // subnormal: tiny, not wrong
+        assert_eq!(check_scale(1e30), Ok(()));
+    }
+
+    #[test]
+    fn gouraud_needs_vertex_normals() {
+        assert_eq!(CUBE.check_for(Shading::Flat), Ok(()));
+        assert_eq!(CUBE.check_for(Shading::Lambert), Ok(()));
+        assert_eq!(CUBE.check_for(Shading::Gouraud), Err(Error::MissingNormals));
+        let short = [[0i16; 3]; 7];
+        let m = CUBE.with_normals(None, Some(&short));
+        let few = Err(Error::InvalidParameter(
+            "fewer vertex normals than vertices",
+        ));
+        assert_eq!(m.check_for(Shading::Gouraud), few);
+        assert_eq!(m.check_for(Shading::Flat), few);
+        let faces = [[0i16; 3]; 5];
+        let m = CUBE.with_normals(Some(&faces), None);
+        let few = Err(Error::InvalidParameter("fewer face normals than faces"));
+        assert_eq!(m.check_for(Shading::Lambert), few);
+        assert_eq!(m.validate(), few);
+        let mut scratch = [Vec3::default(); 8];
+        let mut normals = [[0i16; 3]; 8];
+        compute_vertex_normals(&CUBE, &mut scratch, &mut normals).unwrap();
+        let m = CUBE.with_normals(None, Some(&normals));
+        assert_eq!(m.check_for(Shading::Gouraud), Ok(()));
+    }
+
+    #[test]
+    fn quantize_fills_the_table() {
+        // Centred: the box 1..5 × −2..2 × 0..1 has centre (3, 0, 0.5) and reach 2.
+        let pts = [
+            [1.0, -2.0, 0.0],
+            [5.0, 2.0, 1.0],
+            [3.0, 1.2, 0.5],
+            [2.5, 0.0, 0.75],
+        ];
+        let mut out = [[7i16; 3]; 5];
+        let q = quantize(&pts, true, &mut out).unwrap();
+        assert_eq!(q.offset, Vec3::new(3.0, 0.0, 0.5));
+        assert_eq!(q.scale, 2.0 / 32767.0);
+        // 1 unit is 16383.5 steps: 1.2 is 19660.2, 0.5 is 8191.75, 0.25 is 4095.875.
+        assert_eq!(
+            out,
+            [
+                [-32767, -32767, -8192],
+                [32767, 32767, 8192],
+                [0, 19660, 0],
+                [-8192, 0, 4096],
+                [7, 7, 7], // beyond the points: untouched
+            ]
+        );
+        // Back to model space within half a step.
+        let off = [q.offset.x, q.offset.y, q.offset.z];
+        for (p, o) in pts.iter().zip(&out) {
+            for k in 0..3 {
+                let back = f32::from(o[k]) * q.scale + off[k];
+                assert!((back - p[k]).abs() <= q.scale * 0.5 + 1e-6, "{p:?}");
+            }
+        }
+        // Errors: a short table (nothing written), NaN or infinity.
+        let mut short = [[9i16; 3]; 3];
+        assert_eq!(
+            quantize(&pts, true, &mut short),
+            Err(Error::BufferTooSmall { needed: 4, got: 3 })
+        );
+        assert_eq!(short, [[9; 3]; 3]);
+        for bad in [f32::NAN, f32::INFINITY] {
+            let pts = [[0.0, bad, 0.0]];
+            assert_eq!(quantize(&pts, false, &mut out), Err(Error::NotFinite));
+        }
+        // No points, one point, points far below f32's normal range.
+        assert_eq!(quantize(&[], true, &mut []).map(|q| q.scale), Ok(1.0));
+        let one = [[4.0, 5.0, 6.0]];
+        let q = quantize(&one, true, &mut out).unwrap();
+        assert_eq!((q.scale, out[0]), (1.0, [0, 0, 0]));
+        assert_eq!(q.model(), Mat4::translation(Vec3::new(4.0, 5.0, 6.0)));
+        let tiny = [[0.0, 0.0, 0.0], [1e-44, 0.0, 0.0]];
+        assert_eq!(
+            quantize(&tiny, false, &mut out),
+            Err(Error::InvalidParameter(SCALE_RULE))
+        );
+        // Near f32::MAX the centre and reach stay finite.
+        let huge = [[f32::MAX, -f32::MAX, 0.0], [-f32::MAX, f32::MAX, 1.0]];
+        let q = quantize(&huge, true, &mut out).unwrap();
+        assert!(q.scale.is_finite() && q.offset == Vec3::new(0.0, 0.0, 0.5));
+        assert_eq!(out[0], [32767, -32767, 0]);
+    }
+
+    #[test]
+    fn rounding_is_half_away_from_zero() {
+        for v in [
+            0.0f32,
+            0.49999997,
+            0.5,
+            1.5,
+            2.5,
+            -0.5,
+            -1.5,
+            -2.4999998,
+            1e7 + 0.5,
+            3e9,
+        ] {
+            let want = v.clamp(-16_777_216.0, 16_777_216.0).round() as i32;
+            assert_eq!(round_half_away(v), want, "{v}");
+        }
     }
 }
