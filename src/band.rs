@@ -168,7 +168,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 *tail = f as u16;
             }
         };
-        let mut walk = CachedWalk::new(indices, 0..nt, cache, None, self.options.cull);
+        let mut walk = CachedWalk::new(indices, 0..nt, cache, self.options.cull);
         let mut clipped = FrameStats::default();
         for next in walk.by_ref() {
             let (f, tri) = next?;

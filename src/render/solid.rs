@@ -255,13 +255,18 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         };
         // A band drawn without bins skips the triangles off its rows.
         let rows = (!first).then(|| clip.subpixel_rows());
-        let mut walk = CachedWalk::new(indices, faces, cache, rows, self.options.cull);
+        let mut walk = CachedWalk::new(indices, faces, cache, self.options.cull);
         let mut target = FlatTarget::new(frame, zbuf, &clip);
         let mut clipped = FrameStats::default();
         for next in walk.by_ref() {
             match next? {
                 (f, Some([a, b, c])) => {
                     let tri = [a.placed(), b.placed(), c.placed()];
+                    if let Some((row0, row1)) = rows {
+                        if outside_rows(&tri, row0, row1) {
+                            continue;
+                        }
+                    }
                     px.add_fill(target.fill(tri.each_ref(), shade(f)?));
                 }
                 // Across a clip plane or far outside the screen: the general path (rare).

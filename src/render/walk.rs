@@ -118,22 +118,18 @@ pub(crate) struct CachedWalk<'a> {
     f: usize,
     walked: usize,
     cache: &'a [CachedVertex],
-    rows: Option<(i32, i32)>,
     cull: Cull,
-    /// Faces by outcome: clipped (counted by the general path), outside, off the rows,
-    /// drawn.
-    tally: [u32; 4],
+    /// Faces by outcome: clipped (counted by the general path), outside, drawn.
+    tally: [u32; 3],
 }
 
 impl<'a> CachedWalk<'a> {
-    /// A walk over faces `faces` of `indices`, placed by `cache`; faces off rows `rows`
-    /// (1/16 pixel) skipped when given.
+    /// A walk over faces `faces` of `indices`, placed by `cache`.
     #[inline(always)]
     pub(crate) fn new(
         indices: &'a [[u16; 3]],
         faces: core::ops::Range<usize>,
         cache: &'a [CachedVertex],
-        rows: Option<(i32, i32)>,
         cull: Cull,
     ) -> Self {
         let first = faces.start;
@@ -143,22 +139,21 @@ impl<'a> CachedWalk<'a> {
             f: first,
             walked: faces.len(),
             cache,
-            rows,
             cull,
-            tally: [0; 4],
+            tally: [0; 3],
         }
     }
 
     /// The geometry counts of the walk, once it has ended: every face walked but the
     /// clipped ones, which the general path counts.
     pub(crate) fn stats(&self) -> FrameStats {
-        let [clip, outside, off_rows, drawn] = self.tally;
+        let [clip, outside, drawn] = self.tally;
         let triangles_in = self.walked as u32 - clip;
         FrameStats {
             triangles_in,
             outside,
             drawn,
-            culled: triangles_in - outside - off_rows - drawn,
+            culled: triangles_in - outside - drawn,
             ..FrameStats::default()
         }
     }
@@ -177,10 +172,10 @@ impl<'a> Iterator for CachedWalk<'a> {
                 Ok(v) => v,
                 Err(e) => return Some(Err(e)),
             };
-            match decide(v, self.rows, self.cull) {
-                Seen::Culled => continue,
+            match decide(v, None, self.cull) {
+                Seen::Culled | Seen::OffRows => continue,
                 Seen::Front => {
-                    self.tally[3] += 1;
+                    self.tally[2] += 1;
                     return Some(Ok((f, Some(v))));
                 }
                 Seen::Clip => {
@@ -188,7 +183,6 @@ impl<'a> Iterator for CachedWalk<'a> {
                     return Some(Ok((f, None)));
                 }
                 Seen::Outside => self.tally[1] += 1,
-                Seen::OffRows => self.tally[2] += 1,
             }
         }
     }
