@@ -35,6 +35,7 @@
 //! ```
 //!
 //! The sections below are the manual: [meshes](#meshes), [the camera](#the-camera),
+//! [colour types](#colour-types),
 //! [the depth buffer](#the-depth-buffer-and-what-to-draw-into) and what to draw into,
 //! [bands](#bands-a-frame-in-a-few-kib), the [other renderers](#other-renderers) and
 //! [single triangles](#single-triangles).
@@ -50,7 +51,8 @@
 //!   [`BandBuffers`], pixel-identical to a whole frame in a few KiB).
 //! - [`ZBuffer`] and [`ColorBuffer`]: caller memory for depth and colour, a whole frame
 //!   or a band of rows.
-//! - [`shade`]: lights and materials (flat, Lambert, Gouraud; dithering for 1-bit).
+//! - [`shade`]: lights and materials (flat, Lambert, Gouraud) for every
+//!   embedded-graphics colour type, dithered on 1-, 2- and 4-bit displays.
 //! - [`fill_triangle`] and [`ScreenVertex`]: single screen-space triangles.
 //! - [`Error`] and [`DrawError`]: what can go wrong; nothing panics on bad input.
 //!
@@ -132,6 +134,37 @@
 //! Renderer::new(&CUBE, &moved, RenderOptions::default())?.draw(&mut frame)?;
 //! let lit = |x| frame.color().pixel(x, 16) != Some(Rgb565::new(0, 0, 0));
 //! assert!(lit(48) && !lit(16)); // drawn right of the centre, not left of it
+//! # Ok::<(), zraster::Error>(())
+//! ```
+//!
+//! # Colour types
+//!
+//! Materials are `Rgb888` colours, and they draw on a display of any embedded-graphics
+//! colour type ([`shade::DisplayColor`]): `Rgb565`, `Bgr565`, `Rgb555`, `Bgr555`,
+//! `Rgb666`, `Bgr666`, `Rgb888` and `Bgr888` get each channel lit and rounded to its
+//! depth, `Gray8` the colour's luma; `Gray4`, `Gray2` and `BinaryColor` get the luma
+//! ordered-dithered (a 4×4 Bayer pattern), so shading survives on greyscale OLEDs,
+//! e-paper and monochrome panels. The frame's colour type is the display's. The
+//! Stanford bunny, Gouraud-shaded, on a 256×64 16-grey SSD1322:
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::Gray4, prelude::*};
+//! use zraster::{math::{radians, Mat4, Vec3}, shade::Shading, Camera, Frame, RenderOptions, Renderer, Viewport};
+//! use zraster_bench_scene::bunny::{BUNNY_FIT, BUNNY_MESH}; // flash tables from examples/obj2rust.rs
+//!
+//! let (mut pixels, mut depth) = ([Gray4::BLACK; 256 * 64], [0u16; 256 * 64]);
+//! let mut frame = Frame::new(&mut pixels, &mut depth, 256, 64)?;
+//! frame.clear(Gray4::BLACK);
+//! let fit = Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(BUNNY_FIT, BUNNY_FIT, BUNNY_FIT));
+//! let camera = Camera::look_at(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), Vec3::Y)?
+//!     .perspective(radians(40.0), 0.1, 10.0, Viewport::new(256, 64)?)?
+//!     .with_model(fit);
+//! let options = RenderOptions { shading: Shading::Gouraud, ..Default::default() };
+//! Renderer::new(&BUNNY_MESH, &camera, options)?.draw(&mut frame)?;
+//! // frame.flush(&mut ssd1322)?; sends it in one fill_contiguous
+//! # let mut levels = [0u32; 16];
+//! # frame.color().as_slice().iter().for_each(|p| levels[usize::from(p.luma())] += 1);
+//! # assert!(levels[0] > 256 * 64 / 2 && levels[1..].iter().filter(|&&n| n > 20).count() >= 8);
 //! # Ok::<(), zraster::Error>(())
 //! ```
 //!
