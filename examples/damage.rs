@@ -8,7 +8,7 @@
 
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Viewport},
     damage::Damage,
     math::{radians, Mat4, Vec3},
     CachedVertex, Frame, Renderer,
@@ -28,14 +28,13 @@ fn measure(distance: f32, frames: u32) -> (u64, u64, f64) {
     let vp = Viewport::new(W, H).unwrap();
     let (mut whole, mut damaged, mut covered) = (0u64, 0u64, 0u64);
     for i in 0..=frames {
-        let cam = Transform::perspective(
+        let cam = Camera::look_at(
             Vec3::new(0.0, 0.0, distance),
             Vec3::new(0.0, 0.0, 0.6),
-            60.0,
-            0.1,
-            10.0,
-            vp,
+            Vec3::Y,
         )
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, vp)
         .unwrap();
         let fit = bunny::BUNNY_FIT;
         let xf = cam.with_model(

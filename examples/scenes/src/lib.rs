@@ -11,7 +11,7 @@ use embedded_graphics::{
 };
 use embedded_graphics_simulator::SimulatorDisplay;
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Face, Mesh, CUBE},
     shade::{Light, Shading},
@@ -42,17 +42,13 @@ pub fn panel<C>(
     frame.flush(&mut display.translated(at)).ok();
 }
 
-/// A camera looking at `target` from `eye`.
-pub fn camera(eye: Vec3, target: Vec3, fov: f32, w: u32, h: u32) -> Transform {
-    Transform::perspective(
-        eye,
-        target,
-        fov,
-        0.1,
-        20.0,
-        Viewport::new(w, h).expect("viewport"),
-    )
-    .expect("camera")
+/// A camera looking at `target` from `eye` (+Y up) with a vertical field of view of
+/// `fov` radians.
+pub fn camera(eye: Vec3, target: Vec3, fov: f32, w: u32, h: u32) -> Camera {
+    Camera::look_at(eye, target, Vec3::Y)
+        .expect("view")
+        .perspective(fov, 0.1, 20.0, Viewport::new(w, h).expect("viewport"))
+        .expect("camera")
 }
 
 /// The seeds' cube, per-face colours. Left: every face drawn in table order with no
@@ -63,7 +59,7 @@ pub fn cube_culling() -> SimulatorDisplay<Rgb565> {
     let xf = camera(
         Vec3::new(2.2, 1.8, 2.8),
         Vec3::new(0.5, 0.5, 0.5),
-        45.0,
+        radians(45.0),
         w,
         h,
     );
@@ -245,7 +241,7 @@ pub fn painter_vs_zbuffer() -> SimulatorDisplay<Rgb565> {
     let (w, h) = (140, 110);
     let mut display = SimulatorDisplay::new(Size::new(2 * w + 8, 3 * h + 16));
     for (row, (mesh, eye, target, cull, _)) in failure_cases().iter().enumerate() {
-        let xf = camera(*eye, *target, 45.0, w, h);
+        let xf = camera(*eye, *target, radians(45.0), w, h);
         let y = row as i32 * (h as i32 + 8);
         mesh.with(|m, place| {
             let xf = xf.with_model(place);
@@ -321,8 +317,14 @@ pub fn bunny_shading() -> SimulatorDisplay<Rgb565> {
     let (w, h) = (240, 200);
     let bunny = Bunny::load();
     let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
-    let xf = camera(Vec3::new(0.0, 0.0, 1.5), Vec3::default(), 50.0, w, h)
-        .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
+    let xf = camera(
+        Vec3::new(0.0, 0.0, 1.5),
+        Vec3::default(),
+        radians(50.0),
+        w,
+        h,
+    )
+    .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
     let mut display = SimulatorDisplay::new(Size::new(2 * w + 8, h));
     for (i, shading) in [Shading::Lambert, Shading::Gouraud].into_iter().enumerate() {
         panel(
@@ -352,7 +354,7 @@ pub fn cube_hidden_line() -> SimulatorDisplay<Rgb565> {
     let xf = camera(
         Vec3::new(2.2, 1.8, 2.8),
         Vec3::new(0.5, 0.5, 0.5),
-        45.0,
+        radians(45.0),
         w,
         h,
     );
@@ -385,7 +387,7 @@ pub fn mono_oled() -> SimulatorDisplay<BinaryColor> {
     let xf = camera(
         Vec3::new(0.0, 0.0, 1.25),
         Vec3::new(0.0, -0.04, 0.0),
-        60.0,
+        radians(60.0),
         w,
         h,
     )
