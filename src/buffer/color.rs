@@ -7,8 +7,7 @@ use embedded_graphics::{
     Pixel,
 };
 
-use super::{band_origin, check_dims, row_span};
-use crate::error::prefix_mut;
+use super::Rows;
 use crate::raster::Clip;
 use crate::Error;
 
@@ -32,10 +31,7 @@ use crate::Error;
 /// ```
 #[derive(Debug)]
 pub struct ColorBuffer<'a, C> {
-    data: &'a mut [C],
-    width: u16,
-    rows: u16,
-    first_row: i32,
+    buf: Rows<'a, C>,
 }
 
 impl<'a, C: PixelColor> ColorBuffer<'a, C> {
@@ -44,14 +40,8 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     /// Errors as for [`ZBuffer::new`](crate::ZBuffer::new): zero or too-large dimensions,
     /// or a slice shorter than `width × rows`.
     pub fn new(data: &'a mut [C], width: u32, rows: u32) -> Result<Self, Error> {
-        let (w, r) = check_dims(width, rows, data.len())?;
-        let needed = usize::from(w) * usize::from(r);
-        let data = prefix_mut(data, needed)?;
         Ok(ColorBuffer {
-            data,
-            width: w,
-            rows: r,
-            first_row: 0,
+            buf: Rows::new(data, width, rows)?,
         })
     }
 
@@ -72,36 +62,34 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
 
     /// Width in pixels.
     pub fn width(&self) -> u32 {
-        u32::from(self.width)
+        u32::from(self.buf.width)
     }
 
     /// Rows held.
     pub fn rows(&self) -> u32 {
-        u32::from(self.rows)
+        u32::from(self.buf.rows)
     }
 
     /// The first screen row covered.
     pub fn first_row(&self) -> i32 {
-        self.first_row
+        self.buf.first_row
     }
 
     /// Move the band to cover rows `first_row .. first_row + rows` (contents kept).
     ///
     /// Errors: [`Error::OutOfRange`] when the last row would lie beyond `i32::MAX`.
     pub fn set_first_row(&mut self, first_row: i32) -> Result<(), Error> {
-        self.first_row = band_origin(first_row, self.rows)?;
-        Ok(())
+        self.buf.set_first_row(first_row)
     }
 
     /// The colour at screen pixel (x, y), `None` outside the buffer.
     pub fn pixel(&self, x: i32, y: i32) -> Option<C> {
-        let i = self.index(x, y)?;
-        self.data.get(i).copied()
+        self.buf.get(x, y)
     }
 
     /// The pixels, row by row.
     pub fn as_slice(&self) -> &[C] {
-        self.data
+        self.buf.data
     }
 
     /// Send the whole buffer to `display` at its screen position with one
@@ -111,15 +99,16 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
         let area = self.bounding_box();
         let visible = area.intersection(&display.bounding_box());
         if visible == area {
-            return display.fill_contiguous(&area, self.data.iter().copied());
+            return display.fill_contiguous(&area, self.buf.data.iter().copied());
         }
         if visible.size.width == 0 || visible.size.height == 0 {
             return Ok(());
         }
-        let w = usize::from(self.width);
-        let (vx, vy) = (visible.top_left.x, visible.top_left.y - self.first_row);
+        let w = usize::from(self.buf.width);
+        let (vx, vy) = (visible.top_left.x, visible.top_left.y - self.buf.first_row);
         let vw = visible.size.width as usize;
         let rows = self
+            .buf
             .data
             .chunks_exact(w)
             .skip(vy as usize)
@@ -134,35 +123,29 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     /// of it lies outside the buffer.
     #[inline]
     pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [C]> {
-        row_span(self.data, self.geometry(), y, x0, x1)
+        self.buf.span_mut(y, x0, x1)
     }
 
     /// (width, rows, first row), as [`ZBuffer`](crate::ZBuffer) reports it.
     #[inline]
     pub(crate) fn geometry(&self) -> (u16, u16, i32) {
-        (self.width, self.rows, self.first_row)
+        self.buf.geometry()
     }
 
     /// The pixels, mutable.
     #[inline]
     pub(crate) fn data_mut(&mut self) -> &mut [C] {
-        self.data
-    }
-
-    fn index(&self, x: i32, y: i32) -> Option<usize> {
-        let x = usize::try_from(x).ok()?;
-        let r = usize::try_from(y.checked_sub(self.first_row)?).ok()?;
-        (x < usize::from(self.width) && r < usize::from(self.rows))
-            .then(|| r * usize::from(self.width) + x)
+        self.buf.data
     }
 
     /// The rows of `area` (already inside the buffer) as mutable slices.
     fn rows_of(&mut self, c: Clip) -> impl Iterator<Item = &mut [C]> {
-        let w = usize::from(self.width);
+        let w = usize::from(self.buf.width);
         let (x0, x1) = (c.x0 as usize, c.x1 as usize);
-        let r0 = (c.y0 - self.first_row) as usize;
+        let r0 = (c.y0 - self.buf.first_row) as usize;
         let n = (c.y1 - c.y0) as usize;
-        self.data
+        self.buf
+            .data
             .chunks_exact_mut(w)
             .skip(r0)
             .take(n)
@@ -177,8 +160,8 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
 impl<C: PixelColor> Dimensions for ColorBuffer<'_, C> {
     fn bounding_box(&self) -> Rectangle {
         Rectangle::new(
-            Point::new(0, self.first_row),
-            Size::new(u32::from(self.width), u32::from(self.rows)),
+            Point::new(0, self.buf.first_row),
+            Size::new(u32::from(self.buf.width), u32::from(self.buf.rows)),
         )
     }
 }
@@ -192,8 +175,8 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
         I: IntoIterator<Item = Pixel<C>>,
     {
         for Pixel(p, c) in pixels {
-            if let Some(i) = self.index(p.x, p.y) {
-                if let Some(px) = self.data.get_mut(i) {
+            if let Some(i) = self.buf.index(p.x, p.y) {
+                if let Some(px) = self.buf.data.get_mut(i) {
                     *px = c;
                 }
             }
@@ -205,9 +188,9 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
         // Runs from the rasterizer: one row, already inside. Fill the slice directly.
         if area.size.height == 1 {
             let (x, y) = (area.top_left.x, area.top_left.y);
-            if let (Some(i), Ok(w)) = (self.index(x, y), usize::try_from(area.size.width)) {
-                if x as usize + w <= usize::from(self.width) {
-                    if let Some(run) = self.data.get_mut(i..i + w) {
+            if let (Some(i), Ok(w)) = (self.buf.index(x, y), usize::try_from(area.size.width)) {
+                if x as usize + w <= usize::from(self.buf.width) {
+                    if let Some(run) = self.buf.data.get_mut(i..i + w) {
                         run.fill(color);
                         return Ok(());
                     }
@@ -231,14 +214,14 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
         }
         let full = Clip::from_rect(area);
         let mut colors = colors.into_iter();
-        if c == full && c.x0 == 0 && c.x1 == i32::from(self.width) {
+        if c == full && c.x0 == 0 && c.x1 == i32::from(self.buf.width) {
             // Whole rows: one contiguous run of the buffer, filled by one zip (which the
             // compiler turns into a plain indexed copy when the colours come from a
             // slice, as a band's flush has them).
-            let w = usize::from(self.width);
-            let start = (c.y0 - self.first_row) as usize * w;
+            let w = usize::from(self.buf.width);
+            let start = (c.y0 - self.buf.first_row) as usize * w;
             let end = start + (c.y1 - c.y0) as usize * w;
-            if let Some(run) = self.data.get_mut(start..end) {
+            if let Some(run) = self.buf.data.get_mut(start..end) {
                 for (px, col) in run.iter_mut().zip(colors) {
                     *px = col;
                 }
@@ -258,8 +241,8 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
         for (i, col) in colors.enumerate().take(w * area.size.height as usize) {
             let x = full.x0 + (i % w) as i32;
             let y = full.y0 + (i / w) as i32;
-            if let Some(j) = self.index(x, y) {
-                if let Some(px) = self.data.get_mut(j) {
+            if let Some(j) = self.buf.index(x, y) {
+                if let Some(px) = self.buf.data.get_mut(j) {
                     *px = col;
                 }
             }
@@ -268,7 +251,7 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
     }
 
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
-        crate::num::fill(self.data, color);
+        crate::num::fill(self.buf.data, color);
         Ok(())
     }
 }

@@ -5,10 +5,11 @@
 mod bands;
 mod color;
 mod frame;
+mod rows;
 mod zbuffer;
 
 pub use bands::{AfterBand, BandBuffers, Bands};
 pub use color::ColorBuffer;
 pub use frame::Frame;
-pub(crate) use zbuffer::{band_origin, check_dims, row_span};
+pub(crate) use rows::Rows;
 pub use zbuffer::{DepthTest, ZBuffer};

@@ -1,7 +1,7 @@
 //! The depth buffer: 16 bits per pixel in memory the caller owns.
 
-use crate::error::prefix_mut;
-use crate::{Error, MAX_DIMENSION};
+use super::Rows;
+use crate::Error;
 
 /// How a fragment's depth is compared with the stored depth.
 ///
@@ -59,10 +59,7 @@ impl DepthTest {
 /// [`clear`]: ZBuffer::clear
 #[derive(Debug)]
 pub struct ZBuffer<'a> {
-    data: &'a mut [u16],
-    width: u16,
-    rows: u16,
-    first_row: i32,
+    buf: Rows<'a, u16>,
     test: DepthTest,
     write: bool,
 }
@@ -77,14 +74,8 @@ impl<'a> ZBuffer<'a> {
     /// [`MAX_DIMENSION`], [`Error::BufferTooSmall`] when `data` is shorter than
     /// `width × rows`. A longer slice is fine; only its first `width × rows` entries are used.
     pub fn new(data: &'a mut [u16], width: u32, rows: u32) -> Result<Self, Error> {
-        let (w, r) = check_dims(width, rows, data.len())?;
-        let needed = usize::from(w) * usize::from(r);
-        let data = prefix_mut(data, needed)?;
         Ok(ZBuffer {
-            data,
-            width: w,
-            rows: r,
-            first_row: 0,
+            buf: Rows::new(data, width, rows)?,
             test: DepthTest::Less,
             write: true,
         })
@@ -107,17 +98,17 @@ impl<'a> ZBuffer<'a> {
 
     /// Width in pixels.
     pub fn width(&self) -> u32 {
-        u32::from(self.width)
+        u32::from(self.buf.width)
     }
 
     /// Number of rows held.
     pub fn rows(&self) -> u32 {
-        u32::from(self.rows)
+        u32::from(self.buf.rows)
     }
 
     /// The first screen row covered.
     pub fn first_row(&self) -> i32 {
-        self.first_row
+        self.buf.first_row
     }
 
     /// Move the band: the buffer now covers rows `first_row .. first_row + rows`.
@@ -125,8 +116,7 @@ impl<'a> ZBuffer<'a> {
     ///
     /// Errors: [`Error::OutOfRange`] when the last row would lie beyond `i32::MAX`.
     pub fn set_first_row(&mut self, first_row: i32) -> Result<(), Error> {
-        self.first_row = band_origin(first_row, self.rows)?;
-        Ok(())
+        self.buf.set_first_row(first_row)
     }
 
     /// The depth comparison in use.
@@ -151,99 +141,45 @@ impl<'a> ZBuffer<'a> {
 
     /// Set every entry to [`ZBuffer::FAR`].
     pub fn clear(&mut self) {
-        crate::num::fill(self.data, Self::FAR);
+        crate::num::fill(self.buf.data, Self::FAR);
     }
 
     /// Set every entry to `depth`.
     pub fn fill(&mut self, depth: u16) {
-        crate::num::fill(self.data, depth);
+        crate::num::fill(self.buf.data, depth);
     }
 
     /// The stored depth at screen pixel (x, y), or `None` outside the rows held.
     pub fn depth(&self, x: i32, y: i32) -> Option<u16> {
-        let i = self.index(x, y)?;
-        self.data.get(i).copied()
+        self.buf.get(x, y)
     }
 
     /// The entries, row by row (row 0 is screen row [`first_row`](ZBuffer::first_row)).
     pub fn as_slice(&self) -> &[u16] {
-        self.data
-    }
-
-    fn index(&self, x: i32, y: i32) -> Option<usize> {
-        let x = usize::try_from(x).ok()?;
-        let r = usize::try_from(y.checked_sub(self.first_row)?).ok()?;
-        (x < usize::from(self.width) && r < usize::from(self.rows))
-            .then(|| r * usize::from(self.width) + x)
+        self.buf.data
     }
 
     /// The part of screen row `y` from column `x0` to `x1` (exclusive); `None` when any of
     /// it lies outside the buffer.
     #[inline]
     pub(crate) fn span_mut(&mut self, y: i32, x0: i32, x1: i32) -> Option<&mut [u16]> {
-        row_span(self.data, self.geometry(), y, x0, x1)
+        self.buf.span_mut(y, x0, x1)
     }
 
     /// (width, rows, first row): two buffers with the same geometry share indices.
     #[inline]
     pub(crate) fn geometry(&self) -> (u16, u16, i32) {
-        (self.width, self.rows, self.first_row)
+        self.buf.geometry()
     }
 
     /// The entries, mutable.
     #[inline]
     pub(crate) fn data_mut(&mut self) -> &mut [u16] {
-        self.data
+        self.buf.data
     }
 
     /// Screen rows covered, as a half-open range.
     pub(crate) fn row_range(&self) -> (i32, i32) {
-        (
-            self.first_row,
-            self.first_row.saturating_add(i32::from(self.rows)),
-        )
+        self.buf.row_range()
     }
-}
-
-/// The part of screen row `y` from column `x0` to `x1` (exclusive) in `data`, a buffer
-/// of the given (width, rows, first row) geometry; `None` when any of it lies outside.
-#[inline]
-pub(crate) fn row_span<T>(
-    data: &mut [T],
-    (width, rows, first_row): (u16, u16, i32),
-    y: i32,
-    x0: i32,
-    x1: i32,
-) -> Option<&mut [T]> {
-    let r = y.wrapping_sub(first_row) as u32;
-    if r >= u32::from(rows) || x0 < 0 || x1 > i32::from(width) || x0 > x1 {
-        return None;
-    }
-    let start = r as usize * usize::from(width) + x0 as usize;
-    data.get_mut(start..start + (x1 - x0) as usize)
-}
-
-/// `first_row` when rows `first_row .. first_row + rows` all lie in `i32` (so that
-/// bounding boxes and row ranges never overflow), else [`Error::OutOfRange`].
-pub(crate) fn band_origin(first_row: i32, rows: u16) -> Result<i32, Error> {
-    first_row
-        .checked_add(i32::from(rows))
-        .map(|_| first_row)
-        .ok_or(Error::OutOfRange)
-}
-
-/// Validate `width × rows` against [`MAX_DIMENSION`] and a slice length.
-pub(crate) fn check_dims(width: u32, rows: u32, len: usize) -> Result<(u16, u16), Error> {
-    if width == 0 || rows == 0 {
-        return Err(Error::ZeroSize);
-    }
-    if width > MAX_DIMENSION || rows > MAX_DIMENSION {
-        return Err(Error::TooLarge);
-    }
-    // Both ≤ 8192, so the product fits any usize of 32 bits or more.
-    let needed = width as usize * rows as usize;
-    if len < needed {
-        return Err(Error::BufferTooSmall { needed, got: len });
-    }
-    Ok((width as u16, rows as u16))
 }
