@@ -9,6 +9,8 @@
 //! `gallery-bands.png` (a frame drawn in 16-row bands) and `bunny-spin.gif` (the bunny
 //! turning, 36 frames). `tests/gallery.rs` checks that the checked-in files are what
 //! this draws. It always writes files (the `window` feature changes nothing here).
+//! Angles go through zraster's own `sin_cos`, not the platform's, so the pictures are
+//! the same on every host.
 
 use std::path::{Path, PathBuf};
 use std::process::exit;
@@ -25,7 +27,7 @@ use embedded_graphics_simulator::{
 };
 use zraster::{
     camera::{Transform, Viewport},
-    math::{radians, Mat4, Vec3},
+    math::{radians, sin_cos, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Face, Mesh},
     shade::Shading,
     BandBuffers, Bands, CachedVertex, ColorBuffer, Cull, DepthSort, Frame, RenderOptions, Renderer,
@@ -126,7 +128,7 @@ impl Polygons {
             // Bar k runs along direction 90° + 120°·k, rising in z from one end to
             // the other, and passes the centre off to one side.
             let a = radians(90.0 + 120.0 * k as f32);
-            let (dx, dy) = (a.cos(), a.sin());
+            let (dy, dx) = sin_cos(a);
             let (nx, ny) = (-dy, dx);
             let off = 0.32;
             let (cx, cy) = (nx * off, ny * off);
@@ -152,8 +154,9 @@ impl Polygons {
             let u = radians(360.0 * f32::from(i) / f32::from(around));
             for j in 0..tube {
                 let v = radians(360.0 * f32::from(j) / f32::from(tube));
-                let ring = big + small * v.cos();
-                points.push([ring * u.cos(), small * v.sin(), ring * u.sin()]);
+                let ((su, cu), (sv, cv)) = (sin_cos(u), sin_cos(v));
+                let ring = big + small * cv;
+                points.push([ring * cu, small * sv, ring * su]);
             }
         }
         let at = |i: u16, j: u16| (i % around) * tube + j % tube;
@@ -168,7 +171,8 @@ impl Polygons {
                 };
                 let n = (p(1) - p(0)).cross(p(3) - p(0));
                 let u = radians(360.0 * f32::from(i) / f32::from(around));
-                let axis = Vec3::new(big * u.cos(), 0.0, big * u.sin());
+                let (su, cu) = sin_cos(u);
+                let axis = Vec3::new(big * cu, 0.0, big * su);
                 if n.dot(p(0) - axis) < 0.0 {
                     quad.reverse();
                 }
