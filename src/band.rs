@@ -14,7 +14,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
-use crate::render::{cached_triangle, outside_rows, per_colouring, CachedWalk};
+use crate::render::{cached_triangle, outside_rows, per_colouring, CachedWalk, RenderState};
 use crate::shade::{Material, Shading};
 use crate::{
     AfterBand, BandBuffers, Bands, CachedVertex, ColorBuffer, DepthTarget, DrawError, Error,
@@ -44,9 +44,9 @@ where
     type Color = D::Color;
     type Error = D::Error;
 
-    fn draw_mesh<M>(
+    fn draw_mesh<M, S: RenderState>(
         &mut self,
-        renderer: &mut Renderer<'_, '_, M>,
+        renderer: &mut Renderer<'_, '_, M, S>,
     ) -> Result<(), DrawError<Self::Error>>
     where
         M: Copy + Material<D::Color>,
@@ -55,7 +55,7 @@ where
     }
 }
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Draw the frame band by band into `display` (for [`Bands`]): each band cleared to
     /// `background`, drawn with the Z-buffer, handed to `after` and sent with one
     /// `fill_contiguous`.
@@ -131,7 +131,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let Faces::Triangles { indices, .. } = self.mesh.faces else {
             return Ok(None);
         };
-        let fast = !M::DITHERED && matches!(self.options.shading, Shading::Flat | Shading::Lambert);
+        let fast = !M::DITHERED && matches!(self.shading(), Shading::Flat | Shading::Lambert);
         let nt = indices.len();
         let nb = bands.bands() as usize;
         let rows = bands.rows as i32;
@@ -209,7 +209,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     }
 }
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Draw a band's listed faces of a cached triangle mesh, in face order. All but the
     /// tall ones ([`Carry::Tall`]) are known to be unclipped, front-facing (as the
     /// options cull) and to reach the rows of `frame`, so those tests are skipped for
@@ -228,7 +228,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let Faces::Triangles { indices, materials } = self.mesh.faces else {
             return self.draw_fused(frame, zbuf);
         };
-        let lambert = self.options.shading == Shading::Lambert;
+        let lambert = self.shading() == Shading::Lambert;
         carry.start_band();
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
         let px = per_colouring!(self, materials, lambert, |shade| {
@@ -260,7 +260,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         };
         let clip = clip_of(frame, zbuf);
         let (row0, row1) = clip.subpixel_rows();
-        let mut target = FlatTarget::new(frame, zbuf, &clip);
+        let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
             let [a, b, c] = cached_triangle(cache, f, t)?;

@@ -357,10 +357,12 @@ pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };
+/// Render state fixed at compile time ([`Renderer::with_state`]).
+pub use render::state;
 
 /// For the bench firmware: check the assembly fill and span loops against their
 /// portable twins on the target (the number of differing cases; see
-/// `src/num/kernel.rs`).
+/// `src/num/kernel/`).
 #[doc(hidden)]
 pub use num::kernel::{check_fill_kernel, check_span_kernel};
 

@@ -75,7 +75,6 @@ fn gouraud_gets_its_normals_or_an_error() {
 /// Needs `mesh.check_for(options.shading)?;` at the top of `Renderer::new`
 /// (src/render/mod.rs), which is not this change's file to edit.
 #[test]
-#[ignore = "needs Renderer::new to call Mesh::check_for"]
 fn the_renderer_agrees_with_check_for() {
     let xf = cube_camera();
     let gouraud = RenderOptions {

@@ -97,7 +97,7 @@ pub(crate) fn band_origin(first_row: i32, rows: u16) -> Result<i32, Error> {
         .ok_or(Error::OutOfRange)
 }
 
-/// Validate `width × rows` against [`MAX_DIMENSION`] and a slice length.
+/// Validate `width × rows` against [`MAX_DIMENSION`](crate::MAX_DIMENSION) and a slice length.
 pub(crate) fn check_dims(width: u32, rows: u32, len: usize) -> Result<(u16, u16), Error> {
     if width == 0 || rows == 0 {
         return Err(Error::ZeroSize);

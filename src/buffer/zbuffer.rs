@@ -71,7 +71,7 @@ impl<'a> ZBuffer<'a> {
     /// A Z-buffer of `width × rows` entries covering screen rows `0..rows`.
     ///
     /// Errors: [`Error::ZeroSize`] for a zero dimension, [`Error::TooLarge`] above
-    /// [`MAX_DIMENSION`], [`Error::BufferTooSmall`] when `data` is shorter than
+    /// [`MAX_DIMENSION`](crate::MAX_DIMENSION), [`Error::BufferTooSmall`] when `data` is shorter than
     /// `width × rows`. A longer slice is fine; only its first `width × rows` entries are used.
     pub fn new(data: &'a mut [u16], width: u32, rows: u32) -> Result<Self, Error> {
         Ok(ZBuffer {

@@ -16,6 +16,7 @@ use crate::shade::{Intensity, Material};
 mod small;
 mod span;
 
+use crate::render::{Dynamic, RenderState};
 use crate::{ColorBuffer, DepthTest, ZBuffer};
 use small::{fill_small, Buffers};
 pub(crate) use span::flat_span;
@@ -95,7 +96,7 @@ pub fn fill_triangle<D: DrawTarget>(
     color: D::Color,
 ) -> Result<SpanStats, D::Error> {
     let clip = clip_of(target, zbuf);
-    depth_runs(Some(zbuf), tri, &clip, |y, x0, x1| {
+    depth_runs::<Dynamic, _>(Some(zbuf), tri, &clip, |y, x0, x1| {
         target.fill_solid(&run_rect(y, x0, x1), color)
     })
 }
@@ -116,12 +117,12 @@ where
     M: Material<D::Color>,
 {
     let clip = clip_of(target, zbuf);
-    shade_triangle(target, Some(zbuf), &clip, tri, material, intensity)
+    shade_triangle::<Dynamic, _, _>(target, Some(zbuf), &clip, tri, material, intensity)
 }
 
 /// Draw a triangle in `material` with per-vertex intensities, choosing the cheapest
 /// way to emit its runs.
-pub(crate) fn shade_triangle<D, M>(
+pub(crate) fn shade_triangle<S: RenderState, D, M>(
     target: &mut D,
     zbuf: Option<&mut ZBuffer<'_>>,
     clip: &Clip,
@@ -136,13 +137,13 @@ where
     let uniform = intensity[0] == intensity[1] && intensity[1] == intensity[2];
     if uniform && !M::DITHERED {
         let color = material.shade(intensity[0], 0, 0);
-        return depth_runs(zbuf, tri, clip, |y, x0, x1| {
+        return depth_runs::<S, _>(zbuf, tri, clip, |y, x0, x1| {
             target.fill_solid(&run_rect(y, x0, x1), color)
         });
     }
     if uniform {
         let i = intensity[0];
-        return depth_runs(zbuf, tri, clip, |y, x0, x1| {
+        return depth_runs::<S, _>(zbuf, tri, clip, |y, x0, x1| {
             let colors = (x0..x1).map(|x| material.shade(i, x, y));
             target.fill_contiguous(&run_rect(y, x0, x1), colors)
         });
@@ -155,7 +156,7 @@ where
         i64::from(*intensity.iter().max().unwrap_or(&0)) << 16,
     );
     let step = plane.step_x_i64();
-    depth_runs(zbuf, tri, clip, |y, x0, x1| {
+    depth_runs::<S, _>(zbuf, tri, clip, |y, x0, x1| {
         let start = plane.at_pixel(x0, y).clamp(lo, hi) + (1 << 15);
         let colors = (x0..x1).scan(start, |acc, x| {
             let i = (*acc >> 16).clamp(0, 65535) as u16;
@@ -169,25 +170,27 @@ where
 /// Fill a flat-coloured triangle into a colour buffer and a Z-buffer together: the
 /// depth test and the colour write share one loop, with no runs to emit. Gives the same
 /// pixels as [`depth_runs`] with `fill_solid` runs.
-pub(crate) fn fill_flat_buffered<C: PixelColor>(
+pub(crate) fn fill_flat_buffered<S: RenderState, C: PixelColor>(
     frame: &mut ColorBuffer<'_, C>,
     zbuf: &mut ZBuffer<'_>,
     clip: &Clip,
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
-    FlatTarget::new(frame, zbuf, clip).fill(tri.each_ref(), color)
+    FlatTarget::<C, S>::new(frame, zbuf, clip).fill(tri.each_ref(), color)
 }
 
 /// A colour buffer and a Z-buffer borrowed for a run of flat triangles: what
 /// [`fill_flat_buffered`] works out about them (geometry, depth test, clip) is worked
 /// out once, not per triangle.
-pub(crate) enum FlatTarget<'a, 'z, 'c, C> {
+pub(crate) enum FlatTarget<'a, 'z, 'c, C, S> {
     /// Same geometry: one index serves both buffers.
     Fused {
         b: Buffers<'a, 'a, C>,
         test: DepthTest,
         write: bool,
+        /// The render state fixing the depth test, if it does.
+        state: core::marker::PhantomData<S>,
     },
     /// Different geometries (or nothing to draw when `clip` is empty).
     Split {
@@ -197,7 +200,7 @@ pub(crate) enum FlatTarget<'a, 'z, 'c, C> {
     },
 }
 
-impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
+impl<'a, 'z, 'c, C: PixelColor, S: RenderState> FlatTarget<'a, 'z, 'c, C, S> {
     pub(crate) fn new(
         frame: &'a mut ColorBuffer<'c, C>,
         zbuf: &'a mut ZBuffer<'z>,
@@ -211,7 +214,7 @@ impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
             };
         }
         let (w, _, first_row) = zbuf.geometry();
-        let (test, write) = (zbuf.test(), zbuf.write_enabled());
+        let (test, write) = (S::depth_test(zbuf.test()), zbuf.write_enabled());
         FlatTarget::Fused {
             b: Buffers {
                 zdata: zbuf.data_mut(),
@@ -222,6 +225,7 @@ impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
             },
             test,
             write,
+            state: core::marker::PhantomData,
         }
     }
 
@@ -229,8 +233,12 @@ impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
     pub(crate) fn fill(&mut self, [a, b, c]: [&ScreenVertex; 3], color: C) -> SpanStats {
         let tri = &[*a, *b, *c];
         match self {
-            FlatTarget::Fused { b, test, write } => fill_fused(b, *test, *write, tri, color),
-            FlatTarget::Split { frame, zbuf, clip } => fill_split(frame, zbuf, clip, tri, color),
+            FlatTarget::Fused { b, test, write, .. } => {
+                fill_fused::<S, C>(b, *test, *write, tri, color)
+            }
+            FlatTarget::Split { frame, zbuf, clip } => {
+                fill_split::<S, C>(frame, zbuf, clip, tri, color)
+            }
         }
     }
 }
@@ -238,13 +246,15 @@ impl<'a, 'z, 'c, C: PixelColor> FlatTarget<'a, 'z, 'c, C> {
 /// [`FlatTarget::fill`] into buffers of the same geometry; inlined into it (one call a
 /// triangle less) except on ARMv6-M (see docs/tuning.md).
 #[cfg_attr(not(zraster_armv6m), inline(always))]
-fn fill_fused<C: Copy>(
+fn fill_fused<S: RenderState, C: Copy>(
     b: &mut Buffers<'_, '_, C>,
     test: DepthTest,
     write: bool,
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
+    // A constant when the state fixes it: then only its loops are built.
+    let test = S::depth_test(test);
     let done = per_depth_test!(test, Some((0, 0)), |pass| fill_small(
         b, tri, color, write, pass
     ));
@@ -270,7 +280,7 @@ fn fill_fused<C: Copy>(
 }
 
 /// [`FlatTarget::fill`] into buffers of different geometries.
-fn fill_split<C: PixelColor>(
+fn fill_split<S: RenderState, C: PixelColor>(
     frame: &mut ColorBuffer<'_, C>,
     zbuf: &mut ZBuffer<'_>,
     clip: &Clip,
@@ -288,9 +298,9 @@ fn fill_split<C: PixelColor>(
     };
     let write = zbuf.write_enabled();
     let rows = (&setup, &rows, dz, clip);
-    per_depth_test!(zbuf.test(), SpanStats::default(), |pass| flat_rows(
-        frame, zbuf, rows, write, color, pass
-    ))
+    per_depth_test!(S::depth_test(zbuf.test()), SpanStats::default(), |pass| {
+        flat_rows(frame, zbuf, rows, write, color, pass)
+    })
 }
 
 /// The row loop of [`fill_fused`] for one depth test: one index serves both buffers.
@@ -356,7 +366,7 @@ pub(crate) fn run_rect(y: i32, x0: i32, x1: i32) -> Rectangle {
 /// Scan-convert `tri` inside `clip`, depth-test every covered pixel against `zbuf`
 /// (every pixel passes without one) and call `run(y, x0, x1)` for each horizontal run
 /// of passing pixels.
-pub(crate) fn depth_runs<E>(
+pub(crate) fn depth_runs<S: RenderState, E>(
     zbuf: Option<&mut ZBuffer<'_>>,
     tri: &[ScreenVertex; 3],
     clip: &Clip,
@@ -384,7 +394,7 @@ pub(crate) fn depth_runs<E>(
         return Ok(stats);
     };
     let write = zbuf.write_enabled();
-    per_depth_test!(zbuf.test(), Ok(stats), |pass| depth_rows(
+    per_depth_test!(S::depth_test(zbuf.test()), Ok(stats), |pass| depth_rows(
         zbuf, &setup, &rows, dz, clip, write, pass, run
     ))
 }

@@ -2,7 +2,7 @@
 
 use super::*;
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Hidden-line removal: the edges of the faces that survive culling, drawn in
     /// `color` only where no surface is in front of them.
     ///
@@ -21,7 +21,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         // Pass 1: depth only.
         let geometry =
             self.for_each_triangle(&clip, first, 0..self.mesh.face_count(), |_, _, tri, _| {
-                let s = depth_runs::<D::Error>(Some(&mut *zbuf), tri, &clip, |_, _, _| Ok(()))
+                let s = depth_runs::<S, D::Error>(Some(&mut *zbuf), tri, &clip, |_, _, _| Ok(()))
                     .map_err(DrawError::Target)?;
                 pixels.pixels_tested += u64::from(s.pixels_tested);
                 Ok(())

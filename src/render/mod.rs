@@ -13,18 +13,20 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 mod lines;
 mod painter;
 mod solid;
+pub mod state;
 mod target;
 mod walk;
 
 pub use crate::geometry::cull::Cull;
 pub use painter::DepthSort;
 pub(crate) use solid::per_colouring;
+pub use state::{Dynamic, RenderState};
 pub(crate) use target::sealed;
 pub use target::{DepthTarget, WithDepth};
 pub(crate) use walk::{cached_triangle, outside_rows, CachedWalk};
 use walk::{decide, edges, fan, Seen};
 
-use crate::camera::Transform;
+use crate::camera::Camera;
 use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget};
 use crate::geometry::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
 use crate::geometry::project::{outcode_of, to_f32, ScreenMap};
@@ -202,11 +204,12 @@ impl Default for CachedVertex {
 /// ```
 /// use embedded_graphics::pixelcolor::Rgb565;
 /// use embedded_graphics::prelude::*;
-/// use zraster::{math::{Mat4, Vec3}, mesh::CUBE, camera::{Transform, Viewport}};
+/// use zraster::{math::{radians, Vec3}, mesh::CUBE, Camera, Viewport};
 /// use zraster::{Frame, Renderer, RenderOptions};
 ///
 /// let vp = Viewport::new(64, 48)?;
-/// let xf = Transform::perspective(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, vp)?;
+/// let xf = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?
+///     .perspective(radians(45.0), 0.1, 10.0, vp)?;
 /// let mut pixels = [Rgb565::BLACK; 64 * 48];
 /// let mut depth = [0u16; 64 * 48];
 /// let mut frame = Frame::new(&mut pixels, &mut depth, 64, 48)?;
@@ -218,7 +221,7 @@ impl Default for CachedVertex {
 /// assert_eq!(frame.color().pixel(32, 24), Some(Rgb565::new(0, 0, 31))); // the blue front face
 /// # Ok::<(), zraster::Error>(())
 /// ```
-pub struct Renderer<'m, 'c, M> {
+pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) mesh: Mesh<'m, M>,
     pub(crate) fixed: FixedTransform,
     pub(crate) map: ScreenMap,
@@ -230,6 +233,8 @@ pub struct Renderer<'m, 'c, M> {
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
     pub(crate) stats: FrameStats,
     pub(crate) counted: bool,
+    /// What is fixed at compile time (see [`state`]).
+    pub(crate) state: core::marker::PhantomData<S>,
 }
 
 /// A fetched vertex: screen position if inside (code 0), and its light.
@@ -246,7 +251,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// vertices are transformed once per face that uses them, and again in every band).
     ///
     /// Errors: a NaN/∞ or degenerate transform, a mesh scale that is not finite.
-    pub fn new(mesh: &Mesh<'m, M>, xf: &Transform, options: RenderOptions) -> Result<Self, Error> {
+    pub fn new(mesh: &Mesh<'m, M>, xf: &Camera, options: RenderOptions) -> Result<Self, Error> {
+        mesh.check_for(options.shading)?;
         let mvp = xf.model_view_projection();
         let fixed = FixedTransform::new(&mvp, mesh.scale)?;
         if !(options.light.direction.is_finite()
@@ -278,6 +284,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             cache: None,
             stats: FrameStats::default(),
             counted: false,
+            state: core::marker::PhantomData,
         })
     }
 
@@ -287,7 +294,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
     pub fn with_cache(
         mesh: &Mesh<'m, M>,
-        xf: &Transform,
+        xf: &Camera,
         options: RenderOptions,
         cache: &'c mut [CachedVertex],
     ) -> Result<Self, Error> {
@@ -300,6 +307,61 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         }
         r.cache = Some(cache);
         Ok(r)
+    }
+
+    /// This renderer with the render state `T` fixed at compile time: a firmware that
+    /// draws only with `T`'s depth test and shading carries only their code (see
+    /// [`state`](crate::state)). `T`'s depth test replaces the Z-buffer's.
+    ///
+    /// ```
+    /// # use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+    /// # use zraster::{math::{radians, Vec3}, mesh::CUBE, shade::Shading};
+    /// # use zraster::{Camera, Frame, RenderOptions, Renderer, Viewport};
+    /// use zraster::state::LambertLess;
+    /// # let camera = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?
+    /// #     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(32, 32)?)?;
+    /// # let mut px = [Rgb565::BLACK; 32 * 32];
+    /// # let mut depth = [0u16; 32 * 32];
+    /// # let mut frame = Frame::new(&mut px, &mut depth, 32, 32)?;
+    /// # frame.clear(Rgb565::BLACK);
+    /// let options = RenderOptions { shading: Shading::Lambert, ..Default::default() };
+    /// let mut renderer = Renderer::new(&CUBE, &camera, options)?.with_state::<LambertLess>()?;
+    /// renderer.draw(&mut frame)?;
+    /// assert_eq!(renderer.stats().drawn, 6);
+    /// // A state that disagrees with the options is an error, not a silent override.
+    /// let flat = RenderOptions::default(); // Shading::Flat
+    /// assert!(Renderer::new(&CUBE, &camera, flat)?.with_state::<LambertLess>().is_err());
+    /// # Ok::<(), zraster::Error>(())
+    /// ```
+    ///
+    /// Errors: [`Error::InvalidParameter`] when `T` fixes a shading other than the
+    /// options'.
+    pub fn with_state<T: RenderState>(self) -> Result<Renderer<'m, 'c, M, T>, Error> {
+        if T::SHADING.is_some_and(|s| s != self.options.shading) {
+            return Err(Error::InvalidParameter(
+                "the render state fixes another shading than the options'",
+            ));
+        }
+        Ok(Renderer {
+            mesh: self.mesh,
+            fixed: self.fixed,
+            map: self.map,
+            options: self.options,
+            light_model: self.light_model,
+            light_q: self.light_q,
+            cache: self.cache,
+            stats: self.stats,
+            counted: self.counted,
+            state: core::marker::PhantomData,
+        })
+    }
+}
+
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
+    /// The shading in use: the state's if it fixes one, else the options'.
+    #[inline(always)]
+    pub(crate) fn shading(&self) -> Shading {
+        S::shading(self.options.shading)
     }
 
     /// The counts so far (see [`FrameStats`]).
@@ -318,7 +380,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 index: usize::from(i),
             })?;
         let (code, screen) = self.map.project_fixed(&self.fixed.apply(p));
-        let light = if self.options.shading == Shading::Gouraud {
+        let light = if self.shading() == Shading::Gouraud {
             self.vertex_light(usize::from(i))
         } else {
             ONE
@@ -345,7 +407,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             // Inside, but too far out for the cache's 16 bits: projected again.
             return self.transform(i).map_err(|_| bad());
         }
-        let light = if self.options.shading == Shading::Gouraud {
+        let light = if self.shading() == Shading::Gouraud {
             self.vertex_light(usize::from(i))
         } else {
             ONE

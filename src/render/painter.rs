@@ -23,7 +23,7 @@ impl<const N: usize> DepthSort<N> {
     }
 }
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Draw by depth sorting (the painter's algorithm of the seeds): faces sorted by the
     /// depth of their centroid, drawn farthest first with no Z-buffer. Cheap in RAM,
     /// and wrong exactly where the seeds say: cyclic overlap, interpenetration.
@@ -69,17 +69,18 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             .sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
         let clip = Clip::from_rect(&target.bounding_box());
         let mut pixels = FrameStats::default();
+        // Read in the closures through the state, so that a fixed one folds there.
         let shading = self.options.shading;
         let first = !self.counted;
         let order = sort.items.iter().map(|&(_, f)| usize::from(f));
         let geometry = self.for_each_triangle(&clip, first, order, |f, mat, tri, lights| {
-            let lights = match shading {
+            let lights = match S::shading(shading) {
                 Shading::Flat => [ONE; 3],
                 Shading::Lambert => [self.face_light(f); 3],
                 Shading::Gouraud => lights,
             };
-            let s =
-                shade_triangle(target, None, &clip, tri, mat, lights).map_err(DrawError::Target)?;
+            let s = shade_triangle::<S, _, _>(target, None, &clip, tri, mat, lights)
+                .map_err(DrawError::Target)?;
             pixels.add_pixels(s);
             Ok(())
         })?;

@@ -30,7 +30,7 @@ macro_rules! per_colouring {
 }
 pub(crate) use per_colouring;
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// The one colour of every face when it does not depend on the face (a uniform
     /// material, unlit).
     pub(crate) fn flat_color<C>(
@@ -85,6 +85,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     {
         let clip = clip_of(target, zbuf);
         let mut pixels = FrameStats::default();
+        // Read in the closures through the state, so that a fixed one folds there.
         let shading = self.options.shading;
         let first = !self.counted;
         let geometry = self.for_each_triangle(
@@ -92,13 +93,14 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             first,
             0..self.mesh.face_count(),
             |f, mat, tri, lights| {
-                let lights = match shading {
+                let lights = match S::shading(shading) {
                     Shading::Flat => [ONE; 3],
                     Shading::Lambert => [self.face_light(f); 3],
                     Shading::Gouraud => lights,
                 };
-                let s = shade_triangle(target, Some(&mut *zbuf), &clip, tri, mat, lights)
-                    .map_err(DrawError::Target)?;
+                let s =
+                    shade_triangle::<S, _, _>(target, Some(&mut *zbuf), &clip, tri, mat, lights)
+                        .map_err(DrawError::Target)?;
                 pixels.add_pixels(s);
                 Ok(())
             },
@@ -124,7 +126,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         C: PixelColor,
         M: Material<C>,
     {
-        let fast = !M::DITHERED && matches!(self.options.shading, Shading::Flat | Shading::Lambert);
+        let fast = !M::DITHERED && matches!(self.shading(), Shading::Flat | Shading::Lambert);
         if let (true, Some(_), Faces::Triangles { indices, materials }) =
             (fast, &self.cache, self.mesh.faces)
         {
@@ -132,6 +134,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
+        // Read in the closures through the state, so that a fixed one folds there.
         let shading = self.options.shading;
         let first = !self.counted;
         let geometry = self
@@ -140,11 +143,15 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 first,
                 0..self.mesh.face_count(),
                 |f, mat, tri, lights| {
-                    let s = match shading {
-                        Shading::Flat if !M::DITHERED => {
-                            fill_flat_buffered(frame, zbuf, &clip, tri, mat.shade(ONE, 0, 0))
-                        }
-                        Shading::Lambert if !M::DITHERED => fill_flat_buffered(
+                    let s = match S::shading(shading) {
+                        Shading::Flat if !M::DITHERED => fill_flat_buffered::<S, _>(
+                            frame,
+                            zbuf,
+                            &clip,
+                            tri,
+                            mat.shade(ONE, 0, 0),
+                        ),
+                        Shading::Lambert if !M::DITHERED => fill_flat_buffered::<S, _>(
                             frame,
                             zbuf,
                             &clip,
@@ -152,13 +159,20 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                             mat.shade(self.face_light(f), 0, 0),
                         ),
                         _ => {
-                            let lights = match shading {
+                            let lights = match S::shading(shading) {
                                 Shading::Flat => [ONE; 3],
                                 Shading::Lambert => [self.face_light(f); 3],
                                 Shading::Gouraud => lights,
                             };
-                            shade_triangle(frame, Some(&mut *zbuf), &clip, tri, mat, lights)
-                                .map_err(DrawError::Target)?
+                            shade_triangle::<S, _, _>(
+                                frame,
+                                Some(&mut *zbuf),
+                                &clip,
+                                tri,
+                                mat,
+                                lights,
+                            )
+                            .map_err(DrawError::Target)?
                         }
                     };
                     pixels.add_pixels(s);
@@ -179,7 +193,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     #[inline(never)]
     pub(crate) fn draw_clipped_face<C>(
         &self,
-        target: &mut FlatTarget<'_, '_, '_, C>,
+        target: &mut FlatTarget<'_, '_, '_, C, S>,
         clip: &Clip,
         first: bool,
         f: usize,
@@ -188,7 +202,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         C: PixelColor,
         M: Material<C>,
     {
-        let lambert = self.options.shading == Shading::Lambert;
+        let lambert = self.shading() == Shading::Lambert;
         let mut more = SpanStats::default();
         let g = self
             .for_each_triangle::<core::convert::Infallible>(
@@ -224,7 +238,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         C: PixelColor,
         M: Material<C>,
     {
-        let lambert = self.options.shading == Shading::Lambert;
+        let lambert = self.shading() == Shading::Lambert;
         let (st, px) = per_colouring!(self, materials, lambert, |shade| {
             self.cull_and_fill(frame, zbuf, indices, faces, shade)?
         });
@@ -256,7 +270,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         // A band drawn without bins skips the triangles off its rows.
         let rows = (!first).then(|| clip.subpixel_rows());
         let mut walk = CachedWalk::new(indices, faces, cache, self.options.cull);
-        let mut target = FlatTarget::new(frame, zbuf, &clip);
+        let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
         let mut clipped = FrameStats::default();
         for next in walk.by_ref() {
             match next? {

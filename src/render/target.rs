@@ -26,9 +26,9 @@ pub trait DepthTarget: sealed::Sealed {
 
     /// Draw `renderer`'s mesh into the target (what [`Renderer::draw`] calls).
     #[doc(hidden)]
-    fn draw_mesh<M>(
+    fn draw_mesh<M, S: RenderState>(
         &mut self,
-        renderer: &mut Renderer<'_, '_, M>,
+        renderer: &mut Renderer<'_, '_, M, S>,
     ) -> Result<(), DrawError<Self::Error>>
     where
         M: Copy + Material<Self::Color>;
@@ -42,9 +42,9 @@ impl<C: PixelColor> DepthTarget for Frame<'_, C> {
     type Color = C;
     type Error = core::convert::Infallible;
 
-    fn draw_mesh<M>(
+    fn draw_mesh<M, S: RenderState>(
         &mut self,
-        renderer: &mut Renderer<'_, '_, M>,
+        renderer: &mut Renderer<'_, '_, M, S>,
     ) -> Result<(), DrawError<Self::Error>>
     where
         M: Copy + Material<C>,
@@ -101,9 +101,9 @@ impl<D: DrawTarget> DepthTarget for WithDepth<'_, '_, D> {
     type Color = D::Color;
     type Error = D::Error;
 
-    fn draw_mesh<M>(
+    fn draw_mesh<M, S: RenderState>(
         &mut self,
-        renderer: &mut Renderer<'_, '_, M>,
+        renderer: &mut Renderer<'_, '_, M, S>,
     ) -> Result<(), DrawError<Self::Error>>
     where
         M: Copy + Material<D::Color>,
@@ -112,7 +112,7 @@ impl<D: DrawTarget> DepthTarget for WithDepth<'_, '_, D> {
     }
 }
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Draw the mesh with the Z-buffer into `target`: every visible triangle,
     /// depth-tested per pixel, in the mesh's materials and the chosen shading.
     ///

@@ -217,7 +217,7 @@ pub(crate) fn edges(vs: &[u16]) -> impl Iterator<Item = (u16, u16)> + '_ {
     vs.iter().copied().zip(vs.iter().copied().cycle().skip(1))
 }
 
-impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Walk every triangle (fan-triangulated faces) that survives clipping and culling,
     /// calling `emit(face, screen triangle, vertex lights)`; returns the geometry counts.
     pub(crate) fn for_each_triangle<E>(
@@ -256,7 +256,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                             index: usize::from(v.index),
                         },
                     )?;
-                    let light = if self.options.shading == Shading::Gouraud {
+                    let light = if self.shading() == Shading::Gouraud {
                         f32::from(self.vertex_light(usize::from(v.index)))
                     } else {
                         f32::from(ONE)

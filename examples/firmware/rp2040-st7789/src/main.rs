@@ -25,7 +25,7 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{Faces, Materials, Mesh, CUBE},
     shade::Shading,
-    BandBuffers, Bands, CachedVertex, RenderOptions, Renderer,
+    state::LambertLess, BandBuffers, Bands, CachedVertex, RenderOptions, Renderer,
 };
 use zraster_bench_scene::bunny;
 
@@ -112,12 +112,13 @@ fn main() -> ! {
         // The first half of each turn shows the cube, the second the bunny.
         if (frame / 60) % 2 == 0 {
             let xf = camera.with_model(spin * Mat4::scaling(Vec3::new(1.2, 1.2, 1.2)) * Mat4::translation(Vec3::new(-0.5, -0.5, -0.5)));
-            let mut renderer = Renderer::new(&CUBE, &xf, options).unwrap();
+            // Lambert and `Less` fixed at compile time: only their code is linked.
+            let mut renderer = Renderer::new(&CUBE, &xf, options).unwrap().with_state::<LambertLess>().unwrap();
             renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK)).ok();
         } else {
             let fit = bunny::BUNNY_FIT * 1.4;
             let xf = camera.with_model(spin * Mat4::scaling(Vec3::new(fit, fit, fit)));
-            let mut renderer = Renderer::with_cache(&bunny, &xf, options, cache).unwrap();
+            let mut renderer = Renderer::with_cache(&bunny, &xf, options, cache).unwrap().with_state::<LambertLess>().unwrap();
             renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK)).ok();
         }
         frame = frame.wrapping_add(1);
