@@ -354,11 +354,11 @@ pub use camera::{Camera, Viewport};
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
+/// Render state fixed at compile time ([`Renderer::with_state`]).
+pub use render::state;
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };
-/// Render state fixed at compile time ([`Renderer::with_state`]).
-pub use render::state;
 
 /// For the bench firmware: check the assembly fill and span loops against their
 /// portable twins on the target (the number of differing cases; see
