@@ -8,7 +8,7 @@ use crate::Error;
 /// How [`quantize`] stored positions: a model-space point is `position × scale + offset`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Quantized {
-    /// Model units per position step: the mesh's [`scale`](Mesh::scale).
+    /// Model units per position step: the mesh's [`scale`](super::Mesh::scale).
     pub scale: f32,
     /// What was subtracted before scaling (the bounding box's centre, or zero).
     pub offset: Vec3,
