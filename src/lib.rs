@@ -346,6 +346,7 @@ mod num;
 mod raster;
 mod render;
 pub mod shade;
+pub mod state;
 #[cfg(test)]
 mod testing;
 
@@ -354,8 +355,6 @@ pub use camera::{Camera, Viewport};
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
-/// Render state fixed at compile time ([`Renderer::with_state`]).
-pub use render::state;
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };

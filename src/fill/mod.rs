@@ -16,7 +16,7 @@ use crate::shade::{Intensity, Material};
 mod small;
 mod span;
 
-use crate::render::{Dynamic, RenderState};
+use crate::state::{Dynamic, RenderState};
 use crate::{ColorBuffer, DepthTest, ZBuffer};
 use small::{fill_small, Buffers};
 pub(crate) use span::flat_span;

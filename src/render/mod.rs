@@ -13,14 +13,13 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 mod lines;
 mod painter;
 mod solid;
-pub mod state;
 mod target;
 mod walk;
 
 pub use crate::geometry::cull::Cull;
+pub use crate::state::{Dynamic, RenderState};
 pub use painter::DepthSort;
 pub(crate) use solid::per_colouring;
-pub use state::{Dynamic, RenderState};
 pub(crate) use target::sealed;
 pub use target::{DepthTarget, WithDepth};
 pub(crate) use walk::{cached_triangle, outside_rows, CachedWalk};
@@ -233,7 +232,7 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
     pub(crate) stats: FrameStats,
     pub(crate) counted: bool,
-    /// What is fixed at compile time (see [`state`]).
+    /// What is fixed at compile time (see [`state`](crate::state)).
     pub(crate) state: core::marker::PhantomData<S>,
 }
 
