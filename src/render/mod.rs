@@ -363,6 +363,17 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         S::shading(self.options.shading)
     }
 
+    /// The light of a drawn triangle's corners for the shading in use: full (flat), the
+    /// face's Lambert light, or the vertices' own `vertex` lights (Gouraud).
+    #[inline(always)]
+    pub(crate) fn corner_lights(&self, f: usize, vertex: [Intensity; 3]) -> [Intensity; 3] {
+        match self.shading() {
+            Shading::Flat => [ONE; 3],
+            Shading::Lambert => [self.face_light(f); 3],
+            Shading::Gouraud => vertex,
+        }
+    }
+
     /// The counts so far (see [`FrameStats`]).
     pub fn stats(&self) -> FrameStats {
         self.stats

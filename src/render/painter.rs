@@ -69,16 +69,10 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             .sort_unstable_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
         let clip = Clip::from_rect(&target.bounding_box());
         let mut pixels = FrameStats::default();
-        // Read in the closures through the state, so that a fixed one folds there.
-        let shading = self.options.shading;
         let first = !self.counted;
         let order = sort.items.iter().map(|&(_, f)| usize::from(f));
         let geometry = self.for_each_triangle(&clip, first, order, |f, mat, tri, lights| {
-            let lights = match S::shading(shading) {
-                Shading::Flat => [ONE; 3],
-                Shading::Lambert => [self.face_light(f); 3],
-                Shading::Gouraud => lights,
-            };
+            let lights = self.corner_lights(f, lights);
             let s = shade_triangle::<S, _, _>(target, None, &clip, tri, mat, lights)
                 .map_err(DrawError::Target)?;
             pixels.add_pixels(s);

@@ -85,19 +85,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     {
         let clip = clip_of(target, zbuf);
         let mut pixels = FrameStats::default();
-        // Read in the closures through the state, so that a fixed one folds there.
-        let shading = self.options.shading;
         let first = !self.counted;
         let geometry = self.for_each_triangle(
             &clip,
             first,
             0..self.mesh.face_count(),
             |f, mat, tri, lights| {
-                let lights = match S::shading(shading) {
-                    Shading::Flat => [ONE; 3],
-                    Shading::Lambert => [self.face_light(f); 3],
-                    Shading::Gouraud => lights,
-                };
+                let lights = self.corner_lights(f, lights);
                 let s =
                     shade_triangle::<S, _, _>(target, Some(&mut *zbuf), &clip, tri, mat, lights)
                         .map_err(DrawError::Target)?;
@@ -134,8 +128,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
-        // Read in the closures through the state, so that a fixed one folds there.
-        let shading = self.options.shading;
         let first = !self.counted;
         let geometry = self
             .for_each_triangle::<core::convert::Infallible>(
@@ -143,7 +135,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 first,
                 0..self.mesh.face_count(),
                 |f, mat, tri, lights| {
-                    let s = match S::shading(shading) {
+                    let s = match self.shading() {
                         Shading::Flat if !M::DITHERED => fill_flat_buffered::<S, _>(
                             frame,
                             zbuf,
@@ -159,11 +151,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                             mat.shade(self.face_light(f), 0, 0),
                         ),
                         _ => {
-                            let lights = match S::shading(shading) {
-                                Shading::Flat => [ONE; 3],
-                                Shading::Lambert => [self.face_light(f); 3],
-                                Shading::Gouraud => lights,
-                            };
+                            let lights = self.corner_lights(f, lights);
                             shade_triangle::<S, _, _>(
                                 frame,
                                 Some(&mut *zbuf),

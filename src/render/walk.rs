@@ -10,9 +10,13 @@ use super::*;
 /// passes (bands) skip such triangles before anything else.
 #[inline(always)]
 pub(crate) fn outside_rows(tri: &[ScreenVertex; 3], row0: i32, row1: i32) -> bool {
-    let ymin = tri[0].y().min(tri[1].y()).min(tri[2].y());
-    let ymax = tri[0].y().max(tri[1].y()).max(tri[2].y());
-    ymax + 8 < row0 || ymin + 8 > row1
+    ys_outside_rows([tri[0].y(), tri[1].y(), tri[2].y()], row0, row1)
+}
+
+/// [`outside_rows`] for the corners' y alone.
+#[inline(always)]
+fn ys_outside_rows([a, b, c]: [i32; 3], row0: i32, row1: i32) -> bool {
+    a.max(b).max(c) + 8 < row0 || a.min(b).min(c) + 8 > row1
 }
 
 /// A triangle corner as the walk sees it: a cache entry or a vertex fetched on demand.
@@ -96,9 +100,7 @@ pub(crate) fn decide<V: Corner>([a, b, c]: [&V; 3], rows: Option<(i32, i32)>, cu
     }
     let (pa, pb, pc) = (a.xy(), b.xy(), c.xy());
     if let Some((row0, row1)) = rows {
-        let ymin = pa.1.min(pb.1).min(pc.1);
-        let ymax = pa.1.max(pb.1).max(pc.1);
-        if ymax + 8 < row0 || ymin + 8 > row1 {
+        if ys_outside_rows([pa.1, pb.1, pc.1], row0, row1) {
             return Seen::OffRows;
         }
     }
@@ -229,14 +231,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     ) -> Result<FrameStats, DrawError<E>> {
         let mut st = FrameStats::default();
         let cull = self.options.cull;
-        let (row0, row1) = clip.subpixel_rows();
+        // Later passes (bands) skip the triangles off their rows.
+        let rows = (!first).then(|| clip.subpixel_rows());
         for f in faces {
             let (vs, mat) = self.face(f)?;
             for (i0, i1, i2) in fan(vs) {
                 let v0 = self.fetch(i0, f)?;
                 let v1 = self.fetch(i1, f)?;
                 let v2 = self.fetch(i2, f)?;
-                let rows = (!first).then_some((row0, row1));
                 let seen = decide([&v0, &v1, &v2], rows, cull);
                 seen.count(&mut st);
                 if seen == Seen::Front {
