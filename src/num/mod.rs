@@ -238,7 +238,10 @@ pub(crate) fn div_ceil(n: i64, d: i64) -> i64 {
     -div_floor(-n, d)
 }
 
-/// ⌊n / d⌋ in 128 bits, for the rare exact evaluation of very large triangles.
+/// ⌊n / d⌋ in 128 bits, for the rare exact evaluation of very large triangles. Out of
+/// line: a 128-bit division is a kilobyte of code on ARMv6-M, and rare.
+#[inline(never)]
+#[cold]
 pub(crate) fn div_floor_wide(n: i128, d: i128) -> i128 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
     n.div_euclid(d)
