@@ -6,6 +6,9 @@ use crate::num::kernel;
 /// The pixel loop of [`fill_flat_buffered`]: depth test, depth write, colour write.
 /// Out of line, so that the loop has every register to itself. Returns the number of
 /// pixels that failed the test.
+// SAFETY: `link_section` only places the function: `.data.*` is copied to RAM by the
+// start-up code (cortex-m-rt) before `main`, so it is there whenever it is called.
+#[cfg_attr(all(feature = "ram-code", target_os = "none"), allow(unsafe_code), link_section = ".data.zraster")]
 #[inline(never)]
 pub(crate) fn flat_span<C: Copy>(
     zrow: &mut [u16],
@@ -44,6 +47,9 @@ pub(super) fn is_less(pass: &impl Fn(u16, u16) -> bool) -> bool {
 const LONG_SPAN: usize = 8;
 
 /// [`flat_span`] for long spans: two pixels a turn, the depth write decided once.
+// SAFETY: `link_section` only places the function: `.data.*` is copied to RAM by the
+// start-up code (cortex-m-rt) before `main`, so it is there whenever it is called.
+#[cfg_attr(all(feature = "ram-code", target_os = "none"), allow(unsafe_code), link_section = ".data.zraster")]
 #[inline(never)]
 fn flat_span_long<C: Copy>(
     zrow: &mut [u16],
@@ -66,6 +72,8 @@ fn flat_span_long<C: Copy>(
 /// loop further (it leaves loops with calls as they are).
 #[cold]
 #[inline(never)]
+// SAFETY: as for `flat_span` (called from it: kept in the same memory).
+#[cfg_attr(all(feature = "ram-code", target_os = "none"), allow(unsafe_code), link_section = ".data.zraster")]
 fn one_failed(n: &mut u32) {
     *n += 1;
 }
