@@ -342,6 +342,7 @@ pub mod fixed;
 mod geometry;
 pub mod math;
 pub mod mesh;
+pub mod model;
 mod num;
 mod raster;
 mod render;
@@ -354,6 +355,7 @@ pub use buffer::{AfterBand, BandBuffers, Bands, ColorBuffer, DepthTest, Frame, Z
 pub use camera::{Camera, Viewport};
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
+pub use model::{Model, ModelStyle};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
