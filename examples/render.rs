@@ -507,6 +507,10 @@ fn main() {
             if let Err(e) = result {
                 input_error(&format!("{}: {e:?}", o.model));
             }
+            // Same picture without bins, only slower: say so once.
+            if let (0, zraster::Binning::Off(why)) = (frame, renderer.binning()) {
+                eprintln!("warning: bands drawn without binning ({why})");
+            }
             stats = renderer.stats();
             continue;
         }

@@ -34,6 +34,54 @@ use crate::{
 /// (2 · bands + 1), so that a head is the link "before" the chain's first triangle.
 const END: u16 = u16::MAX;
 
+/// Whether a banded draw sorted its triangles into bins ([`Renderer::binning`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Binning {
+    /// No draw into [`Bands`] yet (whole frames need no bins).
+    NotBanded,
+    /// Binned: each band visited only the triangles that reach it.
+    Binned,
+    /// Not binned, for this reason: every band walked the whole mesh.
+    Off(Unbinned),
+}
+
+/// Why a banded draw could not bin its triangles ([`Binning::Off`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Unbinned {
+    /// The renderer has no vertex cache ([`Renderer::with_cache`]).
+    NoCache,
+    /// The mesh has polygon faces, not a triangle list.
+    Polygons,
+    /// Gouraud shading (binning serves flat colours: flat and Lambert).
+    Gouraud,
+    /// A dithered colour type (its pattern is drawn through the general path).
+    Dithered,
+    /// The bin slice holds `given` entries; [`BandBuffers::bins_needed`] asks `needed`.
+    Bins {
+        /// Entries the mesh needs.
+        needed: usize,
+        /// Entries the slice holds.
+        given: usize,
+    },
+    /// More than 250 bands, or more than 65,534 triangles with the bands' chains.
+    TooLarge,
+}
+
+impl core::fmt::Display for Unbinned {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Unbinned::NoCache => f.write_str("no vertex cache"),
+            Unbinned::Polygons => f.write_str("the mesh has polygon faces"),
+            Unbinned::Gouraud => f.write_str("Gouraud shading"),
+            Unbinned::Dithered => f.write_str("a dithered colour type"),
+            Unbinned::Bins { needed, given } => {
+                write!(f, "{given} bin entries where {needed} are needed")
+            }
+            Unbinned::TooLarge => f.write_str("more than 250 bands or 65,534 triangles"),
+        }
+    }
+}
+
 impl<D: DrawTarget, F> crate::render::sealed::Sealed for Bands<'_, '_, D, F> {}
 
 impl<D, F> DepthTarget for Bands<'_, '_, D, F>
@@ -116,7 +164,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 None => self.draw_fused(&mut color, &mut zbuf)?,
             }
             after.after(&mut color, &zbuf);
-            color.flush(display).map_err(DrawError::Target)?;
+            color.flush(display)?;
         }
         Ok(())
     }
@@ -128,26 +176,37 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         C: PixelColor,
         M: Material<C>,
     {
-        let Faces::Triangles { indices, .. } = self.mesh.faces else {
-            return Ok(None);
+        let off = |r: &mut Self, why| {
+            r.binning = Binning::Off(why);
+            Ok(None)
         };
-        let fast = !M::DITHERED && matches!(self.shading(), Shading::Flat | Shading::Lambert);
+        let Faces::Triangles { indices, .. } = self.mesh.faces else {
+            return off(self, Unbinned::Polygons);
+        };
+        if M::DITHERED {
+            return off(self, Unbinned::Dithered);
+        }
+        if self.shading() == Shading::Gouraud {
+            return off(self, Unbinned::Gouraud);
+        }
         let nt = indices.len();
         let nb = bands.bands() as usize;
         let rows = bands.rows as i32;
         let height = bands.height as i32;
         let Some(cache) = self.cache.as_deref() else {
-            return Ok(None);
+            return off(self, Unbinned::NoCache);
         };
         let chains = 2 * nb + 1;
         // Slot numbers (below `nt + chains`) and triangle numbers fit u16.
-        if !fast
-            || nb > 250
-            || nt + chains > usize::from(END)
-            || bands.bins.len() < BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows)
-        {
-            return Ok(None);
+        if nb > 250 || nt + chains > usize::from(END) {
+            return off(self, Unbinned::TooLarge);
         }
+        let needed = BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows);
+        if bands.bins.len() < needed {
+            let given = bands.bins.len();
+            return off(self, Unbinned::Bins { needed, given });
+        }
+        self.binning = Binning::Binned;
         // Tails, then the links (one a triangle) and the heads as one array of slots:
         // a chain's tail starts at its head's slot, so that appending never asks whether
         // the chain is empty.

@@ -351,6 +351,7 @@ pub mod state;
 #[cfg(test)]
 mod testing;
 
+pub use band::{Binning, Unbinned};
 pub use buffer::{AfterBand, BandBuffers, Bands, ColorBuffer, DepthTest, Frame, ZBuffer};
 pub use camera::{Camera, Viewport};
 pub use error::{DrawError, Error};

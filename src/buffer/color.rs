@@ -95,7 +95,15 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     /// Send the whole buffer to `display` at its screen position with one
     /// `fill_contiguous` (clipped to the display's bounding box first, as some drivers
     /// do not clip `fill_contiguous` themselves).
-    pub fn flush<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
+    pub fn flush<D: DrawTarget<Color = C>>(
+        &self,
+        display: &mut D,
+    ) -> Result<(), crate::DrawError<D::Error>> {
+        self.flush_raw(display).map_err(crate::DrawError::Target)
+    }
+
+    /// [`flush`](ColorBuffer::flush) with the display's own error.
+    fn flush_raw<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
         let area = self.bounding_box();
         let visible = area.intersection(&display.bounding_box());
         if visible == area {

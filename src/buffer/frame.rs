@@ -77,7 +77,10 @@ impl<'a, C: PixelColor> Frame<'a, C> {
 
     /// Send the colour buffer to `display` with one `fill_contiguous`
     /// (see [`ColorBuffer::flush`]).
-    pub fn flush<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
+    pub fn flush<D: DrawTarget<Color = C>>(
+        &self,
+        display: &mut D,
+    ) -> Result<(), crate::DrawError<D::Error>> {
         self.color.flush(display)
     }
 

@@ -17,7 +17,7 @@ mod small;
 mod span;
 
 use crate::state::{Dynamic, RenderState};
-use crate::{ColorBuffer, DepthTest, ZBuffer};
+use crate::{ColorBuffer, DepthTest, DrawError, ZBuffer};
 use small::{fill_small, Buffers};
 pub(crate) use span::flat_span;
 
@@ -64,7 +64,8 @@ pub(crate) fn clip_of<D: DrawTarget>(target: &D, zbuf: &ZBuffer<'_>) -> Clip {
     Clip::from_rect(&target.bounding_box()).intersect(z)
 }
 
-/// Fill a screen triangle with a flat colour, depth-tested against `zbuf`.
+/// Fill a screen triangle with a flat colour, depth-tested against `zbuf`. The only
+/// error is the target's ([`DrawError::Target`]).
 ///
 /// Either winding is drawn (cull beforehand with [`Facing`](crate::Facing)); a
 /// zero-area triangle draws nothing. The triangle is clipped to the target's bounding
@@ -94,11 +95,12 @@ pub fn fill_triangle<D: DrawTarget>(
     zbuf: &mut ZBuffer<'_>,
     tri: &[ScreenVertex; 3],
     color: D::Color,
-) -> Result<SpanStats, D::Error> {
+) -> Result<SpanStats, DrawError<D::Error>> {
     let clip = clip_of(target, zbuf);
     depth_runs::<Dynamic, _>(Some(zbuf), tri, &clip, |y, x0, x1| {
         target.fill_solid(&run_rect(y, x0, x1), color)
     })
+    .map_err(DrawError::Target)
 }
 
 /// Fill a screen triangle with a material lit at each vertex (`intensity`, Q15, see
@@ -111,13 +113,14 @@ pub fn fill_triangle_shaded<D, M>(
     tri: &[ScreenVertex; 3],
     material: M,
     intensity: [Intensity; 3],
-) -> Result<SpanStats, D::Error>
+) -> Result<SpanStats, DrawError<D::Error>>
 where
     D: DrawTarget,
     M: Material<D::Color>,
 {
     let clip = clip_of(target, zbuf);
     shade_triangle::<Dynamic, _, _>(target, Some(zbuf), &clip, tri, material, intensity)
+        .map_err(DrawError::Target)
 }
 
 /// Draw a triangle in `material` with per-vertex intensities, choosing the cheapest

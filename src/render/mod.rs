@@ -232,6 +232,8 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
     pub(crate) stats: FrameStats,
     pub(crate) counted: bool,
+    /// Whether the last banded draw binned its triangles (see [`Binning`]).
+    pub(crate) binning: crate::band::Binning,
     /// What is fixed at compile time (see [`state`](crate::state)).
     pub(crate) state: core::marker::PhantomData<S>,
 }
@@ -283,6 +285,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             cache: None,
             stats: FrameStats::default(),
             counted: false,
+            binning: crate::band::Binning::NotBanded,
             state: core::marker::PhantomData,
         })
     }
@@ -351,6 +354,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             cache: self.cache,
             stats: self.stats,
             counted: self.counted,
+            binning: self.binning,
             state: core::marker::PhantomData,
         })
     }
@@ -377,6 +381,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// The counts so far (see [`FrameStats`]).
     pub fn stats(&self) -> FrameStats {
         self.stats
+    }
+
+    /// Whether the last draw into [`Bands`](crate::Bands) sorted the triangles into
+    /// bins, and if not, why: without bins every band walks the whole mesh, which is
+    /// slower but draws the same picture. [`Binning::NotBanded`] before any banded draw.
+    pub fn binning(&self) -> crate::band::Binning {
+        self.binning
     }
 
     /// Transform, classify and project vertex `i`.
