@@ -22,8 +22,8 @@ pub enum Shading {
     /// Each face in its material at full intensity.
     #[default]
     Flat,
-    /// Flat Lambert: one intensity per face from its normal and the light (the seeds'
-    /// dot-product colour).
+    /// Flat Lambert: one intensity per face from its normal and the light (Lambert's cosine law:
+    /// the dot product of normal and light).
     Lambert,
     /// Gouraud: Lambert intensity at each vertex (from the mesh's vertex normals),
     /// interpolated across the face.

@@ -81,17 +81,16 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565, prelude::*};
-/// use zraster::camera::{Transform, Viewport};
-/// use zraster::{math::Vec3, mesh::CUBE, BandBuffers, Bands, RenderOptions, Renderer};
+/// use zraster::camera::{Camera, Viewport};
+/// use zraster::{math::{radians, Vec3}, mesh::CUBE, BandBuffers, Bands, RenderOptions, Renderer};
 ///
 /// let mut display = MockDisplay::<Rgb565>::new(); // 64 × 64
 /// // Bands of 8 rows: 64 × 8 colours and depths instead of 64 × 64.
 /// let (mut color, mut depth) = ([Rgb565::BLACK; 64 * 8], [0u16; 64 * 8]);
 /// let mut buffers = BandBuffers::new(&mut color, &mut depth, 64, 8, 64, &mut [])?;
 /// assert_eq!(buffers.bands(), 8);
-/// let xf = Transform::perspective(
-///     Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, Viewport::new(64, 64)?,
-/// )?;
+/// let xf = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?
+///     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(64, 64)?)?;
 /// let mut renderer = Renderer::new(&CUBE, &xf, RenderOptions::default())?;
 /// let mut rows_seen = 0;
 /// renderer

@@ -16,16 +16,15 @@ use crate::Error;
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565, prelude::*};
-/// use zraster::camera::{Transform, Viewport};
-/// use zraster::{math::Vec3, mesh::CUBE, Frame, RenderOptions, Renderer};
+/// use zraster::camera::{Camera, Viewport};
+/// use zraster::{math::{radians, Vec3}, mesh::CUBE, Frame, RenderOptions, Renderer};
 ///
 /// let mut pixels = [Rgb565::BLACK; 64 * 48];
 /// let mut depth = [0u16; 64 * 48];
 /// let mut frame = Frame::new(&mut pixels, &mut depth, 64, 48)?;
 /// frame.clear(Rgb565::BLACK);
-/// let xf = Transform::perspective(
-///     Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, Viewport::new(64, 48)?,
-/// )?;
+/// let xf = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?
+///     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(64, 48)?)?;
 /// Renderer::new(&CUBE, &xf, RenderOptions::default())?.draw(&mut frame)?;
 /// assert_eq!(frame.color().pixel(32, 24), Some(Rgb565::new(0, 0, 31))); // the blue front face
 /// assert!(frame.depth().depth(32, 24) < Some(u16::MAX));

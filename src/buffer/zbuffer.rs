@@ -6,7 +6,7 @@ use crate::Error;
 /// How a fragment's depth is compared with the stored depth.
 ///
 /// Smaller depth is nearer (window depth 0 = near plane, 65535 = far plane), as in the
-/// seeds' Z-buffer algorithm: a fragment is drawn when its `z < Z(i, j)`.
+/// classic Z-buffer algorithm (Catmull, 1974): a fragment is drawn when its `z < Z(i, j)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum DepthTest {
     /// Pass when the fragment is strictly nearer (the default, OpenGL's `GL_LESS`).

@@ -1,6 +1,6 @@
 //! Filling screen triangles through the Z-buffer into any [`DrawTarget`].
 //!
-//! The per-pixel work is the seeds' algorithm and nothing more: step the depth (one
+//! The per-pixel work is Catmull's Z-buffer algorithm and nothing more: step the depth (one
 //! add), compare with the stored depth, store it. Pixels that pass leave as horizontal
 //! runs, one `fill_solid` per run (or one `fill_contiguous` for shaded runs), already
 //! clipped to the target's bounding box.

@@ -256,7 +256,7 @@ impl ScreenMap {
 mod tests {
     use super::super::transform::FixedTransform;
     use super::*;
-    use crate::camera::{Transform, Viewport};
+    use crate::camera::{Camera, Viewport};
     use crate::math::{radians, Mat4, Vec3};
 
     #[test]
@@ -264,16 +264,11 @@ mod tests {
         let vp = Viewport::new(320, 240).unwrap();
         let map = ScreenMap::new(&vp);
         for (yaw, dist) in [(0.0, 2.5), (30.0, 1.6), (200.0, 0.5), (77.0, 9.0)] {
-            let xf = Transform::perspective(
-                Vec3::new(0.0, 0.0, dist),
-                Vec3::default(),
-                60.0,
-                0.1,
-                10.0,
-                vp,
-            )
-            .unwrap()
-            .with_model(Mat4::rotation_y(radians(yaw)));
+            let xf = Camera::look_at(Vec3::new(0.0, 0.0, dist), Vec3::default(), Vec3::Y)
+                .unwrap()
+                .perspective(radians(60.0), 0.1, 10.0, vp)
+                .unwrap()
+                .with_model(Mat4::rotation_y(radians(yaw)));
             let fx = FixedTransform::new(&xf.model_view_projection(), 1.0 / 32767.0).unwrap();
             let mut seen = 0;
             for i in 0..2000i32 {

@@ -193,23 +193,18 @@ fn pow2_f64(k: i32) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::camera::{Transform, Viewport};
+    use crate::camera::{Camera, Viewport};
     use crate::geometry::project::ScreenMap;
     use crate::math::{radians, Vec3};
 
     #[test]
     fn the_fixed_transform_matches_the_float_one() {
         let vp = Viewport::new(320, 240).unwrap();
-        let xf = Transform::perspective(
-            Vec3::new(0.0, 0.0, 2.5),
-            Vec3::default(),
-            60.0,
-            0.1,
-            10.0,
-            vp,
-        )
-        .unwrap()
-        .with_model(Mat4::rotation_x(radians(20.0)) * Mat4::rotation_y(radians(30.0)));
+        let xf = Camera::look_at(Vec3::new(0.0, 0.0, 2.5), Vec3::default(), Vec3::Y)
+            .unwrap()
+            .perspective(radians(60.0), 0.1, 10.0, vp)
+            .unwrap()
+            .with_model(Mat4::rotation_x(radians(20.0)) * Mat4::rotation_y(radians(30.0)));
         let mvp = xf.model_view_projection();
         let scale = 1.0 / 32767.0;
         let fx = FixedTransform::new(&mvp, scale).unwrap();

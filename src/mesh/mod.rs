@@ -1,4 +1,4 @@
-//! Meshes: the seeds' vertex table and face table, in borrowed (flash-friendly) slices.
+//! Meshes: a vertex table and a face table (the classic "vertex list" polygon model), in borrowed (flash-friendly) slices.
 
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -35,7 +35,7 @@ pub enum Materials<'a, M> {
 /// The face table.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Faces<'a, M> {
-    /// Polygons of any size, each with its own material (the seeds' cube).
+    /// Polygons of any size, each with its own material (as [`CUBE`]).
     Polygons(&'a [Face<'a, M>]),
     /// Triangles (compact: 6 bytes a face).
     Triangles {
@@ -249,8 +249,8 @@ impl<'a, M: Copy> Mesh<'a, M> {
     }
 }
 
-/// The seeds' unit cube: positions are 0 or 16384 (scale 1/16384, so the cube spans
-/// 0..1), vertices a–h in the seeds' order.
+/// The unit cube of the classic back-face culling example: positions are 0 or 16384 (scale 1/16384, so the cube spans
+/// 0..1), vertices a–h in that example's order.
 pub const CUBE_POSITIONS: [[i16; 3]; 8] = {
     const S: i16 = 16384;
     [
@@ -265,7 +265,7 @@ pub const CUBE_POSITIONS: [[i16; 3]; 8] = {
     ]
 };
 
-/// The seeds' face table, as listed there: bottom, right, front, left, back, top.
+/// Its face table, in the example's order: bottom, right, front, left, back, top.
 ///
 /// Each face lists its vertices counter-clockwise as seen from outside the cube in a
 /// right-handed model space, which is the front-face convention of OBJ and OpenGL that
@@ -297,7 +297,7 @@ pub const CUBE_FACES: [Face<'static, Rgb888>; 6] = [
     }, // top h g f e: light blue
 ];
 
-/// The seeds' cube as a ready mesh (spanning 0..1 on each axis).
+/// That cube as a ready mesh (spanning 0..1 on each axis).
 pub const CUBE: Mesh<'static, Rgb888> = Mesh::new(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_FACES);
 
 /// Compute unit face normals (Q14) of `mesh` into `out` (one per face), from the first

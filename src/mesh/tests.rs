@@ -5,7 +5,7 @@ use super::*;
 use crate::math::Mat4;
 
 #[test]
-fn the_seeds_cube_is_valid_and_closed() {
+fn the_reference_cube_is_valid_and_closed() {
     assert_eq!(CUBE.validate(), Ok(()));
     assert_eq!(CUBE.face_count(), 6);
     // Closed: each directed edge appears once, and its reverse once.

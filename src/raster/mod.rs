@@ -95,10 +95,10 @@ impl ScreenVertex {
 
 /// Twice the signed area of a triangle: the z component of `V1 × V2` with
 /// `V1 = P1 − P0`, `V2 = P2 − P0`, i.e. `dx1·dy2 − dx2·dy1` (in the points' units) —
-/// the seeds' back-face test. Exact for any inputs in the guard band (the products stay
+/// the classic back-face test. Exact for any inputs in the guard band (the products stay
 /// below 2⁵¹).
 ///
-/// The sign depends on which way y points. In the seeds' projected coordinates (y up)
+/// The sign depends on which way y points. In the classic projected coordinates (y up)
 /// a positive value is a counter-clockwise, front-facing triangle. On the screen
 /// (y down, as [`ScreenVertex`] has it) the same triangle has a negative value: see
 /// [`Facing::of`].
@@ -169,7 +169,7 @@ fn area_short([dx1, dy1, dx2, dy2]: [i32; 4]) -> Option<i64> {
 /// Which way a triangle faces.
 ///
 /// Front faces run counter-clockwise as the viewer sees them with y up — OpenGL's
-/// default, and the seeds' "`V1 × V2 > 0` is front" in their left-handed projected
+/// default, and the classic back-face rule "`V1 × V2 > 0` is front" in left-handed projected
 /// coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Facing {
@@ -182,8 +182,8 @@ pub enum Facing {
 }
 
 impl Facing {
-    /// The facing for twice-signed-area `area` computed in a y-up frame (the seeds'):
-    /// positive is front.
+    /// The facing for twice-signed-area `area` computed in a y-up frame (as the classic
+    /// back-face test computes it): positive is front.
     pub fn of_area(area: i64) -> Facing {
         match area {
             a if a > 0 => Facing::Front,

@@ -10,7 +10,7 @@ use crate::num::{
 
 /// A quantity that varies linearly across a screen triangle — its depth, or a colour
 /// channel for Gouraud shading — given by its plane through the three vertices: the
-/// seeds' `ax + by + cz = d` solved for z.
+/// plane equation `ax + by + cz = d` solved for z.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Plane {
     // Exact form: value(X, Y) = v0 + (a·(X − x0) + b·(Y − y0)) / area2, in 16.16.
@@ -285,7 +285,7 @@ impl DepthRows {
     }
 }
 
-/// The depth of a triangle's plane at a point: the seeds' "depth from the plane equation".
+/// The depth of a triangle's plane at a point: the classic "depth from the plane equation".
 ///
 /// `x`, `y` are in 1/16 pixel; the result is depth in 16.16 (rounded down), `None` for a
 /// zero-area triangle. The rasterizer stores the same plane, rounded to the nearest

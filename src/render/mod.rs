@@ -385,7 +385,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
 
     /// Whether the last draw into [`Bands`](crate::Bands) sorted the triangles into
     /// bins, and if not, why: without bins every band walks the whole mesh, which is
-    /// slower but draws the same picture. [`Binning::NotBanded`] before any banded draw.
+    /// slower but draws the same picture. [`Binning::NotBanded`](crate::Binning::NotBanded) before any banded draw.
     pub fn binning(&self) -> crate::band::Binning {
         self.binning
     }

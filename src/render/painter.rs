@@ -24,9 +24,9 @@ impl<const N: usize> DepthSort<N> {
 }
 
 impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
-    /// Draw by depth sorting (the painter's algorithm of the seeds): faces sorted by the
+    /// Draw by depth sorting (the painter's algorithm): faces sorted by the
     /// depth of their centroid, drawn farthest first with no Z-buffer. Cheap in RAM,
-    /// and wrong exactly where the seeds say: cyclic overlap, interpenetration.
+    /// and wrong exactly in its classic failure cases: cyclic overlap, interpenetration.
     ///
     /// Errors: [`Error::CapacityExceeded`] when the mesh has more than `N` faces.
     pub fn draw_depth_sorted<D, const N: usize>(

@@ -64,16 +64,15 @@ impl<C: PixelColor> DepthTarget for Frame<'_, C> {
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
-/// use zraster::camera::{Transform, Viewport};
-/// use zraster::{math::Vec3, mesh::CUBE, RenderOptions, Renderer, WithDepth, ZBuffer};
+/// use zraster::camera::{Camera, Viewport};
+/// use zraster::{math::{radians, Vec3}, mesh::CUBE, RenderOptions, Renderer, WithDepth, ZBuffer};
 ///
 /// let mut display = MockDisplay::<BinaryColor>::new(); // 64 × 64
 /// let mut depth = [0u16; 64 * 64];
 /// let mut zbuf = ZBuffer::new(&mut depth, 64, 64)?;
 /// zbuf.clear();
-/// let xf = Transform::perspective(
-///     Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), 45.0, 0.1, 10.0, Viewport::new(64, 64)?,
-/// )?;
+/// let xf = Camera::look_at(Vec3::new(2.0, 1.5, 3.0), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)?
+///     .perspective(radians(45.0), 0.1, 10.0, Viewport::new(64, 64)?)?;
 /// let mut renderer = Renderer::new(&CUBE, &xf, RenderOptions::default())?;
 /// renderer.draw(&mut WithDepth::new(&mut display, &mut zbuf)).unwrap();
 /// assert_eq!(display.get_pixel(embedded_graphics::prelude::Point::new(32, 32)), Some(BinaryColor::On));
