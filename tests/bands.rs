@@ -7,7 +7,7 @@ use embedded_graphics::{
 };
 use proptest::prelude::*;
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Transform, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{Faces, Materials, Mesh},
     shade::Shading,
@@ -141,16 +141,11 @@ impl Floor {
 
 fn view(w: u32, h: u32, yaw: f32, pitch: f32, distance: f32) -> Transform {
     let vp = Viewport::new(w, h).unwrap();
-    Transform::perspective(
-        Vec3::new(0.0, 0.0, distance),
-        Vec3::default(),
-        60.0,
-        0.1,
-        10.0,
-        vp,
-    )
-    .unwrap()
-    .with_model(Mat4::rotation_x(radians(pitch)) * Mat4::rotation_y(radians(yaw)))
+    Camera::look_at(Vec3::new(0.0, 0.0, distance), Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, vp)
+        .unwrap()
+        .with_model(Mat4::rotation_x(radians(pitch)) * Mat4::rotation_y(radians(yaw)))
 }
 
 /// Coplanar duplicate tiles seen from above at every band height 1..=H, with and

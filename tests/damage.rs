@@ -126,7 +126,7 @@ fn a_small_moving_object_sends_a_fraction_of_the_frame() {
 #[test]
 fn banded_frames_through_the_tracker_are_exact() {
     use zraster::{
-        camera::{Transform, Viewport},
+        camera::{Camera, Viewport},
         math::{radians, Mat4, Vec3},
         BandBuffers, Bands, CachedVertex, Frame, Renderer,
     };
@@ -143,14 +143,13 @@ fn banded_frames_through_the_tracker_are_exact() {
     for _ in 0..16 {
         yaw += (rnd() % 40) as f32;
         let vp = Viewport::new(w, h).unwrap();
-        let xf = Transform::perspective(
+        let xf = Camera::look_at(
             Vec3::new(0.0, 0.0, 1.6 + (rnd() % 8) as f32 * 0.1),
             Vec3::new(0.0, 0.0, 0.6),
-            60.0,
-            0.1,
-            10.0,
-            vp,
+            Vec3::Y,
         )
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, vp)
         .unwrap()
         .with_model(
             Mat4::rotation_y(radians(yaw))

@@ -1,8 +1,8 @@
 //! Automatic depth range: near and far fitted to the mesh's bounding sphere.
 
 use zraster::{
-    camera::{Transform, Viewport},
-    math::{Mat4, Vec3},
+    camera::{Camera, Transform, Viewport},
+    math::{radians, Mat4, Vec3},
     mesh::{Mesh, CUBE},
     Error,
 };
@@ -69,14 +69,13 @@ fn fitted_planes_enclose_the_mesh_and_respect_min_near() {
     );
     for dist in [1.2f32, 2.0, 5.0, 40.0] {
         for turn in 0..8 {
-            let xf = Transform::perspective(
+            let xf = Camera::look_at(
                 Vec3::new(0.5, 0.5, 0.5 + dist),
                 Vec3::new(0.5, 0.5, 0.5),
-                50.0,
-                0.1,
-                1000.0,
-                vp,
+                Vec3::Y,
             )
+            .unwrap()
+            .perspective(radians(50.0), 0.1, 1000.0, vp)
             .unwrap()
             .with_model(
                 Mat4::translation(Vec3::new(0.5, 0.5, 0.5))
@@ -93,15 +92,10 @@ fn fitted_planes_enclose_the_mesh_and_respect_min_near() {
         }
     }
     // Closer than min_near: the near plane stays at min_near (the cube is clipped).
-    let xf = Transform::perspective(
-        Vec3::new(0.5, 0.5, 1.3),
-        Vec3::new(0.5, 0.5, 0.5),
-        50.0,
-        0.1,
-        1000.0,
-        vp,
-    )
-    .unwrap();
+    let xf = Camera::look_at(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.5), Vec3::Y)
+        .unwrap()
+        .perspective(radians(50.0), 0.1, 1000.0, vp)
+        .unwrap();
     let fitted = xf.fit_depth(lo, hi, 0.5).unwrap();
     let p = fitted.projection.m;
     let near = p[2][3] / (p[2][2] - 1.0);
@@ -111,15 +105,10 @@ fn fitted_planes_enclose_the_mesh_and_respect_min_near() {
 #[test]
 fn bad_fits_are_errors() {
     let vp = Viewport::new(64, 48).unwrap();
-    let xf = Transform::perspective(
-        Vec3::new(0.0, 0.0, 3.0),
-        Vec3::default(),
-        50.0,
-        0.1,
-        10.0,
-        vp,
-    )
-    .unwrap();
+    let xf = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(50.0), 0.1, 10.0, vp)
+        .unwrap();
     let (lo, hi) = (Vec3::new(-1.0, -1.0, -1.0), Vec3::new(1.0, 1.0, 1.0));
     let invalid = |r: Result<Transform, Error>| matches!(r, Err(Error::InvalidParameter(_)));
     assert!(invalid(xf.fit_depth(hi, lo, 0.1)));
@@ -178,15 +167,10 @@ fn fitting_the_depth_range_ends_z_fighting() {
     let mesh = Mesh::new(&P, 1.0 / 16384.0, &FACES);
     let (w, h) = (64u32, 48u32);
     let vp = Viewport::new(w, h).unwrap();
-    let xf = Transform::perspective(
-        Vec3::new(0.1, 0.2, 5.0),
-        Vec3::default(),
-        20.0,
-        0.1,
-        100.0,
-        vp,
-    )
-    .unwrap();
+    let xf = Camera::look_at(Vec3::new(0.1, 0.2, 5.0), Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(20.0), 0.1, 100.0, vp)
+        .unwrap();
     let (lo, hi) = mesh.bounds().unwrap();
     let opts = RenderOptions {
         shading: Shading::Flat,

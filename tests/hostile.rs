@@ -7,8 +7,8 @@ use embedded_graphics::{
     primitives::Rectangle,
 };
 use zraster::{
-    camera::{Transform, Viewport},
-    math::Vec3,
+    camera::{Camera, Transform, Viewport},
+    math::{radians, Vec3},
     mesh::{Face, Mesh},
     CachedVertex, ColorBuffer, Cull, DepthSort, Error, Frame, RenderOptions, Renderer, WithDepth,
     ZBuffer,
@@ -55,7 +55,10 @@ impl DrawTarget for Counter {
 
 fn camera(w: u32, h: u32, eye: Vec3, near: f32, far: f32) -> Transform {
     let vp = Viewport::new(w, h).unwrap();
-    Transform::perspective(eye, Vec3::default(), 60.0, near, far, vp).unwrap()
+    Camera::look_at(eye, Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), near, far, vp)
+        .unwrap()
 }
 
 /// Pixel counts are 64-bit: 65 quads covering an 8192² screen, drawn by the painter's

@@ -7,7 +7,7 @@ use embedded_graphics::{
     prelude::*,
 };
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Transform, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{Face, Faces, Materials, Mesh, CUBE},
     shade::{Intensity, Light, Shading, ONE},
@@ -52,7 +52,10 @@ fn painter_frame(mesh: &Mesh<'_, Rgb888>, xf: &Transform, opts: RenderOptions) -
 }
 
 fn camera(eye: Vec3, target: Vec3, fov: f32) -> Transform {
-    Transform::perspective(eye, target, fov, 0.1, 100.0, Viewport::new(W, H).unwrap()).unwrap()
+    Camera::look_at(eye, target, Vec3::Y)
+        .unwrap()
+        .perspective(radians(fov), 0.1, 100.0, Viewport::new(W, H).unwrap())
+        .unwrap()
 }
 
 /// Assert two frames are identical, reporting how many pixels differ (not the frames).
@@ -302,10 +305,13 @@ fn bad_meshes_and_transforms_are_errors() {
     let vp = Viewport::new(W, H).unwrap();
     let o = Vec3::default();
     let e = Vec3::new(0.0, 0.0, 1.0);
-    assert!(Transform::perspective(e, o, 60.0, 1.0, 1.0, vp).is_err());
-    assert!(Transform::perspective(e, o, 0.0, 0.1, 1.0, vp).is_err());
-    assert!(Transform::perspective(e, o, 180.0, 0.1, 1.0, vp).is_err());
-    assert!(Transform::perspective(e, o, f32::NAN, 0.1, 1.0, vp).is_err());
+    let look = Camera::look_at(e, o, Vec3::Y).unwrap();
+    assert!(look.perspective(radians(60.0), 1.0, 1.0, vp).is_err());
+    assert!(look.perspective(0.0, 0.1, 1.0, vp).is_err());
+    assert!(look
+        .perspective(core::f32::consts::PI, 0.1, 1.0, vp)
+        .is_err());
+    assert!(look.perspective(f32::NAN, 0.1, 1.0, vp).is_err());
     assert_eq!(Viewport::new(0, 5), Err(Error::ZeroSize));
     assert_eq!(Viewport::new(10_000, 5), Err(Error::TooLarge));
 }
@@ -497,16 +503,11 @@ fn vertices_beyond_the_cache_range_draw_as_without_a_cache() {
     let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
     let (w, h) = (2240u32, 96u32);
     let vp = Viewport::at(1920, 0, 256, h).unwrap();
-    let xf = Transform::perspective(
-        Vec3::new(0.0, 0.0, 1.6),
-        Vec3::default(),
-        60.0,
-        0.1,
-        10.0,
-        vp,
-    )
-    .unwrap()
-    .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
+    let xf = Camera::look_at(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, vp)
+        .unwrap()
+        .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
     let opts = RenderOptions {
         shading: Shading::Lambert,
         ..Default::default()
@@ -561,16 +562,11 @@ fn an_overlay_does_not_leak_into_the_empty_bands_below() {
     let bunny = scenes::Bunny::load();
     let mesh = bunny.mesh(Rgb888::new(255, 204, 153));
     let (w, h, rows) = (96u32, 70u32, 7u32);
-    let xf = Transform::perspective(
-        Vec3::new(0.0, 0.0, 1.6),
-        Vec3::default(),
-        60.0,
-        0.1,
-        10.0,
-        Viewport::new(w, h).unwrap(),
-    )
-    .unwrap()
-    .with_model(bunny.fit);
+    let xf = Camera::look_at(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, Viewport::new(w, h).unwrap())
+        .unwrap()
+        .with_model(bunny.fit);
     let mut cache = vec![CachedVertex::EMPTY; bunny.positions.len()];
     let draw = |cache: &mut [CachedVertex], overlay: bool| {
         let mut out = vec![Rgb565::BLUE; (w * h) as usize];
@@ -622,7 +618,9 @@ fn banded_against_whole(
     w: u32,
     h: u32,
 ) -> FrameStats {
-    let xf = Transform::perspective(eye, target, 60.0, 0.1, 10.0, Viewport::new(w, h).unwrap())
+    let xf = Camera::look_at(eye, target, Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, Viewport::new(w, h).unwrap())
         .unwrap()
         .with_model(Mat4::rotation_y(radians(30.0)) * bunny.fit);
     let opts = RenderOptions {

@@ -9,10 +9,10 @@ use embedded_graphics::{
     prelude::*,
 };
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Transform, Viewport},
     fill_triangle,
     fixed::{GUARD_BAND, MAX_DEPTH},
-    math::{Mat4, Vec3},
+    math::{radians, Mat4, Vec3},
     mesh::{Face, Mesh},
     BandBuffers, Bands, ColorBuffer, DepthTest, Error, RenderOptions, Renderer, ScreenVertex,
     WithDepth, ZBuffer,
@@ -177,8 +177,10 @@ fn resolved(z: f32, gap: f32, n: f32, f: f32) -> bool {
     }];
     let far_quad = Mesh::new(&pos, 1.0, &blue);
     let vp = Viewport::new(32, 32).unwrap();
-    let cam =
-        Transform::perspective(Vec3::default(), Vec3::new(0.0, 0.0, -1.0), 60.0, n, f, vp).unwrap();
+    let cam = Camera::look_at(Vec3::default(), Vec3::new(0.0, 0.0, -1.0), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), n, f, vp)
+        .unwrap();
     // Squares big enough to fill the view at either distance.
     let at = |d: f32| {
         cam.with_model(
@@ -212,8 +214,10 @@ fn stored(z: f32, n: f32, f: f32) -> u16 {
     }];
     let quad = Mesh::new(&pos, 1.0, &faces);
     let vp = Viewport::new(8, 8).unwrap();
-    let cam =
-        Transform::perspective(Vec3::default(), Vec3::new(0.0, 0.0, -1.0), 60.0, n, f, vp).unwrap();
+    let cam = Camera::look_at(Vec3::default(), Vec3::new(0.0, 0.0, -1.0), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), n, f, vp)
+        .unwrap();
     let xf = cam.with_model(
         Mat4::translation(Vec3::new(0.0, 0.0, -z)) * Mat4::scaling(Vec3::new(z, z, 1.0)),
     );
@@ -263,6 +267,7 @@ fn sixteen_bit_depth_resolves_what_the_formula_says() {
 fn degenerate_and_non_finite_parameters_are_errors() {
     let vp = Viewport::new(32, 32).unwrap();
     let (e, o) = (Vec3::new(0.0, 0.0, 3.0), Vec3::default());
+    let look = Camera::look_at(e, o, Vec3::Y).unwrap();
     for (fov, near, far) in [
         (60.0, 1.0, 1.0),
         (60.0, 2.0, 1.0),
@@ -274,7 +279,7 @@ fn degenerate_and_non_finite_parameters_are_errors() {
     ] {
         assert!(
             matches!(
-                Transform::perspective(e, o, fov, near, far, vp),
+                look.perspective(radians(fov), near, far, vp),
                 Err(Error::InvalidParameter(_))
             ),
             "{fov} {near} {far}"
@@ -282,22 +287,22 @@ fn degenerate_and_non_finite_parameters_are_errors() {
     }
     for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
         assert_eq!(
-            Transform::perspective(e, o, bad, 0.1, 1.0, vp).err(),
+            look.perspective(bad, 0.1, 1.0, vp).err(),
             Some(Error::NotFinite)
         );
         assert_eq!(
-            Transform::perspective(e, o, 60.0, bad, 1.0, vp).err(),
+            look.perspective(radians(60.0), bad, 1.0, vp).err(),
             Some(Error::NotFinite)
         );
         assert_eq!(
-            Transform::perspective(Vec3::new(bad, 0.0, 0.0), o, 60.0, 0.1, 1.0, vp).err(),
+            Camera::look_at(Vec3::new(bad, 0.0, 0.0), o, Vec3::Y).err(),
             Some(Error::NotFinite)
         );
         assert_eq!(ScreenVertex::from_f32(0.0, 0.0, bad), Err(Error::NotFinite));
         let pos = [[0i16; 3]; 3];
         let tris = [[0u16, 1, 2]];
         let m = Mesh::triangles(&pos, bad, &tris, Rgb888::WHITE);
-        let xf = Transform::perspective(e, o, 60.0, 0.1, 10.0, vp).unwrap();
+        let xf = look.perspective(radians(60.0), 0.1, 10.0, vp).unwrap();
         assert_eq!(
             Renderer::new(&m, &xf, RenderOptions::default()).err(),
             Some(Error::NotFinite)
@@ -305,12 +310,12 @@ fn degenerate_and_non_finite_parameters_are_errors() {
     }
     // The eye at the target is a degenerate view: an error, not a blank frame.
     assert_eq!(
-        Transform::perspective(o, o, 60.0, 0.1, 10.0, vp),
-        Err(Error::DegenerateView)
+        Camera::look_at(o, o, Vec3::Y).err(),
+        Some(Error::DegenerateView)
     );
     // A view matrix set by hand to nothing useful (all zeros): no panic, an error or a
     // blank frame.
-    let mut xf = Transform::perspective(e, o, 60.0, 0.1, 10.0, vp).unwrap();
+    let mut xf = look.perspective(radians(60.0), 0.1, 10.0, vp).unwrap();
     xf.view = Mat4 { m: [[0.0; 4]; 4] };
     let pos = [[0i16, 0, 0], [1, 0, 0], [0, 1, 0]];
     let tris = [[0u16, 1, 2]];

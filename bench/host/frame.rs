@@ -15,8 +15,8 @@ use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics::prelude::*;
 use std::hint::black_box;
 use zraster::{
-    camera::{Transform, Viewport},
-    math::Vec3,
+    camera::{Camera, Viewport},
+    math::{radians, Vec3},
     mesh::CUBE,
     BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, ScreenVertex,
     ZBuffer,
@@ -58,15 +58,10 @@ fn benches(c: &mut Criterion) {
         })
     });
 
-    let cube_xf = Transform::perspective(
-        Vec3::new(0.5, 0.5, 1.3),
-        Vec3::new(0.5, 0.5, 0.0),
-        60.0,
-        0.1,
-        10.0,
-        Viewport::new(W, H).unwrap(),
-    )
-    .unwrap();
+    let cube_xf = Camera::look_at(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, Viewport::new(W, H).unwrap())
+        .unwrap();
     c.bench_function("fill-bound cube", |b| {
         b.iter(|| {
             let mut frame = Frame::new(&mut pixels, &mut depth, W, H).unwrap();

@@ -18,7 +18,7 @@ pub mod bunny;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::IntoStorage;
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Transform, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{Faces, Materials, Mesh},
     shade::Shading,
@@ -43,15 +43,10 @@ pub fn mesh() -> Mesh<'static, Rgb888> {
 /// Fit to the unit cube, turned 30°, seen from z = 1.6 with a 60° field of view.
 pub fn transform() -> Transform {
     let vp = Viewport::new(W, H).unwrap();
-    let cam = Transform::perspective(
-        Vec3::new(0.0, 0.0, 1.6),
-        Vec3::new(0.0, 0.0, 0.6),
-        60.0,
-        0.1,
-        10.0,
-        vp,
-    )
-    .unwrap();
+    let cam = Camera::look_at(Vec3::new(0.0, 0.0, 1.6), Vec3::new(0.0, 0.0, 0.6), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, vp)
+        .unwrap();
     let fit = bunny::BUNNY_FIT;
     cam.with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)))
 }

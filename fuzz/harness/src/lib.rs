@@ -12,7 +12,7 @@ use embedded_graphics::{
     prelude::*,
 };
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Transform, Viewport},
     math::{radians, Mat4, Vec3},
     mesh::{Face, Faces, Materials, Mesh},
     shade::{Light, Shading},
@@ -164,7 +164,9 @@ pub fn pipeline(data: &[u8]) {
     let eye = Vec3::new(r.float(), r.float(), r.float());
     let target = Vec3::new(r.float(), r.float(), r.float());
     let (fov, near, far) = (r.float(), r.float(), r.float());
-    let Ok(mut xf) = Transform::perspective(eye, target, fov, near, far, vp) else {
+    let Ok(mut xf) = Camera::look_at(eye, target, Vec3::Y)
+        .and_then(|look| look.perspective(radians(fov), near, far, vp))
+    else {
         return;
     };
     if r.u8() % 3 == 0 {
@@ -255,14 +257,12 @@ pub fn obj(data: &[u8]) {
     let Ok(vp) = Viewport::new(48, 32) else {
         return;
     };
-    let Ok(xf) = Transform::perspective(
+    let Ok(xf) = Camera::look_at(
         Vec3::new(0.0, 0.0, 2.0 * q.scale * 32767.0 + 0.5),
         Vec3::default(),
-        60.0,
-        0.01,
-        1e4,
-        vp,
-    ) else {
+        Vec3::Y,
+    )
+    .and_then(|look| look.perspective(radians(60.0), 0.01, 1e4, vp)) else {
         return;
     };
     let mut display = MockDisplay::<BinaryColor>::new();
@@ -390,22 +390,19 @@ pub fn bands_stats(data: &[u8]) -> Option<FrameStats> {
         let eye = Vec3::new(r.float(), r.float(), r.float());
         let target = Vec3::new(r.float(), r.float(), r.float());
         let (fov, near, far) = (r.float(), r.float(), r.float());
-        Transform::perspective(eye, target, fov, near, far, vp)
+        Camera::look_at(eye, target, Vec3::Y)
+            .and_then(|look| look.perspective(radians(fov), near, far, vp))
     } else {
         // As tests/bands.rs: orbiting the origin.
         let yaw = f32::from(r.u8()) * (360.0 / 256.0) - 180.0;
         let pitch = f32::from(r.u8() as i8) * (85.0 / 128.0);
         let distance = 0.2 + f32::from(r.u8()) / 50.0;
         let fov = 20.0 + f32::from(r.u8() % 128);
-        Transform::perspective(
-            Vec3::new(0.0, 0.0, distance),
-            Vec3::default(),
-            fov,
-            0.1,
-            10.0,
-            vp,
-        )
-        .map(|xf| xf.with_model(Mat4::rotation_x(radians(pitch)) * Mat4::rotation_y(radians(yaw))))
+        Camera::look_at(Vec3::new(0.0, 0.0, distance), Vec3::default(), Vec3::Y)
+            .and_then(|look| look.perspective(radians(fov), 0.1, 10.0, vp))
+            .map(|xf| {
+                xf.with_model(Mat4::rotation_x(radians(pitch)) * Mat4::rotation_y(radians(yaw)))
+            })
     };
     let mut xf = xf.ok()?;
     if view % 4 == 3 {
