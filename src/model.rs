@@ -50,9 +50,9 @@
 //! display in horizontal bands through a colour buffer and a depth buffer of `N` pixels
 //! each, on the stack (`N × (size_of::<C>() + 2)` bytes: 4 KiB for the default
 //! `N` = 1024 on an `Rgb565` display). A band is as many whole rows as fit, so the display
-//! (as far as the model covers it, from column 0 to the right edge of its
-//! [bounding box](Model#impl-Dimensions-for-Model<'m,+M,+N>)) must be at most `N` pixels
-//! wide, or drawing fails with [`Error::CapacityExceeded`]. Pick another `N` with
+//! (as far as the model covers it: from column 0 to the right edge of its bounding box,
+//! the camera's viewport) must be at most `N` pixels wide, or drawing fails with
+//! [`Error::CapacityExceeded`]. Pick another `N` with
 //! [`Model::with_band_pixels`]: more rows a band means fewer bands, each of which walks
 //! the whole mesh again.
 //!
