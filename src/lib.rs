@@ -3,7 +3,34 @@
 //! zraster draws meshes with per-pixel hidden-surface removal (the Z-buffer method)
 //! into any [`embedded_graphics`] [`DrawTarget`](embedded_graphics::draw_target::DrawTarget),
 //! with fixed-point screen coordinates, a 16-bit depth buffer in memory you provide,
-//! and no heap. A spinning cube on a 160×120 RGB565 display:
+//! and no heap. A mesh is drawn like any embedded-graphics primitive, as a
+//! [`Model`] with a [`ModelStyle`] (in bands on the stack: see [`model`]); here the
+//! Stanford bunny, Gouraud-shaded, on an RGB565 display and on a 16-grey one:
+//!
+//! ```
+//! use embedded_graphics::{pixelcolor::{Gray4, Rgb565}, prelude::*};
+//! use embedded_graphics_simulator::SimulatorDisplay; // your display driver on a device
+//! use zraster::{math::{radians, Mat4, Vec3}, Camera, Model, ModelStyle};
+//! use zraster_bench_scene::bunny::{BUNNY_FIT, BUNNY_MESH}; // flash tables from examples/obj2rust.rs
+//!
+//! let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(160, 120));
+//! let camera = Camera::look_at(Vec3::new(0.0, 0.0, 1.6), Vec3::default(), Vec3::Y)?
+//!     .perspective(radians(40.0), 0.1, 10.0, display.bounding_box().try_into()?)?
+//!     .with_model(Mat4::scaling(Vec3::new(BUNNY_FIT, BUNNY_FIT, BUNNY_FIT)));
+//! let bunny = Model::new(&BUNNY_MESH, &camera);
+//! bunny.into_styled(ModelStyle::gouraud()).draw(&mut display)??; // display error, then zraster's
+//! // Any embedded-graphics colour type: the same bunny on a 4-bit greyscale OLED.
+//! let mut oled = SimulatorDisplay::<Gray4>::new(Size::new(160, 120));
+//! bunny.into_styled(ModelStyle::gouraud()).draw(&mut oled)??;
+//! # assert_ne!(display.get_pixel(Point::new(80, 60)), Rgb565::BLACK);
+//! # assert_ne!(oled.get_pixel(Point::new(80, 60)), Gray4::BLACK);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Below the model are the calls it makes, for drawing into memory you provide (a
+//! whole frame, or [bands](#bands-a-frame-in-a-few-kib) with a vertex cache), with
+//! more than one mesh in one depth buffer, or with the other algorithms. A spinning
+//! cube on a 160×120 RGB565 display:
 //!
 //! ```
 //! use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
@@ -41,6 +68,8 @@
 //! [single triangles](#single-triangles).
 //!
 //! # What is where
+//! - [`Model`] and [`ModelStyle`] ([`model`]): a mesh as an embedded-graphics
+//!   `Drawable`, with no buffers of yours.
 //! - [`mesh`]: the vertex table and face table (`i16` positions, flash-friendly).
 //! - [`camera`]: [`Camera`] (the model, view and projection matrices) and the [`Viewport`].
 //! - [`Renderer`]: draws one mesh; [`Renderer::draw`] with the Z-buffer into a
