@@ -439,3 +439,27 @@ fn off_the_display() {
     assert_eq!(stats.pixels_written, 0);
     assert_eq!(display, MockDisplay::new());
 }
+
+/// The bench scene (bunny-320, Lambert) drawn as a `Model` in 3-row bands on a
+/// 320 × 240 display is the pinned bench frame.
+#[test]
+fn the_bench_scene_as_a_model_has_the_bench_checksum() {
+    let (mesh, camera) = (
+        zraster_bench_scene::mesh(),
+        zraster_bench_scene::transform(),
+    );
+    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(320, 240));
+    let style = ModelStyle::lambert().with_background(Rgb565::BLACK);
+    assert_eq!(style.options(), zraster_bench_scene::options());
+    let model = Model::new(&mesh, &camera);
+    assert_eq!(model.band_pixels() / 320, 3);
+    model
+        .into_styled(style)
+        .draw(&mut display)
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        zraster_bench_scene::checksum(&pixels(&display)),
+        0xfb19_6b71
+    );
+}
