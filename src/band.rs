@@ -56,13 +56,9 @@ pub enum Unbinned {
     Gouraud,
     /// A dithered colour type (its pattern is drawn through the general path).
     Dithered,
-    /// The bin slice holds `given` entries; [`BandBuffers::bins_needed`] asks `needed`.
-    Bins {
-        /// Entries the mesh needs.
-        needed: usize,
-        /// Entries the slice holds.
-        given: usize,
-    },
+    /// The bin slice is shorter than [`BandBuffers::bins_needed`] asks (an empty one
+    /// included).
+    BinsTooShort,
     /// More than 250 bands, or more than 65,534 triangles with the bands' chains.
     TooLarge,
 }
@@ -74,9 +70,7 @@ impl core::fmt::Display for Unbinned {
             Unbinned::Polygons => f.write_str("the mesh has polygon faces"),
             Unbinned::Gouraud => f.write_str("Gouraud shading"),
             Unbinned::Dithered => f.write_str("a dithered colour type"),
-            Unbinned::Bins { needed, given } => {
-                write!(f, "{given} bin entries where {needed} are needed")
-            }
+            Unbinned::BinsTooShort => f.write_str("the bin slice is shorter than bins_needed"),
             Unbinned::TooLarge => f.write_str("more than 250 bands or 65,534 triangles"),
         }
     }
@@ -201,10 +195,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         if nb > 250 || nt + chains > usize::from(END) {
             return off(self, Unbinned::TooLarge);
         }
-        let needed = BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows);
-        if bands.bins.len() < needed {
-            let given = bands.bins.len();
-            return off(self, Unbinned::Bins { needed, given });
+        if bands.bins.len() < BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows) {
+            return off(self, Unbinned::BinsTooShort);
         }
         self.binning = Binning::Binned;
         // Tails, then the links (one a triangle) and the heads as one array of slots:

@@ -87,7 +87,7 @@
 //!
 //! # Meshes
 //!
-//! A [`Mesh`](mesh::Mesh) is two tables, as in the seeds' polygon model: a **vertex
+//! A [`Mesh`](mesh::Mesh) is two tables, as in the classic polygon model: a **vertex
 //! table** of positions and a **face table** of polygons, each a list of indices into
 //! the vertex table with a material (for an `Rgb888` material, its colour). Positions
 //! are `i16` triples times one `scale` (6 bytes a vertex: a model's extent in 65536
@@ -342,8 +342,8 @@
 //! - Screen coordinates are 28.4 fixed point (see [`fixed`]); pixel (i, j) is sampled
 //!   at its centre (i + ½, j + ½); edges follow the top-left rule.
 //! - Depth is 16-bit, smaller is nearer, cleared to 65535 ([`ZBuffer::FAR`]).
-//! - Front faces are counter-clockwise as seen with y up (OpenGL, OBJ, and the seeds'
-//!   `V1 × V2 > 0`); on the y-down screen their [`signed_area`] is negative.
+//! - Front faces are counter-clockwise as seen with y up (OpenGL, OBJ, and the classic
+//!   back-face rule `V1 × V2 > 0`); on the y-down screen their [`signed_area`] is negative.
 #![no_std]
 #![deny(missing_docs)]
 #![deny(unsafe_code)]

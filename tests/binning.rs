@@ -61,15 +61,12 @@ fn each_reason_for_drawing_without_bins_is_reported() {
     let n = needed(&bunny);
     let (b, binned) = draw::<Rgb565>(&bunny, Shading::Lambert, n, true);
     assert_eq!(b, Binning::Binned);
-    // One entry short: reported with both numbers, and the same picture.
+    // One entry short: reported, and the same picture.
     let (b, unbinned) = draw::<Rgb565>(&bunny, Shading::Lambert, n - 1, true);
-    assert_eq!(
-        b,
-        Binning::Off(Unbinned::Bins {
-            needed: n,
-            given: n - 1
-        })
-    );
+    assert_eq!(b, Binning::Off(Unbinned::BinsTooShort));
+    // No bins at all: the same.
+    let (b, _) = draw::<Rgb565>(&bunny, Shading::Lambert, 0, true);
+    assert_eq!(b, Binning::Off(Unbinned::BinsTooShort));
     assert_eq!(binned, unbinned);
     assert!(
         binned.iter().any(|&c| c != Rgb565::default()),
@@ -89,11 +86,7 @@ fn each_reason_for_drawing_without_bins_is_reported() {
 
 #[test]
 fn reasons_read_as_warnings() {
-    let s = Unbinned::Bins {
-        needed: 10,
-        given: 3,
-    }
-    .to_string();
-    assert_eq!(s, "3 bin entries where 10 are needed");
+    let s = Unbinned::BinsTooShort.to_string();
+    assert_eq!(s, "the bin slice is shorter than bins_needed");
     assert_eq!(Unbinned::NoCache.to_string(), "no vertex cache");
 }

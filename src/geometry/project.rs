@@ -138,13 +138,41 @@ impl ScreenMap {
 
     /// The rest of [`project_fixed`](ScreenMap::project_fixed) in `f32`.
     #[inline]
-    pub(crate) fn project_fixed_float(&self, c: &Clip4, mut code: u8) -> (u8, ScreenVertex) {
+    pub(crate) fn project_fixed_float(&self, c: &Clip4, code: u8) -> (u8, ScreenVertex) {
+        self.project_rest(c.to_f32(), code)
+    }
+
+    /// Classify and project a clip-space point in `f32` (cores with an FPU): its
+    /// outcode, and its screen vertex when the outcode is 0. The planes are those of
+    /// [`project_fixed`](ScreenMap::project_fixed), tested in `f32` (they can differ
+    /// from the exact test only for a point within rounding of a plane, where either
+    /// answer clips correctly); a NaN `w` is outside.
+    #[inline(always)]
+    pub(crate) fn project_float(&self, c: [f32; 4]) -> (u8, ScreenVertex) {
+        let [_, _, z, w] = c;
+        let mut code = if w >= 1.0 { 0 } else { outcode::W };
+        if z < -w {
+            code |= outcode::NEAR;
+        }
+        if z > w {
+            code |= outcode::FAR;
+        }
+        self.project_rest(c, code)
+    }
+
+    /// The guard band and the projection of an `f32` clip-space point whose other
+    /// planes gave `code`.
+    #[inline(always)]
+    fn project_rest(&self, [x, y, zf, wf]: [f32; 4], mut code: u8) -> (u8, ScreenVertex) {
         // The guard band in f32: it has room for rounding.
-        let [x, y, zf, wf] = c.to_f32();
         let g = GUARD * wf;
         // Both within ±g (the usual case) adds no bit: two compares instead of four.
         if !(x.abs() <= g && y.abs() <= g) {
             code = guard_code(code, x, y, g);
+            // NaN (from an overflowing transform) is nowhere: outside.
+            if x.is_nan() || y.is_nan() {
+                code |= outcode::W;
+            }
         }
         if code != 0 {
             return (code, ScreenVertex::ORIGIN);
@@ -258,6 +286,54 @@ mod tests {
     use super::*;
     use crate::camera::{Camera, Viewport};
     use crate::math::{radians, Mat4, Vec3};
+
+    /// The planes tested in `f32` ([`ScreenMap::project_float`], the FPU path) give
+    /// the exact integer outcode and the same screen vertex, except for points within
+    /// rounding of the near or far plane; a NaN `w` or `x` is outside.
+    #[test]
+    fn float_planes_match_the_exact_ones() {
+        let vp = Viewport::new(320, 240).unwrap();
+        let map = ScreenMap::new(&vp);
+        let mut next = crate::testing::xorshift32(0x1234_5678);
+        let (mut inside, mut outside) = (0, 0);
+        for (yaw, dist) in [(0.0, 2.5), (30.0, 1.6), (200.0, 0.5), (77.0, 9.0)] {
+            let xf = Camera::look_at(Vec3::new(0.0, 0.0, dist), Vec3::default(), Vec3::Y)
+                .unwrap()
+                .perspective(radians(60.0), 0.1, 10.0, vp)
+                .unwrap()
+                .with_model(Mat4::rotation_y(radians(yaw)));
+            let fx = FixedTransform::new(&xf.model_view_projection(), 1.0 / 32767.0).unwrap();
+            for _ in 0..5000 {
+                let p = [next() as i16, next() as i16, next() as i16];
+                let c = fx.apply(&p);
+                let (z, w) = c.zw();
+                let exact = map.project_fixed(&c);
+                let float = map.project_float(c.to_f32());
+                // Within a part in 2²⁰ of the near or far plane either answer is right.
+                let margin = w.abs() >> 20;
+                if (z + w).abs() <= margin || (z - w).abs() <= margin {
+                    continue;
+                }
+                let want = map.project_fixed_float(
+                    &c,
+                    exact.0 & !(outcode::LEFT | outcode::RIGHT | outcode::BOTTOM | outcode::TOP),
+                );
+                assert_eq!(float, want, "{p:?}");
+                if float.0 == 0 {
+                    inside += 1;
+                } else {
+                    outside += 1;
+                }
+            }
+        }
+        assert!(
+            inside > 1000 && outside > 1000,
+            "{inside} inside, {outside} outside"
+        );
+        let nan = map.project_float([f32::NAN, 0.0, 0.0, 2.0]);
+        assert_ne!(nan.0, 0);
+        assert_ne!(map.project_float([0.0, 0.0, 0.0, f32::NAN]).0, 0);
+    }
 
     #[test]
     fn integer_and_float_projections_agree() {

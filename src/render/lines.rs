@@ -95,7 +95,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             let Some(p) = self.mesh.positions.get(usize::from(i)) else {
                 return false;
             };
-            let c = to_f32(&self.fixed.apply(p));
+            let c = self.clip_coords(p);
             let code = outcode_of(&c);
             code_or |= code;
             code_and &= code;
@@ -147,11 +147,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     })
             };
             let ca = ClipVertex {
-                c: to_f32(&self.fixed.apply(pos(a)?)),
+                c: self.clip_coords(pos(a)?),
                 light: 0.0,
             };
             let cb = ClipVertex {
-                c: to_f32(&self.fixed.apply(pos(b)?)),
+                c: self.clip_coords(pos(b)?),
                 light: 0.0,
             };
             let Some((ca, cb)) = clip_segment(&ca, &cb, fa.code | fb.code) else {

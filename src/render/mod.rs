@@ -304,7 +304,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
-            let (code, screen) = r.map.project_fixed(&r.fixed.apply(p));
+            let (code, screen) = r.project_vertex(p);
             *slot = CachedVertex::new(code, screen);
         }
         r.cache = Some(cache);
@@ -390,6 +390,26 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         self.binning
     }
 
+    /// Transform, classify and project position `p`: the clip coordinates exactly in
+    /// integers, then on cores with an FPU the planes and the division in `f32`, on
+    /// the others in integers (every path of a target projects the same way, so
+    /// cached, banded and general drawing agree).
+    #[inline(always)]
+    pub(crate) fn project_vertex(&self, p: &[i16; 3]) -> (u8, ScreenVertex) {
+        let c = self.fixed.apply(p);
+        if crate::num::INTEGER_PROJECTION {
+            self.map.project_fixed(&c)
+        } else {
+            self.map.project_float(c.to_f32())
+        }
+    }
+
+    /// The clip coordinates of position `p` in `f32`, for clipping.
+    #[inline]
+    pub(crate) fn clip_coords(&self, p: &[i16; 3]) -> [f32; 4] {
+        to_f32(&self.fixed.apply(p))
+    }
+
     /// Transform, classify and project vertex `i`.
     fn transform(&self, i: u16) -> Result<Fetched, Error> {
         let p = self
@@ -400,7 +420,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 face: usize::MAX,
                 index: usize::from(i),
             })?;
-        let (code, screen) = self.map.project_fixed(&self.fixed.apply(p));
+        let (code, screen) = self.project_vertex(p);
         let light = if self.shading() == Shading::Gouraud {
             self.vertex_light(usize::from(i))
         } else {
@@ -512,3 +532,4 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
     }
 }
+

@@ -264,7 +264,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         f32::from(ONE)
                     };
                     let _ = poly.push(ClipVertex {
-                        c: to_f32(&self.fixed.apply(p)),
+                        c: self.clip_coords(p),
                         light,
                     });
                 }
