@@ -21,7 +21,7 @@ use std::time::{Duration, Instant};
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zraster::{
-    camera::{Transform, Viewport},
+    camera::{Camera, Viewport},
     damage::Damage,
     math::{radians, Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
@@ -388,14 +388,19 @@ fn main() {
     // ---- The frame.
     let (w, h) = (o.width, o.height);
     let viewport = Viewport::new(w, h).unwrap_or_else(|e| usage_error(&format!("--size: {e}")));
-    let camera = Transform::perspective(
+    // --fov is in degrees (the option's meaning); zraster's angles are radians.
+    if !(o.fov > 0.0 && o.fov < 180.0) {
+        usage_error(&format!(
+            "camera: --fov needs 0 < degrees < 180, got {}",
+            o.fov
+        ));
+    }
+    let camera = Camera::look_at(
         Vec3::new(0.0, 0.0, o.distance),
         Vec3::new(0.0, 0.0, o.distance - 1.0),
-        o.fov,
-        o.near,
-        o.far,
-        viewport,
+        Vec3::Y,
     )
+    .and_then(|eye| eye.perspective(radians(o.fov), o.near, o.far, viewport))
     .unwrap_or_else(|e| usage_error(&format!("camera: {e}")));
     let options = RenderOptions {
         cull: o.cull,

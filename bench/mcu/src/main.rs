@@ -14,8 +14,8 @@ use cortex_m_semihosting::{debug, hprintln};
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use panic_semihosting as _;
 use zraster::{
-    camera::{Transform, Viewport},
-    math::Vec3,
+    camera::{Camera, Viewport},
+    math::{radians, Vec3},
     mesh::CUBE,
     BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, ZBuffer,
 };
@@ -133,7 +133,7 @@ fn main() -> ! {
         // The fill-bound cube alone (to profile the pixel loop).
         let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
         frame.depth_mut().clear();
-        let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
+        let cube_xf = Camera::look_at(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), Vec3::Y).unwrap().perspective(radians(60.0), 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
         let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
         r.draw(&mut frame).unwrap();
         debug::exit(debug::EXIT_SUCCESS);
@@ -201,7 +201,7 @@ fn main() -> ! {
 
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
     frame.clear(Rgb565::BLACK);
-    let cube_xf = Transform::perspective(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), 60.0, 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
+    let cube_xf = Camera::look_at(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), Vec3::Y).unwrap().perspective(radians(60.0), 0.1, 10.0, Viewport::new(W, H).unwrap()).unwrap();
     let mut r = Renderer::new(&CUBE, &cube_xf, RenderOptions::default()).unwrap();
     let (_, fill) = measure(|| r.draw(&mut frame).unwrap());
     let written = r.stats().pixels_written.max(1) as u32; // one frame: far below 2³²
