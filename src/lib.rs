@@ -379,6 +379,7 @@ pub mod shade;
 pub mod state;
 #[cfg(test)]
 mod testing;
+pub mod texture;
 
 pub use band::{Binning, Unbinned};
 pub use buffer::{AfterBand, BandBuffers, Bands, ColorBuffer, DepthTest, Frame, ZBuffer};
