@@ -78,61 +78,56 @@ pub(crate) struct FixedTransform {
 }
 
 impl FixedTransform {
+    #[inline(never)] // once a frame: its locals stay off the drawing code's stack
     pub(crate) fn new(mvp: &Mat4, scale: f32) -> Result<FixedTransform, Error> {
         if !mvp.is_finite() || !scale.is_finite() {
             return Err(Error::NotFinite);
         }
-        let scale = f64::from(scale);
-        let maxes = |rows: &[[f32; 4]]| {
-            let (mut m, mut t) = (0.0f64, 0.0f64);
-            for row in rows {
-                for v in &row[..3] {
-                    m = m.max((f64::from(*v) * scale).abs());
+        // Every value below is exact: a coefficient times the scale is a product of
+        // two f32 mantissas (48 bits) and a power of two, kept as integers (no f64,
+        // which a core without an FPU emulates in some 2 KB of library code).
+        let coef = |r: usize, c: usize| {
+            let v = mvp.m[r][c];
+            if c < 3 {
+                Exact::product(v, scale)
+            } else {
+                Exact::of(v)
+            }
+        };
+        let maxes = |rows: core::ops::Range<usize>| {
+            let (mut m, mut t) = (Exact::ZERO, Exact::ZERO);
+            for r in rows {
+                for c in 0..3 {
+                    m = m.max_abs(coef(r, c));
                 }
-                t = t.max(f64::from(row[3]).abs());
+                t = t.max_abs(coef(r, 3));
             }
             (m, t)
         };
-        let (mxy, txy) = maxes(&mvp.m[..2]);
-        let (mzw, tzw) = maxes(&mvp.m[2..]);
-        if !(mxy.is_finite() && txy.is_finite() && mzw.is_finite() && tzw.is_finite())
-            || (mzw == 0.0 && tzw == 0.0)
-        {
+        let (mxy, txy) = maxes(0..2);
+        let (mzw, tzw) = maxes(2..4);
+        if mzw.is_zero() && tzw.is_zero() {
             return Err(Error::InvalidParameter(
                 "degenerate or overflowing transform",
             ));
         }
-        let kxy = fit_exponent(mxy, txy, 16383.0, (1u32 << 29) as f64);
-        let kzw = fit_exponent(
-            mzw,
-            tzw,
-            ((1u64 << 27) - (1 << 14)) as f64,
-            (1u64 << 43) as f64,
-        );
-        let q = |v: f64, k: i32, max: i64| {
-            let r = v * pow2_f64(k);
-            let r = if r >= 0.0 { r + 0.5 } else { r - 0.5 };
-            (r as i64).clamp(-max, max)
-        };
+        let kxy = fit_exponent(mxy, txy, 16383, 1 << 29);
+        let kzw = fit_exponent(mzw, tzw, (1 << 27) - (1 << 14), 1 << 43);
         let mut out = FixedTransform {
             xy: [[0; 4]; 2],
             hi: [[0; 4]; 2],
             lo: [[0; 4]; 2],
-            s: pow2_f64(kzw - kxy) as f32,
+            s: pow2_f32(kzw - kxy),
         };
-        for (r, row) in mvp.m.iter().enumerate() {
-            for (c, &v) in row.iter().enumerate() {
+        for r in 0..4 {
+            for c in 0..4 {
                 // Coefficients carry the mesh scale; the translation column does not.
-                let v = if c < 3 {
-                    f64::from(v) * scale
-                } else {
-                    f64::from(v)
-                };
+                let v = coef(r, c);
                 if r < 2 {
                     let max = if c < 3 { 16383 } else { 1 << 29 };
-                    out.xy[r][c] = q(v, kxy, max) as i32;
+                    out.xy[r][c] = v.round_scaled(kxy, max) as i32;
                 } else {
-                    let v = q(v, kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
+                    let v = v.round_scaled(kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
                     // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
                     out.hi[r - 2][c] = (v >> 14) as i32;
                     out.lo[r - 2][c] = (v & 0x3fff) as i32;
@@ -156,17 +151,132 @@ impl FixedTransform {
     }
 }
 
-/// The largest power of two k in ±1000 with m·2^k ≤ mlim and t·2^k ≤ tlim (−1000 if
-/// none), for non-negative m, t. `fits` only turns false as k grows, so the search may
-/// start anywhere: it starts one below the guess from the binary exponents and so takes a
-/// step or two (each a pair of soft-float products on an MCU) instead of tens.
-fn fit_exponent(m: f64, t: f64, mlim: f64, tlim: f64) -> i32 {
-    let fits = |k: i32| m * pow2_f64(k) <= mlim && t * pow2_f64(k) <= tlim;
-    let room = |v: f64, lim: f64| {
-        if v > 0.0 {
-            ilog2_f64(lim) - ilog2_f64(v) - 1
+/// A finite binary number `m · 2^e` held exactly (|m| < 2⁴⁸: an `f32`, or a product of
+/// two), for setting up the fixed-point transform without floating point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Exact {
+    m: i64,
+    e: i32,
+}
+
+impl Exact {
+    const ZERO: Exact = Exact { m: 0, e: 0 };
+
+    /// A finite `f32`, exactly.
+    fn of(v: f32) -> Exact {
+        let bits = v.to_bits();
+        let (exp, frac) = ((bits >> 23) & 0xff, i64::from(bits & 0x7f_ffff));
+        let (m, e) = if exp == 0 {
+            (frac, -149) // zero and subnormals
         } else {
+            (frac | 1 << 23, exp as i32 - 150)
+        };
+        Exact {
+            m: if v.is_sign_negative() { -m } else { m },
+            e,
+        }
+    }
+
+    /// `a · b` for finite `a`, `b`, exactly.
+    #[inline(never)]
+    fn product(a: f32, b: f32) -> Exact {
+        let (a, b) = (Exact::of(a), Exact::of(b));
+        Exact {
+            m: a.m * b.m,
+            e: a.e + b.e,
+        }
+    }
+
+    fn is_zero(self) -> bool {
+        self.m == 0
+    }
+
+    /// ⌊log₂ |self|⌋ (for a non-zero value).
+    fn ilog2(self) -> i32 {
+        self.e + 63 - self.m.unsigned_abs().leading_zeros() as i32
+    }
+
+    /// The larger of `self` and `|v|`, for a non-negative `self`.
+    fn max_abs(self, v: Exact) -> Exact {
+        let v = Exact {
+            m: v.m.abs(),
+            e: v.e,
+        };
+        if v.is_zero() {
+            return self;
+        }
+        if self.is_zero() {
+            return v;
+        }
+        // Compare the binary exponents, then the mantissas aligned to the same one.
+        match self.ilog2().cmp(&v.ilog2()) {
+            core::cmp::Ordering::Less => v,
+            core::cmp::Ordering::Greater => self,
+            core::cmp::Ordering::Equal => {
+                let e = self.e.min(v.e);
+                // Same top bit, both below 2⁴⁸: the aligned mantissas fit 63 bits.
+                if (self.m << (self.e - e)) >= (v.m << (v.e - e)) {
+                    self
+                } else {
+                    v
+                }
+            }
+        }
+    }
+
+    /// Whether `|self| · 2^k ≤ lim`, for `lim ≥ 0`.
+    fn scaled_at_most(self, k: i32, lim: i64) -> bool {
+        let m = self.m.unsigned_abs();
+        let s = self.e + k;
+        if m == 0 {
+            true
+        } else if s >= 0 {
+            s < 64 && m <= lim.unsigned_abs() >> s
+        } else {
+            // m ≤ lim · 2^−s; beyond 64 bits the right side exceeds any m (< 2⁴⁸).
+            let up = (-s).min(64) as u32;
+            up >= lim.unsigned_abs().leading_zeros() || m <= lim.unsigned_abs() << up
+        }
+    }
+
+    /// `self · 2^k` rounded to the nearest integer (halves away from zero), clamped to
+    /// `±max`.
+    #[inline(never)]
+    fn round_scaled(self, k: i32, max: i64) -> i64 {
+        let (m, s) = (self.m.unsigned_abs(), self.e + k);
+        let r = if m == 0 {
+            0
+        } else if s >= 0 {
+            if s >= 63 || m > max.unsigned_abs() >> s {
+                max.unsigned_abs()
+            } else {
+                m << s
+            }
+        } else if -s >= 63 {
+            0 // below 2⁴⁸⁻⁶³
+        } else {
+            (m + (1 << (-s - 1))) >> -s
+        };
+        let r = r.min(max.unsigned_abs()) as i64;
+        if self.m < 0 {
+            -r
+        } else {
+            r
+        }
+    }
+}
+
+/// The largest power of two k in ±1000 with |m|·2^k ≤ mlim and |t|·2^k ≤ tlim (−1000
+/// if none). `fits` only turns false as k grows, so the search may start anywhere: it
+/// starts one below the guess from the binary exponents and takes a step or two.
+fn fit_exponent(m: Exact, t: Exact, mlim: i64, tlim: i64) -> i32 {
+    let fits = |k: i32| m.scaled_at_most(k, mlim) && t.scaled_at_most(k, tlim);
+    let lim_log = |lim: i64| 63 - lim.leading_zeros() as i32;
+    let room = |v: Exact, lim: i64| {
+        if v.is_zero() {
             i32::MAX
+        } else {
+            lim_log(lim) - v.ilog2() - 1
         }
     };
     let mut k = room(m, mlim).min(room(t, tlim)).clamp(-1000, 1000);
@@ -179,15 +289,18 @@ fn fit_exponent(m: f64, t: f64, mlim: f64, tlim: f64) -> i32 {
     k
 }
 
-/// The binary exponent of a positive, finite `f64` (⌊log₂ v⌋ for normal numbers; −1023
-/// for subnormals, which only makes the search above start higher).
-fn ilog2_f64(v: f64) -> i32 {
-    ((v.to_bits() >> 52) & 0x7ff) as i32 - 1023
-}
-
-/// 2^k as `f64`.
-fn pow2_f64(k: i32) -> f64 {
-    f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52)
+/// 2^k as `f32`, as converting the exact power would give it: infinite above 2¹²⁷,
+/// subnormal down to 2⁻¹⁴⁹, zero below.
+fn pow2_f32(k: i32) -> f32 {
+    if k > 127 {
+        f32::INFINITY
+    } else if k >= -126 {
+        f32::from_bits(((k + 127) as u32) << 23)
+    } else if k >= -149 {
+        f32::from_bits(1 << (k + 149))
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]
@@ -236,10 +349,12 @@ mod tests {
         );
     }
 
-    #[test]
-    fn fit_exponent_matches_the_search_from_zero() {
-        // The search as it was: from k = 0, one step at a time.
-        let reference = |m: f64, t: f64, mlim: f64, tlim: f64| {
+    /// The set-up as it was, in `f64` (exact for these products), as the reference.
+    fn new_f64(mvp: &Mat4, scale: f32) -> Result<FixedTransform, Error> {
+        fn pow2_f64(k: i32) -> f64 {
+            f64::from_bits(((k.clamp(-1022, 1023) + 1023) as u64) << 52)
+        }
+        fn fit_f64(m: f64, t: f64, mlim: f64, tlim: f64) -> i32 {
             let fits = |k: i32| m * pow2_f64(k) <= mlim && t * pow2_f64(k) <= tlim;
             let mut k = 0i32;
             while k < 1000 && fits(k + 1) {
@@ -249,39 +364,122 @@ mod tests {
                 k -= 1;
             }
             k
-        };
-        let mut next = crate::testing::xorshift32(0x2545_f491);
-        let lims = [
-            (16383.0, (1u32 << 29) as f64),
-            (((1u64 << 27) - (1 << 14)) as f64, (1u64 << 43) as f64),
-        ];
-        let mut values = std::vec![
-            0.0,
-            f64::MIN_POSITIVE,
-            5e-324,
-            1e-300,
-            1.0,
-            16383.0,
-            16384.0,
-            1e300,
-            f64::MAX,
-        ];
-        for _ in 0..2000 {
-            // Mantissas at and near powers of two, across a wide exponent range.
-            let e = (next() % 200) as i32 - 100;
-            let mant = [1.0, 1.0 + f64::EPSILON, 2.0 - f64::EPSILON, 1.5][(next() % 4) as usize];
-            values.push(mant * pow2_f64(e));
-            values.push(f64::from(next()) / f64::from(next().max(1)));
         }
-        for (i, &m) in values.iter().enumerate() {
-            let t = values[(i * 7 + 3) % values.len()];
-            for &(mlim, tlim) in &lims {
-                assert_eq!(
-                    fit_exponent(m, t, mlim, tlim),
-                    reference(m, t, mlim, tlim),
-                    "{m:e} {t:e}"
-                );
+        if !mvp.is_finite() || !scale.is_finite() {
+            return Err(Error::NotFinite);
+        }
+        let scale = f64::from(scale);
+        let value = |r: usize, c: usize| {
+            let v = f64::from(mvp.m[r][c]);
+            if c < 3 {
+                v * scale
+            } else {
+                v
             }
+        };
+        let maxes = |rows: core::ops::Range<usize>| {
+            let (mut m, mut t) = (0.0f64, 0.0f64);
+            for r in rows {
+                for c in 0..3 {
+                    m = m.max(value(r, c).abs());
+                }
+                t = t.max(value(r, 3).abs());
+            }
+            (m, t)
+        };
+        let (mxy, txy) = maxes(0..2);
+        let (mzw, tzw) = maxes(2..4);
+        if mzw == 0.0 && tzw == 0.0 {
+            return Err(Error::InvalidParameter(
+                "degenerate or overflowing transform",
+            ));
+        }
+        let kxy = fit_f64(mxy, txy, 16383.0, (1u32 << 29) as f64);
+        let kzw = fit_f64(
+            mzw,
+            tzw,
+            ((1u64 << 27) - (1 << 14)) as f64,
+            (1u64 << 43) as f64,
+        );
+        let q = |v: f64, k: i32, max: i64| {
+            let r = v * pow2_f64(k);
+            let r = if r >= 0.0 { r + 0.5 } else { r - 0.5 };
+            (r as i64).clamp(-max, max)
+        };
+        let mut out = FixedTransform {
+            xy: [[0; 4]; 2],
+            hi: [[0; 4]; 2],
+            lo: [[0; 4]; 2],
+            s: pow2_f64(kzw - kxy) as f32,
+        };
+        for r in 0..4 {
+            for c in 0..4 {
+                let v = value(r, c);
+                if r < 2 {
+                    out.xy[r][c] = q(v, kxy, if c < 3 { 16383 } else { 1 << 29 }) as i32;
+                } else {
+                    let v = q(v, kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
+                    out.hi[r - 2][c] = (v >> 14) as i32;
+                    out.lo[r - 2][c] = (v & 0x3fff) as i32;
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The integer set-up gives exactly the `f64` one's transform: for random matrices
+    /// and scales over a wide range of magnitudes, signs, zeros and subnormals.
+    #[test]
+    fn integer_setup_matches_the_f64_one() {
+        let mut next = crate::testing::xorshift32(0x2545_f491);
+        let mut value = |wide: bool| -> f32 {
+            let r = next();
+            match r % 16 {
+                0 => 0.0,
+                1 => f32::from_bits(r >> 9), // subnormal or tiny
+                2 => -1.0,
+                _ => {
+                    let e = if wide {
+                        (r >> 4) % 200
+                    } else {
+                        (r >> 4) % 40 + 107
+                    };
+                    let bits = (e << 23) | (next() >> 9) | (r & 1 << 31);
+                    f32::from_bits(bits)
+                }
+            }
+        };
+        let mut tested = 0;
+        for i in 0..20_000 {
+            let wide = i % 4 == 0;
+            let mut m = Mat4 { m: [[0.0; 4]; 4] };
+            for row in &mut m.m {
+                for v in row.iter_mut() {
+                    *v = value(wide);
+                }
+            }
+            let scale = value(wide);
+            let (got, want) = (FixedTransform::new(&m, scale), new_f64(&m, scale));
+            assert_eq!(got, want, "{m:?} scale {scale:e}");
+            tested += usize::from(got.is_ok());
+        }
+        assert!(tested > 10_000, "{tested}");
+        // Exact powers of two, near the limits and ties of the rounding.
+        for k in -60..60 {
+            let p = f32::from_bits(((k + 127) as u32) << 23);
+            let mut m = Mat4::IDENTITY;
+            m.m[0][0] = 1.5 * p;
+            m.m[2][3] = 16383.5 * p;
+            m.m[3][2] = -0.5 * p;
+            assert_eq!(FixedTransform::new(&m, 1.0), new_f64(&m, 1.0), "2^{k}");
+        }
+    }
+
+    #[test]
+    fn pow2_f32_converts_like_f64() {
+        for k in -200..200 {
+            let want = (2.0f64).powi(k) as f32;
+            assert_eq!(pow2_f32(k).to_bits(), want.to_bits(), "2^{k}");
         }
     }
 }
