@@ -7,6 +7,10 @@
 
 use crate::math::{Mat4, Vec3};
 use crate::{Error, MAX_DIMENSION};
+use embedded_graphics::{
+    geometry::{Point, Size},
+    primitives::Rectangle,
+};
 
 /// The screen rectangle that normalised device coordinates map to.
 ///
@@ -62,6 +66,35 @@ impl Viewport {
     /// Width / height.
     pub fn aspect(&self) -> f32 {
         self.width as f32 / self.height as f32
+    }
+}
+
+/// The viewport covering a rectangle of the display, such as its `bounding_box()`.
+///
+/// Errors as [`Viewport::at`]: a zero or too large size, a corner beyond ±8192.
+impl TryFrom<Rectangle> for Viewport {
+    type Error = Error;
+
+    fn try_from(r: Rectangle) -> Result<Viewport, Error> {
+        Viewport::at(r.top_left.x, r.top_left.y, r.size.width, r.size.height)
+    }
+}
+
+/// The viewport of a display's `size()`, at (0, 0).
+///
+/// Errors as [`Viewport::new`].
+impl TryFrom<Size> for Viewport {
+    type Error = Error;
+
+    fn try_from(s: Size) -> Result<Viewport, Error> {
+        Viewport::new(s.width, s.height)
+    }
+}
+
+/// The screen rectangle of a viewport.
+impl From<Viewport> for Rectangle {
+    fn from(vp: Viewport) -> Rectangle {
+        Rectangle::new(Point::new(vp.x, vp.y), Size::new(vp.width, vp.height))
     }
 }
 

@@ -89,7 +89,7 @@ use embedded_graphics::{
 use crate::shade::{Light, Material, Shading};
 use crate::{
     Camera, ColorBuffer, Cull, DrawError, Error, Frame, FrameStats, RenderOptions, Renderer,
-    Viewport, ZBuffer,
+    ZBuffer,
 };
 
 /// The default band capacity of a [`Model`], in pixels: 1024 colours and 1024 depths on
@@ -504,35 +504,6 @@ impl<C> Default for ModelStyle<C> {
     /// [`ModelStyle::flat`].
     fn default() -> Self {
         Self::flat()
-    }
-}
-
-/// The viewport covering a rectangle of the display, such as its `bounding_box()`.
-///
-/// Errors as [`Viewport::at`]: a zero or too large size, a corner beyond ±8192.
-impl TryFrom<Rectangle> for Viewport {
-    type Error = Error;
-
-    fn try_from(r: Rectangle) -> Result<Viewport, Error> {
-        Viewport::at(r.top_left.x, r.top_left.y, r.size.width, r.size.height)
-    }
-}
-
-/// The viewport of a display's `size()`, at (0, 0).
-///
-/// Errors as [`Viewport::new`].
-impl TryFrom<Size> for Viewport {
-    type Error = Error;
-
-    fn try_from(s: Size) -> Result<Viewport, Error> {
-        Viewport::new(s.width, s.height)
-    }
-}
-
-/// The screen rectangle of a viewport.
-impl From<Viewport> for Rectangle {
-    fn from(vp: Viewport) -> Rectangle {
-        Rectangle::new(Point::new(vp.x, vp.y), Size::new(vp.width, vp.height))
     }
 }
 
