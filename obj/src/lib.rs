@@ -1,41 +1,51 @@
 //! A Wavefront OBJ reader for zraster's host tools: the `render` example, the
 //! `obj2rust` converter, the tests.
 //!
-//! Reads `v` and `f` (with `v`, `v/vt`, `v/vt/vn`, `v//vn` and negative indices),
-//! `mtllib` + `usemtl` with `Kd` colours; other statements are ignored. Errors name the
+//! Reads `v`, `vt` and `f` (with `v`, `v/vt`, `v/vt/vn`, `v//vn` and negative indices
+//! for positions and texture coordinates alike), `mtllib` + `usemtl` with `Kd` colours,
+//! `map_Kd` textures and `d`/`Tr` opacity; other statements are ignored. Errors name the
 //! line. A UTF-8 byte-order mark at the start of an OBJ or MTL text is skipped.
-//! [`MtlLoader`] reads the material libraries from disk safely (regular files of at most
-//! [`MAX_MTL_BYTES`], each once). [`quantize`] turns the positions into the `i16`
-//! vertex table of a `zraster::mesh::Mesh`; [`fit_scale_f64`] sizes any finite model,
-//! up to coordinates of ±`f32::MAX`.
+//! [`MtlLoader`] reads the material libraries and their PNG textures from disk safely
+//! (regular files of bounded size, each library once). [`quantize`] turns the
+//! positions into the `i16` vertex table of a `zraster::mesh::Mesh`; [`fit_scale_f64`]
+//! sizes any finite model, up to coordinates of ±`f32::MAX`.
+//!
+//! Textures: each face corner keeps its `vt` ([`ObjTriangle::texcoords`]);
+//! [`ObjModel::split_vertices`] makes the one vertex table the renderer indexes, a
+//! vertex for each position and texture coordinates, quantised to zraster's Q12
+//! [`MeshUv`](zraster::texture::MeshUv); [`load_textures`] reads the materials'
+//! `map_Kd` images (a texture that cannot be read is a warning, and its faces are
+//! drawn in their `Kd` colour).
 //!
 //! [`to_rust`] turns a model into Rust source for a `const` mesh in flash (what the
-//! `obj2rust` example prints), from a build script too, and says what it left out.
+//! `obj2rust` example prints), from a build script too, and says what it left out;
+//! [`to_rust_textured`] adds the texture coordinates and textures.
 //!
 //! It lives in its own crate because it allocates: zraster itself never does.
 
 use std::collections::HashSet;
 use std::fmt;
-use std::io::Read;
-use std::path::{Path, PathBuf};
 
+mod image;
+mod mtl;
 mod to_rust;
-pub use to_rust::{rust_prefix, to_rust, RustForm, RustMesh, RustOptions};
-
-/// A material from an MTL file.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ObjMaterial {
-    /// The `newmtl` name.
-    pub name: String,
-    /// The diffuse colour `Kd`, each in 0..=1.
-    pub kd: [f32; 3],
-}
+mod uv;
+pub use image::{
+    decode_png, load_textures, rgb565, LoadedTexture, ModelTextures, ObjImage, MAX_TEXTURE_BYTES,
+    MAX_TEXTURE_SIZE,
+};
+pub use mtl::{parse_mtl, MtlLoader, ObjMaterial, TextureMap, MAX_MTL_BYTES};
+pub use to_rust::{rust_prefix, to_rust, to_rust_textured, RustForm, RustMesh, RustOptions};
+pub use uv::{SplitVertex, SplitVertices};
 
 /// One triangle of the model (polygons are fan-triangulated while reading).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ObjTriangle {
     /// Vertex indices (0-based), counter-clockwise from the front.
     pub vertices: [u32; 3],
+    /// Texture coordinate indices (0-based, into [`ObjModel::texcoords`]) of the
+    /// three corners, when the face gives every corner one.
+    pub texcoords: Option<[u32; 3]>,
     /// Index into [`ObjModel::materials`], if a known `usemtl` was in force.
     pub material: Option<usize>,
     /// The line of the `f` statement.
@@ -47,6 +57,9 @@ pub struct ObjTriangle {
 pub struct ObjModel {
     /// The `v` statements.
     pub positions: Vec<[f32; 3]>,
+    /// The `vt` statements: u and v as written (OBJ's v points up), as `f64` so that
+    /// large coordinates keep their fraction.
+    pub texcoords: Vec<[f64; 2]>,
     /// The faces as triangles.
     pub triangles: Vec<ObjTriangle>,
     /// Materials from the `mtllib` files.
@@ -66,13 +79,16 @@ pub struct ReadNotes {
     pub polygon_triangles: usize,
     /// `vn` statements (zraster computes normals from the positions).
     pub normals: usize,
-    /// `vt` statements (zraster has no textures).
-    pub texcoords: usize,
+    /// `vt` statements with a third (w) coordinate, which is dropped.
+    pub texcoord_w: usize,
+    /// Faces giving texture coordinates to some corners but not all: they are kept
+    /// without texture coordinates.
+    pub mixed_faces: usize,
     /// OBJ statements the reader does not use (`o`, `g`, `s`, `l`, ...), by keyword in
     /// order of first appearance (at most [`MAX_SKIPPED_KINDS`] kinds; the rest are
     /// counted in `skipped_other`).
     pub skipped: Vec<Skipped>,
-    /// MTL statements the reader does not use (`Ka`, `Ks`, `map_Kd`, ...), alike; their
+    /// MTL statements the reader does not use (`Ka`, `Ks`, `map_Ks`, ...), alike; their
     /// line is that of the `mtllib` statement.
     pub skipped_mtl: Vec<Skipped>,
     /// Skipped statements beyond the first [`MAX_SKIPPED_KINDS`] kinds.
@@ -170,6 +186,19 @@ fn number(tok: Option<&str>, line: usize, what: &str) -> Result<f32, ObjError> {
     Ok(v)
 }
 
+/// A texture coordinate: any finite number (as `f64`, which keeps the fraction of
+/// coordinates up to 2⁴⁰ to 1/4096); NaN and infinities are errors.
+fn number64(tok: Option<&str>, line: usize, what: &str) -> Result<f64, ObjError> {
+    let tok = tok.ok_or_else(|| err(line, format!("missing {what}")))?;
+    let v: f64 = tok
+        .parse()
+        .map_err(|_| err(line, format!("{what} is not a number: {tok:?}")))?;
+    if !v.is_finite() {
+        return Err(err(line, format!("{what} is not finite: {tok:?}")));
+    }
+    Ok(v)
+}
+
 /// The most vertices a model may have (meshes index them with `u16`).
 pub const MAX_VERTICES: usize = 1 << 16;
 
@@ -209,23 +238,55 @@ fn bad_face(m: &mut ObjModel, e: ObjError) {
     }
 }
 
-/// One `f` statement's vertex indices (0-based; a forward reference stays unchecked).
-fn face(toks: std::str::SplitWhitespace<'_>, line: usize, n: usize) -> Result<Vec<u32>, ObjError> {
-    let mut idx: Vec<u32> = Vec::new();
-    for t in toks {
-        let first = t.split('/').next().unwrap_or("");
-        let v: i64 = first
-            .parse()
-            .map_err(|_| err(line, format!("bad vertex reference {t:?}")))?;
-        let resolved = match v {
-            0 => return Err(err(line, "vertex index 0 (OBJ indices start at 1)")),
-            v if v < 0 => n as i64 + v,
-            v => v - 1,
-        };
-        if resolved < 0 || resolved >= MAX_VERTICES as i64 {
-            return Err(err(line, format!("vertex index {v} out of range")));
+/// The most `vt` statements a model may have.
+pub const MAX_TEXCOORDS: usize = 1 << 20;
+
+/// One `f` statement: its corners' vertex indices and, when every corner gives one,
+/// their texture coordinate indices (0-based; forward references stay unchecked), and
+/// whether some corners gave one and others not.
+type Face = (Vec<u32>, Option<Vec<u32>>, bool);
+
+/// A 1-based (or negative, relative) OBJ index to a 0-based one below `max`.
+fn resolve(tok: &str, count: usize, max: usize, line: usize, what: &str) -> Result<u32, ObjError> {
+    let i: i64 = tok
+        .parse()
+        .map_err(|_| err(line, format!("bad {what} reference {tok:?}")))?;
+    let resolved = match i {
+        0 => {
+            return Err(err(
+                line,
+                format!("{what} index 0 (OBJ indices start at 1)"),
+            ))
         }
-        idx.push(resolved as u32);
+        i if i < 0 => count as i64 + i,
+        i => i - 1,
+    };
+    if resolved < 0 || resolved >= max as i64 {
+        return Err(err(line, format!("{what} index {i} out of range")));
+    }
+    Ok(resolved as u32)
+}
+
+/// One `f` statement (see [`Face`]); `n` and `nt` are the positions and texture
+/// coordinates read so far.
+fn face(
+    toks: std::str::SplitWhitespace<'_>,
+    line: usize,
+    n: usize,
+    nt: usize,
+) -> Result<Face, ObjError> {
+    let mut idx: Vec<u32> = Vec::new();
+    let mut tex: Vec<u32> = Vec::new();
+    for t in toks {
+        let mut parts = t.split('/');
+        let first = parts.next().unwrap_or("");
+        idx.push(resolve(first, n, MAX_VERTICES, line, "vertex")?);
+        match parts.next() {
+            Some(vt) if !vt.is_empty() => {
+                tex.push(resolve(vt, nt, MAX_TEXCOORDS, line, "texture coordinate")?)
+            }
+            _ => {}
+        }
     }
     if idx.len() < 3 {
         return Err(err(
@@ -236,7 +297,9 @@ fn face(toks: std::str::SplitWhitespace<'_>, line: usize, n: usize) -> Result<Ve
             ),
         ));
     }
-    Ok(idx)
+    let mixed = !tex.is_empty() && tex.len() != idx.len();
+    let tex = (tex.len() == idx.len()).then_some(tex);
+    Ok((idx, tex, mixed))
 }
 
 /// The reader. `lenient`: a face that cannot be used is left out with a warning
@@ -267,9 +330,27 @@ pub(crate) fn parse(
                 }
                 m.positions.push([x, y, z]);
             }
+            "vt" => {
+                let u = number64(toks.next(), line, "u")?;
+                let v = match toks.next() {
+                    Some(t) => number64(Some(t), line, "v")?,
+                    None => 0.0,
+                };
+                if toks.next().is_some() {
+                    m.notes.texcoord_w += 1;
+                }
+                if m.texcoords.len() >= MAX_TEXCOORDS {
+                    return Err(err(
+                        line,
+                        format!("more than {MAX_TEXCOORDS} texture coordinates"),
+                    ));
+                }
+                m.texcoords.push([u, v]);
+            }
             "f" => {
-                let idx = match face(toks, line, m.positions.len()) {
-                    Ok(idx) => idx,
+                let (idx, tex, mixed) = match face(toks, line, m.positions.len(), m.texcoords.len())
+                {
+                    Ok(f) => f,
                     Err(e) if lenient => {
                         bad_face(&mut m, e);
                         continue;
@@ -280,16 +361,22 @@ pub(crate) fn parse(
                     m.notes.polygons += 1;
                     m.notes.polygon_triangles += idx.len() - 2;
                 }
-                if let Some((&first, rest)) = idx.split_first() {
-                    for pair in rest.windows(2) {
-                        if let &[b, c] = pair {
-                            m.triangles.push(ObjTriangle {
-                                vertices: [first, b, c],
-                                material: current,
-                                line,
-                            });
-                        }
+                if mixed {
+                    m.notes.mixed_faces += 1;
+                    if m.notes.mixed_faces <= MAX_BAD_FACE_WARNINGS {
+                        m.warnings.push(format!(
+                            "line {line}: some corners of the face have `vt` texture coordinates and some not: it is kept without"
+                        ));
                     }
+                }
+                // Fanned from the first corner; texture coordinates with their corners.
+                for k in 1..idx.len().saturating_sub(1) {
+                    m.triangles.push(ObjTriangle {
+                        vertices: [idx[0], idx[k], idx[k + 1]],
+                        texcoords: tex.as_ref().map(|t| [t[0], t[k], t[k + 1]]),
+                        material: current,
+                        line,
+                    });
                 }
             }
             "mtllib" => {
@@ -299,8 +386,12 @@ pub(crate) fn parse(
                     }
                     match load_mtl(name) {
                         Ok(text) => {
-                            let skipped = (&mut m.notes.skipped_mtl, &mut m.notes.skipped_other);
-                            parse_mtl_noting(&text, &mut m.materials, line, skipped)
+                            let mut notes = mtl::MtlNotes {
+                                skipped: &mut m.notes.skipped_mtl,
+                                other: &mut m.notes.skipped_other,
+                                warnings: &mut m.warnings,
+                            };
+                            mtl::parse_mtl_noting(&text, &mut m.materials, line, name, &mut notes)
                                 .map_err(|e| err(line, format!("in {name}: {e}")))?
                         }
                         Err(why) if why.is_empty() => m
@@ -321,34 +412,45 @@ pub(crate) fn parse(
                 }
             }
             "vn" => m.notes.normals += 1,
-            "vt" => m.notes.texcoords += 1,
             kw => ReadNotes::skip(&mut m.notes.skipped, &mut m.notes.skipped_other, kw, line),
         }
     }
-    let n = m.positions.len();
-    let out_of_range = |t: &ObjTriangle| t.vertices.iter().find(|&&v| v as usize >= n).copied();
+    if m.notes.mixed_faces > MAX_BAD_FACE_WARNINGS {
+        m.warnings.push(format!(
+            "{} faces in all kept without texture coordinates (some corners without `vt`)",
+            m.notes.mixed_faces
+        ));
+    }
+    let (n, nt) = (m.positions.len(), m.texcoords.len());
+    // What is wrong with a triangle's (forward) references, if anything.
+    let out_of_range = |t: &ObjTriangle| {
+        if let Some(v) = t.vertices.iter().find(|&&v| v as usize >= n) {
+            return Some(format!(
+                "vertex index {} out of range (the file has {n} vertices)",
+                v + 1
+            ));
+        }
+        let vt = t.texcoords?.into_iter().find(|&i| i as usize >= nt)?;
+        Some(format!(
+            "texture coordinate index {} out of range (the file has {nt} texture coordinates)",
+            vt + 1
+        ))
+    };
     if lenient {
         // Whole faces go: every triangle of a line with a bad one.
-        let mut bad_lines: Vec<(usize, u32)> = Vec::new();
+        let mut bad_lines: Vec<(usize, String)> = Vec::new();
         for t in &m.triangles {
-            if let Some(v) = out_of_range(t) {
-                if bad_lines.last().is_none_or(|&(l, _)| l != t.line) {
-                    bad_lines.push((t.line, v));
+            if let Some(why) = out_of_range(t) {
+                if bad_lines.last().is_none_or(|(l, _)| *l != t.line) {
+                    bad_lines.push((t.line, why));
                 }
             }
         }
         if !bad_lines.is_empty() {
-            let lines: HashSet<usize> = bad_lines.iter().map(|&(l, _)| l).collect();
+            let lines: HashSet<usize> = bad_lines.iter().map(|(l, _)| *l).collect();
             m.triangles.retain(|t| !lines.contains(&t.line));
-            for (line, v) in bad_lines {
-                let e = err(
-                    line,
-                    format!(
-                        "vertex index {} out of range (the file has {n} vertices)",
-                        v + 1
-                    ),
-                );
-                bad_face(&mut m, e);
+            for (line, why) in bad_lines {
+                bad_face(&mut m, err(line, why));
             }
         }
         if m.notes.bad_faces > MAX_BAD_FACE_WARNINGS {
@@ -358,125 +460,14 @@ pub(crate) fn parse(
                 m.notes.bad_faces
             ));
         }
-    } else if let Some((t, bad)) = m
+    } else if let Some((line, why)) = m
         .triangles
         .iter()
-        .find_map(|t| out_of_range(t).map(|v| (t, v)))
+        .find_map(|t| out_of_range(t).map(|why| (t.line, why)))
     {
-        return Err(err(
-            t.line,
-            format!(
-                "vertex index {} out of range (the file has {n} vertices)",
-                bad + 1
-            ),
-        ));
+        return Err(err(line, why));
     }
     Ok(m)
-}
-
-/// Read `newmtl` / `Kd` statements of an MTL file into `out`.
-pub fn parse_mtl(src: &str, out: &mut Vec<ObjMaterial>) -> Result<(), ObjError> {
-    parse_mtl_noting(src, out, 0, (&mut Vec::new(), &mut 0))
-}
-
-/// [`parse_mtl`], noting the statements it skips (as if on line `at`).
-fn parse_mtl_noting(
-    src: &str,
-    out: &mut Vec<ObjMaterial>,
-    at: usize,
-    (skipped, other): (&mut Vec<Skipped>, &mut usize),
-) -> Result<(), ObjError> {
-    let src = src.strip_prefix('\u{feff}').unwrap_or(src);
-    for (i, raw) in src.lines().enumerate() {
-        let line = i + 1;
-        let text = raw.split('#').next().unwrap_or("");
-        let mut toks = text.split_whitespace();
-        match toks.next() {
-            Some("newmtl") => out.push(ObjMaterial {
-                name: toks.next().unwrap_or("").to_string(),
-                kd: [1.0; 3],
-            }),
-            Some("Kd") => {
-                let r = number(toks.next(), line, "Kd red")?;
-                let g = number(toks.next(), line, "Kd green")?;
-                let b = number(toks.next(), line, "Kd blue")?;
-                let mat = out
-                    .last_mut()
-                    .ok_or_else(|| err(line, "Kd before any newmtl"))?;
-                mat.kd = [r.clamp(0.0, 1.0), g.clamp(0.0, 1.0), b.clamp(0.0, 1.0)];
-            }
-            Some(kw) => ReadNotes::skip(skipped, other, kw, at),
-            None => {}
-        }
-    }
-    Ok(())
-}
-
-/// The largest material library [`MtlLoader`] reads: 16 MiB.
-pub const MAX_MTL_BYTES: u64 = 16 << 20;
-
-/// Reads the material libraries an OBJ file names, from the OBJ file's folder, for
-/// [`parse_obj_with`] — safe for files from anywhere: it reads only regular files (never
-/// a device such as `/dev/zero`, which never ends, or a FIFO, which blocks its reader
-/// until something writes), of at most [`MAX_MTL_BYTES`], and each file once (by its
-/// canonical path: a library named again, under any name, reads as empty).
-///
-/// ```
-/// let dir = std::env::temp_dir();
-/// let mut mtl = zraster_obj::MtlLoader::new(&dir);
-/// let model = zraster_obj::parse_obj_with("mtllib /dev/zero\n", |name| mtl.load(name))?;
-/// assert_eq!(
-///     model.warnings,
-///     ["line 1: cannot read material library /dev/zero: not a regular file"]
-/// );
-/// # Ok::<(), zraster_obj::ObjError>(())
-/// ```
-#[derive(Debug, Clone, Default)]
-pub struct MtlLoader {
-    dir: PathBuf,
-    seen: HashSet<PathBuf>,
-}
-
-impl MtlLoader {
-    /// A loader for the libraries of an OBJ file in `dir`.
-    pub fn new(dir: impl AsRef<Path>) -> MtlLoader {
-        MtlLoader {
-            dir: dir.as_ref().to_path_buf(),
-            seen: HashSet::new(),
-        }
-    }
-
-    /// The text of the library `name` (relative to the folder, or absolute); `""` for a
-    /// file read before. `Err` says why it cannot be read.
-    pub fn load(&mut self, name: &str) -> Result<String, String> {
-        let path = self.dir.join(name);
-        let too_big = || format!("larger than {} MiB", MAX_MTL_BYTES >> 20);
-        // The type and size before opening: opening a FIFO for reading blocks.
-        let meta = std::fs::metadata(&path).map_err(|e| e.to_string())?;
-        if !meta.is_file() {
-            return Err("not a regular file".into());
-        }
-        if meta.len() > MAX_MTL_BYTES {
-            return Err(too_big());
-        }
-        let key = std::fs::canonicalize(&path).map_err(|e| e.to_string())?;
-        if !self.seen.insert(key) {
-            return Ok(String::new());
-        }
-        let file = std::fs::File::open(&path).map_err(|e| e.to_string())?;
-        // What was opened may not be what was looked at; and a file may grow.
-        if !file.metadata().is_ok_and(|m| m.is_file()) {
-            return Err("not a regular file".into());
-        }
-        let mut bytes = Vec::new();
-        file.take(MAX_MTL_BYTES + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| e.to_string())?;
-        if bytes.len() as u64 > MAX_MTL_BYTES {
-            return Err(too_big());
-        }
-        String::from_utf8(bytes).map_err(|_| "not UTF-8 text".into())
-    }
 }
 
 /// Positions quantised to `i16` for a `zraster::mesh::Mesh`: `q × scale + offset`
@@ -585,3 +576,5 @@ pub fn quantize(positions: &[[f32; 3]], centre: bool) -> Quantized {
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod texture_tests;

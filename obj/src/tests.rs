@@ -1,6 +1,7 @@
 //! The reader's unit tests.
 
 use super::*;
+use std::path::PathBuf;
 
 #[test]
 fn bounds_and_fit_scale() {

@@ -6,7 +6,12 @@ use std::fmt::Write;
 use zraster::math::Vec3;
 use zraster::mesh::{compute_face_normals, compute_vertex_normals, Mesh};
 
-use crate::{err, fit_scale, parse, quantize, ObjError, ObjModel, Skipped};
+mod textures;
+
+use crate::{
+    err, fit_scale, load_textures, parse, quantize, ModelTextures, ObjError, ObjImage, ObjModel,
+    Skipped, SplitVertices,
+};
 
 /// The shape of [`to_rust`]'s output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -52,6 +57,8 @@ pub struct RustMesh {
     pub triangles: usize,
     /// Distinct colours the faces take from MTL materials (0: the mesh is white).
     pub materials: usize,
+    /// Textures written (0 for [`to_rust`], or when no face is textured).
+    pub textures: usize,
 }
 
 /// `name` as the SCREAMING_SNAKE prefix of Rust items: ASCII letters and digits upper
@@ -103,8 +110,9 @@ pub fn rust_prefix(name: &str) -> String {
 /// `load_mtl(name)` returns the text of a material library named by `mtllib`, or why it
 /// cannot ([`crate::MtlLoader::load`] reads them safely from a folder). Faces that
 /// cannot be used (bad vertex references) are left out. Everything left out or changed
-/// is a line in `warnings`: faces left out, polygons fan-triangulated, `vn` and `vt`
-/// dropped, statements skipped, libraries not read, unknown materials, faces without a
+/// is a line in `warnings`: faces left out, polygons fan-triangulated, `vn` dropped,
+/// `vt` and `map_Kd` textures dropped (a texture cannot be read here:
+/// [`to_rust_textured`] writes them), statements skipped, libraries not read, unknown materials, faces without a
 /// material, a name changed to make identifiers. Errors: malformed numbers, too many
 /// vertices, a broken material library, or no faces left.
 ///
@@ -159,6 +167,67 @@ pub fn to_rust(
     options: &RustOptions<'_>,
     warnings: &mut Vec<String>,
 ) -> Result<RustMesh, ObjError> {
+    let no_textures = |_: &str| Err("to_rust reads no textures (to_rust_textured does)".into());
+    to_rust_textured(obj, load_mtl, no_textures, options, warnings)
+}
+
+/// [`to_rust`] with textures: `load_texture(path)` reads a material's `map_Kd` image
+/// ([`crate::MtlLoader::load_texture`] reads PNG files safely from the OBJ file's
+/// folder; the path is relative to it).
+///
+/// When faces with `vt` coordinates use a material with a texture, the output gains
+/// (besides everything [`to_rust`] writes, the same for an untextured model):
+///
+/// - `NAME_UVS: [[i16; 2]; N]`: each vertex's texture coordinates in zraster's Q12
+///   [`MeshUv`](zraster::texture::MeshUv) form: 4096 is one texture, −8 ≤ u, v < 8, v
+///   down the image (1 − OBJ's v). Each face is moved by whole textures if it does not
+///   fit as it is (the same under repeat); a face spanning more than 8 textures is
+///   clamped (a warning). Where faces give a position different coordinates, the
+///   position is split into several vertices (copies at the end of the tables, with
+///   the normals of the position).
+/// - per texture: `NAME_TEXELS: [u16; W×H]`, raw RGB565 (`0xF800` is red, rounded as
+///   embedded-graphics converts `Rgb888`), row by row from the top;
+///   `NAME_TEXTURE_WIDTH`, `NAME_TEXTURE_HEIGHT: u32`; and `NAME_TEXTURE`, a
+///   `zraster::texture::Texture<'static, u16>` over the table (repeating, or clamped for
+///   `map_Kd -clamp on`). With several textures the names take `_0`, `_1`, ...
+///   (`NAME_TEXELS_0`, `NAME_TEXTURE_0_WIDTH`), in order of first use.
+/// - `NAME_FACE_TEXTURES: [u8; triangles]`, each triangle's texture (255: none), when
+///   there are several textures or faces without one.
+/// - `NAME_ALPHA: u8` (one material) or `NAME_MATERIAL_ALPHA: [u8; K]` (beside
+///   `NAME_MATERIALS`), 255 opaque, when a material has `d` or `Tr` below opaque —
+///   with a warning: zraster draws faces opaque.
+///
+/// A texture that cannot be read (missing, unreadable, not a PNG, larger than 8192
+/// texels) is a warning, and its faces are drawn in their material's `Kd` colour (see
+/// [`crate::load_textures`]); a texture's alpha channel is dropped with a warning.
+///
+/// ```
+/// use zraster_obj::{to_rust_textured, ObjImage, RustOptions};
+/// let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+///            vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl wood\nf 1/1 2/2 3/3 4/4\n";
+/// let mtl = |_: &str| Ok("newmtl wood\nmap_Kd wood.png\n".to_string());
+/// // A 2×1 texture: red, blue.
+/// let png = |path: &str| {
+///     assert_eq!(path, "wood.png");
+///     Ok(ObjImage { width: 2, height: 1, rgba: vec![[255, 0, 0, 255], [0, 0, 255, 255]] })
+/// };
+/// let mut warnings = Vec::new();
+/// let opts = RustOptions { name: "quad", ..Default::default() };
+/// let rust = to_rust_textured(obj, mtl, png, &opts, &mut warnings)?;
+/// assert_eq!((rust.vertices, rust.textures), (4, 1));
+/// assert!(rust.code.contains("pub const QUAD_UVS: [[i16; 2]; 4] = [\n    [0, 4096], [4096, 4096], [4096, 0], [0, 0],\n];"));
+/// assert!(rust.code.contains("pub const QUAD_TEXELS: [u16; 2] = [\n    0xF800, 0x001F,\n];"));
+/// assert!(rust.code.contains("pub const QUAD_TEXTURE: Texture<'static, u16>"));
+/// assert_eq!(warnings, ["1 polygon of more than 3 vertices fan-triangulated into 2 triangles"]);
+/// # Ok::<(), zraster_obj::ObjError>(())
+/// ```
+pub fn to_rust_textured(
+    obj: &str,
+    load_mtl: impl FnMut(&str) -> Result<String, String>,
+    load_texture: impl FnMut(&str) -> Result<ObjImage, String>,
+    options: &RustOptions<'_>,
+    warnings: &mut Vec<String>,
+) -> Result<RustMesh, ObjError> {
     let prefix = rust_prefix(options.name);
     if prefix != options.name.to_ascii_uppercase() {
         warnings.push(format!(
@@ -172,6 +241,44 @@ pub fn to_rust(
     if model.triangles.is_empty() {
         return Err(err(0, "no faces"));
     }
+    let mut textures = load_textures(&model, load_texture, warnings);
+    if textures.textures.len() > MAX_TEXTURES {
+        warnings.push(format!(
+            "{} textures: those after the first {MAX_TEXTURES} are left out, their faces drawn untextured",
+            textures.textures.len()
+        ));
+        textures.textures.truncate(MAX_TEXTURES);
+        for t in &mut textures.of_material {
+            *t = t.filter(|&k| k < MAX_TEXTURES);
+        }
+    }
+    let textured = model
+        .triangles
+        .iter()
+        .any(|t| textures.of_triangle(t).is_some());
+    if !model.texcoords.is_empty() && !textured {
+        let n = model.texcoords.len();
+        warnings.push(format!(
+            "{n} `vt` texture {} dropped: no face has both them and a material with a texture",
+            plural(n, "coordinate", "coordinates")
+        ));
+    }
+    let split = if textured {
+        let split = model.split_vertices(|t| textures.of_triangle(t).is_some())?;
+        split_warnings(&split, warnings);
+        Some(split)
+    } else {
+        textures.textures.clear();
+        None
+    };
+    for t in &textures.textures {
+        if !t.image.opaque() {
+            warnings.push(format!(
+                "texture {}: its alpha channel is dropped (zraster draws textures opaque)",
+                printable(&t.map.path)
+            ));
+        }
+    }
     let colors = FaceColors::of(&model);
     let coloured =
         colors.palette.len() - usize::from(colors.white_faces > 0 && !colors.palette.is_empty());
@@ -183,14 +290,64 @@ pub fn to_rust(
             if n == 1 { "is" } else { "are" }
         ));
     }
-    let code = write_rust(&model, &colors, &prefix, options.form)?;
+    let tex = Textured {
+        textures: &textures,
+        split: split.as_ref(),
+    };
+    let code = write_rust(&model, &colors, &tex, &prefix, options.form, warnings)?;
     Ok(RustMesh {
         code,
         prefix,
-        vertices: model.positions.len(),
+        vertices: split
+            .as_ref()
+            .map_or(model.positions.len(), |s| s.vertices.len()),
         triangles: model.triangles.len(),
         materials: coloured,
+        textures: textures.textures.len(),
     })
+}
+
+/// The most textures one model's output holds (a face's texture is a `u8`, 255 none).
+const MAX_TEXTURES: usize = 255;
+
+/// What [`write_rust`] adds for a textured model.
+struct Textured<'a> {
+    textures: &'a ModelTextures,
+    /// The split vertex table (`None`: the model is written untextured).
+    split: Option<&'a SplitVertices>,
+}
+
+/// The vertex splitting's notes as warning lines.
+fn split_warnings(split: &SplitVertices, warnings: &mut Vec<String>) {
+    if split.added > 0 {
+        warnings.push(format!(
+            "{} {} added where faces give a position different texture coordinates ({} in all)",
+            split.added,
+            plural(split.added, "vertex", "vertices"),
+            split.vertices.len()
+        ));
+    }
+    if split.moved_faces > 0 {
+        warnings.push(format!(
+            "{} {} moved by whole textures to fit the UV table's ±8 textures (the same under repeat, not under `-clamp on`)",
+            split.moved_faces,
+            plural(split.moved_faces, "face", "faces")
+        ));
+    }
+    if let Some(first) = split.clamped_faces.first() {
+        let n = split.clamped_faces.len();
+        warnings.push(format!(
+            "{n} {} more than 8 textures: texture coordinates clamped (first on line {first})",
+            plural(n, "face spans", "faces span")
+        ));
+    }
+    if split.huge > 0 {
+        warnings.push(format!(
+            "{} texture {} of magnitude 2^40 or more: their place within the texture is below f64 precision",
+            split.huge,
+            plural(split.huge, "coordinate", "coordinates")
+        ));
+    }
 }
 
 fn plural<'a>(n: usize, one: &'a str, many: &'a str) -> &'a str {
@@ -219,11 +376,11 @@ fn notes_to_warnings(model: &ObjModel, warnings: &mut Vec<String>) {
             plural(n.normals, "normal", "normals")
         ));
     }
-    if n.texcoords > 0 {
+    if n.texcoord_w > 0 {
         warnings.push(format!(
-            "{} `vt` texture {} dropped: zraster has no textures",
-            n.texcoords,
-            plural(n.texcoords, "coordinate", "coordinates")
+            "{} `vt` {} a third (w) coordinate, dropped",
+            n.texcoord_w,
+            plural(n.texcoord_w, "statement has", "statements have")
         ));
     }
     // OBJ statements with their (first) line; MTL ones with their count alone.
@@ -246,7 +403,7 @@ fn notes_to_warnings(model: &ObjModel, warnings: &mut Vec<String>) {
     }
     if !n.skipped_mtl.is_empty() {
         warnings.push(format!(
-            "material statements skipped (only `newmtl` and `Kd` are read): {}",
+            "material statements skipped (only `newmtl`, `Kd`, `map_Kd`, `d` and `Tr` are read): {}",
             list(&n.skipped_mtl, false)
         ));
     }
@@ -275,9 +432,9 @@ fn printable(s: &str) -> String {
 
 /// The faces' colours: a palette and one palette entry per triangle.
 struct FaceColors {
-    /// Name and RGB of each colour used, in order of first use (white last, for faces
-    /// without a material, when there are both).
-    palette: Vec<(String, [u8; 3])>,
+    /// Name, RGB and opacity (255 opaque) of each colour used, in order of first use
+    /// (white last, for faces without a material, when there are both).
+    palette: Vec<(String, [u8; 3], u8)>,
     /// Palette entry of each triangle.
     faces: Vec<usize>,
     /// Triangles without a material.
@@ -299,13 +456,14 @@ impl FaceColors {
             let entry = *of_material[m].get_or_insert_with(|| {
                 let mat = &model.materials[m];
                 let rgb = mat.kd.map(|c| (c * 255.0).round().clamp(0.0, 255.0) as u8);
-                palette.push((printable(&mat.name), rgb));
+                let alpha = (mat.alpha * 255.0).round().clamp(0.0, 255.0) as u8;
+                palette.push((printable(&mat.name), rgb, alpha));
                 palette.len() - 1
             });
             faces.push(entry);
         }
         if !white.is_empty() && !palette.is_empty() {
-            palette.push(("(no material)".into(), [255; 3]));
+            palette.push(("(no material)".into(), [255; 3], 255));
             for i in &white {
                 faces[*i] = palette.len() - 1;
             }
@@ -323,8 +481,10 @@ impl FaceColors {
 fn write_rust(
     model: &ObjModel,
     colors: &FaceColors,
+    tex: &Textured<'_>,
     n: &str,
     form: RustForm,
+    warnings: &mut Vec<String>,
 ) -> Result<String, ObjError> {
     let q = quantize(&model.positions, true);
     let indices = model.triangle_indices();
@@ -344,6 +504,29 @@ fn write_rust(
     compute_vertex_normals(&mesh, &mut scratch, &mut vnorm)
         .map_err(|e| err(0, format!("normals: {e}")))?;
     let fit = fit_scale(&model.positions);
+    // A textured model's tables hold the split vertices: each a position, with the
+    // position's normal (computed over all its faces, so no seam shows in the light).
+    let (positions, vnorm, indices) = match tex.split {
+        Some(split) => (
+            split
+                .vertices
+                .iter()
+                .map(|v| q.positions[v.position as usize])
+                .collect(),
+            split
+                .vertices
+                .iter()
+                .map(|v| vnorm[v.position as usize])
+                .collect(),
+            split.triangle_indices(),
+        ),
+        None => (q.positions.clone(), vnorm, indices),
+    };
+    let texture_count = if tex.split.is_some() {
+        tex.textures.textures.len()
+    } else {
+        0
+    };
 
     let include = form == RustForm::Include;
     let (rgb, mesh_mod) = if include {
@@ -365,17 +548,30 @@ fn write_rust(
             "// Generated by `cargo run --example obj2rust` from an OBJ model: do not edit."
         );
     }
-    let _ = writeln!(
+    let _ = write!(
         w,
-        "// {} vertices, {} triangles.",
-        q.positions.len(),
+        "// {} vertices, {} triangles",
+        positions.len(),
         indices.len()
     );
+    match texture_count {
+        0 => {}
+        1 => {
+            let _ = write!(w, ", 1 texture");
+        }
+        k => {
+            let _ = write!(w, ", {k} textures");
+        }
+    }
+    let _ = writeln!(w, ".");
     if !include {
         let _ = writeln!(w, "#![allow(clippy::all, dead_code)]");
         let _ = writeln!(w, "#![cfg_attr(rustfmt, rustfmt::skip)]");
         let _ = writeln!(w, "use embedded_graphics::pixelcolor::Rgb888;");
         let _ = writeln!(w, "use zraster::mesh::{{Faces, Materials, Mesh}};");
+        if texture_count > 0 {
+            let _ = writeln!(w, "{}", textures::imports(tex.textures));
+        }
     }
     let _ = writeln!(w);
     let _ = writeln!(
@@ -392,20 +588,13 @@ fn write_rust(
         w,
         "/// The uniform scale that makes the largest extent 1.\npub const {n}_FIT: f32 = {fit:?};"
     );
-    let table = |w: &mut String, doc: &str, item: &str, ty: &str, rows: Vec<String>, per: usize| {
-        let _ = writeln!(w, "/// {doc}\npub const {item}: [{ty}; {}] = [", rows.len());
-        for chunk in rows.chunks(per) {
-            let _ = writeln!(w, "    {},", chunk.join(", "));
-        }
-        let _ = writeln!(w, "];");
-    };
     let fmt3 = |v: &[i16; 3]| format!("[{}, {}, {}]", v[0], v[1], v[2]);
     table(
         w,
         "Vertex positions.",
         &format!("{n}_POSITIONS"),
         "[i16; 3]",
-        q.positions.iter().map(fmt3).collect(),
+        positions.iter().map(fmt3).collect(),
         6,
     );
     table(
@@ -441,7 +630,7 @@ fn write_rust(
             "The mesh, in white.".to_string(),
             format!("Uniform({})", new_rgb([255; 3])),
         ),
-        [(name, c)] => (
+        [(name, c, _)] => (
             format!("The mesh, in its material's colour ({name}, MTL `Kd`)."),
             format!("Uniform({})", new_rgb(*c)),
         ),
@@ -451,7 +640,7 @@ fn write_rust(
                 "/// The materials' colours (MTL `Kd`), in order of first use.\npub const {n}_MATERIALS: [{rgb}; {}] = [",
                 palette.len()
             );
-            for (name, c) in palette {
+            for (name, c, _) in palette {
                 let _ = writeln!(w, "    {}, // {name}", new_rgb(*c));
             }
             let _ = writeln!(w, "];");
@@ -473,9 +662,57 @@ fn write_rust(
             )
         }
     };
+    alpha(w, colors, n, warnings);
+    if let Some(split) = tex.split {
+        textures::write(w, tex.textures, split, model, n, include);
+    }
     let _ = writeln!(
         w,
         "/// {doc}\npub const {n}_MESH: {mesh_mod}Mesh<'static, {rgb}> = {mesh_mod}Mesh {{\n    positions: &{n}_POSITIONS,\n    scale: {n}_SCALE,\n    faces: {mesh_mod}Faces::Triangles {{ indices: &{n}_INDICES, materials: {mesh_mod}Materials::{materials} }},\n    face_normals: Some(&{n}_FACE_NORMALS),\n    vertex_normals: Some(&{n}_VERTEX_NORMALS),\n}};"
     );
     Ok(out)
+}
+
+/// `const ITEM: [TY; N] = [...]` with its doc line, `per` entries a line.
+fn table(w: &mut String, doc: &str, item: &str, ty: &str, rows: Vec<String>, per: usize) {
+    let _ = writeln!(w, "/// {doc}\npub const {item}: [{ty}; {}] = [", rows.len());
+    for chunk in rows.chunks(per) {
+        let _ = writeln!(w, "    {},", chunk.join(", "));
+    }
+    let _ = writeln!(w, "];");
+}
+
+/// The materials' opacity, when one is not opaque: `NAME_ALPHA` for one material,
+/// `NAME_MATERIAL_ALPHA` beside `NAME_MATERIALS` for several; a warning each.
+fn alpha(w: &mut String, colors: &FaceColors, n: &str, warnings: &mut Vec<String>) {
+    let translucent: Vec<&(String, [u8; 3], u8)> =
+        colors.palette.iter().filter(|p| p.2 < 255).collect();
+    if translucent.is_empty() {
+        return;
+    }
+    let item = if colors.palette.len() == 1 {
+        format!("{n}_ALPHA")
+    } else {
+        format!("{n}_MATERIAL_ALPHA")
+    };
+    for (name, _, a) in translucent {
+        warnings.push(format!(
+            "material {name}: opacity {a}/255 (MTL d or Tr) carried in {item}; zraster draws faces opaque"
+        ));
+    }
+    if let [(name, _, a)] = colors.palette.as_slice() {
+        let _ = writeln!(
+            w,
+            "/// The material's opacity ({name}, MTL `d`), 255 opaque; zraster draws it opaque.\npub const {item}: u8 = {a};"
+        );
+    } else {
+        table(
+            w,
+            "Each material's opacity (MTL `d`), 255 opaque, as `MATERIALS`; zraster draws them opaque.",
+            &item,
+            "u8",
+            colors.palette.iter().map(|p| p.2.to_string()).collect(),
+            16,
+        );
+    }
 }

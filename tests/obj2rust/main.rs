@@ -19,6 +19,15 @@ mod included {
     include!("included.rs");
 }
 
+/// The checked-in textured output (`textures::CRATE_OBJ`), as a module file and as
+/// items, and its tests.
+mod textured;
+#[allow(dead_code, clippy::all)]
+mod textured_included {
+    include!("textured_included.rs");
+}
+mod textures;
+
 /// A unit cube: six quads, two MTL colours and one face without a material, with what
 /// the converter drops or skips (normals, texture coordinates, grouping, a line, a
 /// face with a bad index, an unknown material).
@@ -69,15 +78,16 @@ fn mtl(name: &str) -> Result<String, String> {
     }
 }
 
-const WARNINGS: [&str; 8] = [
+const WARNINGS: [&str; 9] = [
     "name \"two-colour box\" makes the item prefix TWO_COLOUR_BOX (TWO_COLOUR_BOX_MESH, ...)",
+    "line 19: some corners of the face have `vt` texture coordinates and some not: it is kept without",
     "line 23: unknown material \"green\"",
     "line 28: vertex index 99 out of range (the file has 8 vertices): face skipped",
     "5 polygons of more than 3 vertices fan-triangulated into 10 triangles",
     "1 `vn` normal dropped: the normal tables are computed from the positions",
-    "2 `vt` texture coordinates dropped: zraster has no textures",
     "statements skipped: `o` (line 3), `g` (line 15), `s` (line 16), `l` (line 27)",
-    "material statements skipped (only `newmtl` and `Kd` are read): `Ka`, `Ks`",
+    "material statements skipped (only `newmtl`, `Kd`, `map_Kd`, `d` and `Tr` are read): `Ka`, `Ks`",
+    "2 `vt` texture coordinates dropped: no face has both them and a material with a texture",
 ];
 
 fn here(file: &str) -> PathBuf {
