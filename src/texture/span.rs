@@ -8,10 +8,16 @@ use crate::{Error, MAX_DIMENSION};
 /// u/w, v/w and 1/w at a pixel, or their change per pixel: the three quantities that
 /// vary linearly across a screen triangle under perspective.
 ///
-/// `q` is 1/w at any positive scale (only ratios count; the nearest vertex at 2¹⁶ to
-/// 2³⁰ keeps plenty of precision), and `uq`, `vq` are u·q and v·q at the same scale
-/// with u, v in Q16, so that `uq / q` is u in Q16. A [`PerspectiveSpan`] needs the
-/// values at both ends of its span within ±2⁶² (and q positive there).
+/// `q` is 1/w at any positive scale (only ratios count), and `uq`, `vq` are u·q and v·q
+/// at the same scale with u, v in Q16, so that `uq / q` is u in Q16. A
+/// [`PerspectiveSpan`] needs the values at both ends of its span within ±2⁶² (and q
+/// positive there).
+///
+/// The scale is a trade: the precision of q sets how well far parts of a face are
+/// placed (a vertex 64 times farther than the nearest has a q 64 times smaller: 6 bits
+/// fewer), while q below 2¹⁶ with |uq|, |vq| below 2⁴⁸ takes the cheap divisions (see
+/// [`PerspectiveSpan`]). The rasterizer's 16.16 planes through per-vertex q of 2¹⁴ to
+/// 2¹⁵ at the nearest vertex give q ≈ 2³⁰ with exact steps: the precise, slower end.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub struct Homogeneous {
     /// u·q, u in Q16.
