@@ -102,7 +102,7 @@ pub const DEFAULT_BAND_PIXELS: usize = 1024;
 /// [`draw`](embedded_graphics::Drawable::draw) it on any display.
 ///
 /// `N` is the band capacity in pixels (see the [module docs](crate::model)); its
-/// [`bounding_box`](Dimensions::bounding_box) is the camera's [`Viewport`]: the model
+/// [`bounding_box`](Dimensions::bounding_box) is the camera's [`Viewport`](crate::Viewport): the model
 /// draws nothing outside it.
 ///
 /// ```
@@ -512,6 +512,7 @@ mod tests {
     use super::*;
     use crate::math::{radians, Vec3};
     use crate::mesh::CUBE;
+    use crate::Viewport;
     use embedded_graphics::pixelcolor::Rgb565;
 
     fn camera(vp: Viewport) -> Camera {
