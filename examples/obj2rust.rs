@@ -9,16 +9,19 @@
 //! uniform scale that makes the model's largest extent 1. `NAME` (default `model`)
 //! becomes a SCREAMING_SNAKE prefix. Everything is `const`, so on a microcontroller it
 //! stays in flash: 6 bytes a vertex and 6 a triangle for the tables, 6 more per vertex
-//! and per triangle for the normals. `--include` writes items for `include!` instead of
+//! and per triangle for the normals. A textured model (`vt`, MTL `map_Kd` PNGs) also
+//! gets `NAME_UVS` and its textures as `const` RGB565 tables with a ready
+//! `zraster::texture::Texture`. `--include` writes items for `include!` instead of
 //! a module file. What was left out or changed is a warning line on stderr, then a line
 //! of counts. Exit code 2 on bad input or usage.
 //!
-//! The conversion is `zraster_obj::to_rust`, which a build script can call too.
+//! The conversion is `zraster_obj::to_rust_textured`, which a build script can call too.
 
+use std::cell::RefCell;
 use std::path::Path;
 use std::process::exit;
 
-use zraster_obj::{to_rust, MtlLoader, RustForm, RustOptions};
+use zraster_obj::{to_rust_textured, MtlLoader, RustForm, RustOptions};
 
 const USAGE: &str = "usage: obj2rust [--include] MODEL.obj [NAME] > model.rs";
 
@@ -42,11 +45,13 @@ fn main() {
         exit(2)
     });
     let dir = Path::new(path).parent().unwrap_or(Path::new(""));
-    let mut libraries = MtlLoader::new(dir);
+    // Material libraries and their `map_Kd` textures come from the model's folder.
+    let libraries = RefCell::new(MtlLoader::new(dir));
     let mut warnings = Vec::new();
-    let result = to_rust(
+    let result = to_rust_textured(
         &src,
-        |lib| libraries.load(lib),
+        |lib| libraries.borrow_mut().load(lib),
+        |texture| libraries.borrow_mut().load_texture(texture),
         &RustOptions { name, form },
         &mut warnings,
     );
