@@ -391,6 +391,7 @@ pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };
+pub use render::{TexturedTarget, Texturing, UvMode};
 
 /// For the bench firmware: check the assembly fill and span loops against their
 /// portable twins on the target (the number of differing cases; see

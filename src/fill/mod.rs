@@ -52,6 +52,11 @@ macro_rules! per_depth_test {
     };
 }
 
+// After `per_depth_test!`, which it uses.
+mod textured;
+pub use textured::UvMode;
+pub(crate) use textured::{fill_textured_buffers, fill_textured_runs, TexCorners};
+
 /// The pixels both the target and the Z-buffer hold.
 pub(crate) fn clip_of<D: DrawTarget>(target: &D, zbuf: &ZBuffer<'_>) -> Clip {
     let (r0, r1) = zbuf.row_range();

@@ -5,11 +5,15 @@ use heapless::Vec;
 
 use super::project::{outcode, GUARD};
 
-/// A clip-space vertex with the attribute interpolated alongside (light intensity).
+/// A clip-space vertex with the attributes interpolated alongside: light intensity, and
+/// texture coordinates (Q16 texture units as `f32`; zero for untextured drawing).
+/// Clip-space interpolation is perspective-correct for both: the clipper cuts edges
+/// before the division by w, where every attribute is linear.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ClipVertex {
     pub c: [f32; 4],
     pub light: f32,
+    pub uv: [f32; 2],
 }
 
 /// A triangle cut by the 7 planes has at most 3 + 7 vertices.
@@ -48,6 +52,10 @@ fn intersect(plane: u8, inside: &ClipVertex, outside: &ClipVertex) -> ClipVertex
             lerp(inside.c[3], outside.c[3]),
         ],
         light: lerp(inside.light, outside.light),
+        uv: [
+            lerp(inside.uv[0], outside.uv[0]),
+            lerp(inside.uv[1], outside.uv[1]),
+        ],
     }
 }
 
@@ -110,6 +118,7 @@ mod tests {
         ClipVertex {
             c: [x, y, z, w],
             light: 0.0,
+            uv: [0.0; 2],
         }
     }
 

@@ -228,6 +228,27 @@ impl<'a, M: Copy> Mesh<'a, M> {
         Ok(())
     }
 
+    /// Check a texture-coordinate table for this mesh: one [`MeshUv`] per vertex at
+    /// least (what [`Renderer::draw_textured`](crate::Renderer::draw_textured) checks
+    /// before drawing, besides [`check_for`](Mesh::check_for)).
+    ///
+    /// Texture coordinates live beside the mesh, not in it (a [`Texturing`] holds them
+    /// with the texture), so that meshes in flash written before textures, and the
+    /// `Mesh { .. }` literals `obj2rust` writes, stay as they are.
+    ///
+    /// Errors: [`Error::InvalidParameter`] for a table shorter than the vertex table.
+    ///
+    /// [`MeshUv`]: crate::texture::MeshUv
+    /// [`Texturing`]: crate::Texturing
+    pub fn check_uvs(&self, uvs: &[crate::texture::MeshUv]) -> Result<(), Error> {
+        if uvs.len() < self.positions.len() {
+            return Err(Error::InvalidParameter(
+                "fewer texture coordinates than vertices",
+            ));
+        }
+        Ok(())
+    }
+
     /// The scale rule and the lengths of the normal tables.
     fn check_tables(&self) -> Result<(), Error> {
         check_scale(self.scale)?;

@@ -99,7 +99,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             let code = outcode_of(&c);
             code_or |= code;
             code_and &= code;
-            let _ = poly.push(ClipVertex { c, light: 0.0 });
+            let _ = poly.push(ClipVertex {
+                c,
+                light: 0.0,
+                uv: [0.0; 2],
+            });
         }
         if code_and != 0 {
             return false;
@@ -149,10 +153,12 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             let ca = ClipVertex {
                 c: self.clip_coords(pos(a)?),
                 light: 0.0,
+                uv: [0.0; 2],
             };
             let cb = ClipVertex {
                 c: self.clip_coords(pos(b)?),
                 light: 0.0,
+                uv: [0.0; 2],
             };
             let Some((ca, cb)) = clip_segment(&ca, &cb, fa.code | fb.code) else {
                 return Ok(SpanStats::default());

@@ -14,14 +14,17 @@ mod lines;
 mod painter;
 mod solid;
 mod target;
+mod textured;
 mod walk;
 
+pub use crate::fill::UvMode;
 pub use crate::geometry::cull::Cull;
 pub use crate::state::{Dynamic, RenderState};
 pub use painter::DepthSort;
 pub(crate) use solid::per_colouring;
 pub(crate) use target::sealed;
 pub use target::{DepthTarget, WithDepth};
+pub use textured::{TexturedTarget, Texturing};
 pub(crate) use walk::{cached_triangle, outside_rows, CachedWalk};
 use walk::{decide, edges, fan, Seen};
 
@@ -532,4 +535,3 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
     }
 }
-

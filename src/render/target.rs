@@ -92,6 +92,11 @@ impl<'a, 'z, D: DrawTarget> WithDepth<'a, 'z, D> {
     pub fn new(display: &'a mut D, depth: &'a mut ZBuffer<'z>) -> Self {
         WithDepth { display, depth }
     }
+
+    /// The display and the Z-buffer.
+    pub(crate) fn parts(&mut self) -> (&mut D, &mut ZBuffer<'z>) {
+        (self.display, self.depth)
+    }
 }
 
 impl<D: DrawTarget> sealed::Sealed for WithDepth<'_, '_, D> {}

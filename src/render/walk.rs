@@ -266,6 +266,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     let _ = poly.push(ClipVertex {
                         c: self.clip_coords(p),
                         light,
+                        uv: [0.0; 2],
                     });
                 }
                 clip_polygon(&mut poly, v0.code | v1.code | v2.code);
