@@ -498,3 +498,44 @@ fn bad_input_is_an_error_or_a_documented_fallback() {
         }
     }
 }
+
+/// The checksum of bench/mcu-texture's perspective-correct picture, which
+/// `bench/texture.sh` requires of the Cortex-M4F and M0+ builds: the same pixels there
+/// as here.
+const TEXTURE_BENCH_CHECKSUM: u32 = 0xfc84_39c5;
+
+/// bench/mcu-texture's scene on the host: the fill-bound cube (`mesh::CUBE`, its front
+/// face filling 320×240 pixels) with its 64×64 checker, four times across.
+#[test]
+fn the_texture_bench_picture_has_the_pinned_checksum() {
+    use zraster::mesh::{CUBE, CUBE_POSITIONS};
+    let checker: Vec<u16> = (0..64 * 64)
+        .map(|i| {
+            if (i % 64 / 8 + i / 64 / 8) % 2 == 0 {
+                0xFD20
+            } else {
+                0x18E3
+            }
+        })
+        .collect();
+    let uvs: Vec<MeshUv> = CUBE_POSITIONS
+        .iter()
+        .map(|p| [p[0], 16384 - p[1]])
+        .collect();
+    let camera = Camera::look_at(Vec3::new(0.5, 0.5, 1.3), Vec3::new(0.5, 0.5, 0.0), Vec3::Y)
+        .unwrap()
+        .perspective(radians(60.0), 0.1, 10.0, Viewport::new(320, 240).unwrap())
+        .unwrap();
+    let t = Texturing::new(&uvs, Texture::new(&checker, 64, 64).unwrap());
+    let (px, _) = frame_pixels(320, 240, |frame| {
+        Renderer::new(&CUBE, &camera, RenderOptions::default())?.draw_textured(frame, &t)?;
+        Ok(())
+    });
+    // FNV-1a over each pixel's two bytes, low first (as the firmware sums them).
+    let sum = px.iter().fold(0x811c_9dc5u32, |h, c| {
+        let v = c.into_storage();
+        ((h ^ u32::from(v & 0xff)).wrapping_mul(0x0100_0193) ^ u32::from(v >> 8))
+            .wrapping_mul(0x0100_0193)
+    });
+    assert_eq!(sum, TEXTURE_BENCH_CHECKSUM, "{sum:08x}");
+}

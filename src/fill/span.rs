@@ -86,7 +86,7 @@ fn flat_span_long<C: Copy>(
     allow(unsafe_code),
     link_section = ".data.zraster"
 )]
-fn one_failed(n: &mut u32) {
+pub(super) fn one_failed(n: &mut u32) {
     *n += 1;
 }
 

@@ -174,11 +174,147 @@ impl UvPlanes {
     /// The texture coordinates of the `n` pixels from (x0, y) on, in order:
     /// `pixel(k, uv)` for k = 0..n.
     #[inline(always)]
-    pub(crate) fn span(&self, x0: i32, y: i32, n: i32, pixel: impl FnMut(usize, TexCoord)) {
-        match self {
-            UvPlanes::Perspective(p) => perspective_span(p, x0, y, n, pixel),
-            UvPlanes::Affine(p) => affine_span(p, x0, y, n, pixel),
+    pub(crate) fn span(&self, x0: i32, y: i32, n: i32, mut pixel: impl FnMut(usize, TexCoord)) {
+        let mut segments = self.segments(x0, y, n);
+        while let Some(s) = segments.next_segment() {
+            let (mut u, mut v) = s.uv;
+            for k in s.first..s.first + s.len {
+                pixel(k, TexCoord::new(u >> SHIFT, v >> SHIFT));
+                u = u.wrapping_add(s.step.0);
+                v = v.wrapping_add(s.step.1);
+            }
         }
+    }
+
+    /// The `n` pixels from (x0, y) on as [`Segment`]s.
+    #[inline(always)]
+    pub(crate) fn segments(&self, x0: i32, y: i32, n: i32) -> Segments {
+        let (h, step, range, perspective) = match self {
+            UvPlanes::Perspective(p) => (
+                [p[0].at(x0, y), p[1].at(x0, y), p[2].at(x0, y)],
+                [p[0].sx, p[1].sx, p[2].sx],
+                [(p[0].lo, p[0].hi), (p[1].lo, p[1].hi), (p[2].lo, p[2].hi)],
+                true,
+            ),
+            UvPlanes::Affine(p) => (
+                [p[0].at(x0, y), p[1].at(x0, y), 0],
+                [p[0].sx, p[1].sx, 0],
+                [(p[0].lo, p[0].hi), (p[1].lo, p[1].hi), (0, 0)],
+                false,
+            ),
+        };
+        let mut s = Segments {
+            h,
+            step,
+            whole: step.map(|s| s.wrapping_mul(i64::from(SEGMENT))),
+            range,
+            perspective,
+            uv: (0, 0),
+            i: 0,
+            n,
+        };
+        if n > 0 {
+            s.uv = s.exact();
+        }
+        s
+    }
+}
+
+/// Pixels `first..first + len` of a span: their u and v (Q16) are `uv.0 >> SHIFT`,
+/// `(uv.0 + step.0) >> SHIFT`, ... (u and v times [`SEGMENT`], stepped a pixel).
+#[derive(Clone, Copy)]
+pub(crate) struct Segment {
+    pub first: usize,
+    pub len: usize,
+    pub uv: (i32, i32),
+    pub step: (i32, i32),
+}
+
+/// A span cut into segments of at most [`SEGMENT`] pixels ([`UvPlanes::segments`]): exact
+/// at each segment's first pixel and at the span's last pixel (a segment of its own),
+/// linear between.
+pub(crate) struct Segments {
+    /// The planes' values at pixel `i`, their steps and ranges.
+    h: [i64; 3],
+    step: [i64; 3],
+    /// The steps of a whole segment.
+    whole: [i64; 3],
+    range: [(i64, i64); 3],
+    perspective: bool,
+    /// The exact coordinates at pixel `i`.
+    uv: (i32, i32),
+    i: i32,
+    n: i32,
+}
+
+impl Segments {
+    /// The exact coordinates where the values are `h`.
+    #[inline(always)]
+    fn exact(&self) -> (i32, i32) {
+        if self.perspective {
+            divide(self.h)
+        } else {
+            // Q32 within ±2⁴⁰ (clamped to the corners'): Q16 within ±2²⁴.
+            let lim = i64::from(UV_LIMIT);
+            (
+                (self.h[0] >> F).clamp(-lim, lim) as i32,
+                (self.h[1] >> F).clamp(-lim, lim) as i32,
+            )
+        }
+    }
+
+    /// The next segment.
+    #[inline(always)]
+    pub(crate) fn next_segment(&mut self) -> Option<Segment> {
+        let i = self.i;
+        if i >= self.n {
+            return None;
+        }
+        let (ua, va) = self.uv;
+        let m = (self.n - 1 - i).min(SEGMENT);
+        if m == 0 {
+            // The last pixel: exact.
+            self.i = self.n;
+            return Some(Segment {
+                first: i as usize,
+                len: 1,
+                uv: (ua << SHIFT, va << SHIFT),
+                step: (0, 0),
+            });
+        }
+        // Wrapping: the values at the segment's end lie between the corners' (see the
+        // module docs), to the steps' rounding; q is clamped to its plane's range (so
+        // that it stays a divisor of the cheap divisions), the quotients to ±2²⁴.
+        if m == SEGMENT {
+            for (h, step) in self.h.iter_mut().zip(self.whole) {
+                *h = h.wrapping_add(step);
+            }
+        } else {
+            for (h, step) in self.h.iter_mut().zip(self.step) {
+                *h = h.wrapping_add(step.wrapping_mul(i64::from(m)));
+            }
+        }
+        let (lo, hi) = self.range[2];
+        self.h[2] = self.h[2].clamp(lo, hi);
+        let (ub, vb) = self.exact();
+        // u and v times SEGMENT step by Δu·SEGMENT/m a pixel: Δu itself over a whole
+        // segment, a floored quotient over the last, shorter one. |Δu| ≤ 2²⁵: below 2²⁹.
+        let step = if m == SEGMENT {
+            (ub - ua, vb - va)
+        } else {
+            (
+                floor_div32((ub - ua) << SHIFT, m),
+                floor_div32((vb - va) << SHIFT, m),
+            )
+        };
+        self.uv = (ub, vb);
+        self.i = i + m;
+        Some(Segment {
+            first: i as usize,
+            len: m as usize,
+            uv: (ua << SHIFT, va << SHIFT),
+            step,
+        })
     }
 }
 
@@ -191,65 +327,68 @@ fn divide(h: [i64; 3]) -> (i32, i32) {
     (u.clamp(-lim, lim) as i32, v.clamp(-lim, lim) as i32)
 }
 
-/// [`UvPlanes::span`], perspective-correct.
-#[inline(always)]
-fn perspective_span(p: &[Lin; 3], x0: i32, y: i32, n: i32, mut pixel: impl FnMut(usize, TexCoord)) {
-    if n <= 0 {
-        return;
-    }
-    let mut h = [p[0].at(x0, y), p[1].at(x0, y), p[2].at(x0, y)];
-    let step = [p[0].sx, p[1].sx, p[2].sx];
-    let (mut ua, mut va) = divide(h);
-    let mut i = 0;
-    loop {
-        let m = (n - 1 - i).min(SEGMENT);
-        if m == 0 {
-            // The last pixel: exact.
-            pixel(i as usize, TexCoord::new(ua, va));
-            return;
+/// How a span's pixels find their texel from the stepped u and v (Q16 times
+/// [`SEGMENT`]): for a repeating texture of power-of-two sizes (W ≥ 2) by shifts
+/// and masks (the texel ⌊u·W⌋ mod W is bits of u), else through
+/// [`Texture::sample_raw`].
+#[derive(Clone, Copy)]
+pub(crate) enum Fetch<'a, X> {
+    Pow2 {
+        texels: &'a [X],
+        /// The texel's index is `(u ≫ su) | (v ≫ sv & hmask)`.
+        shifts: Pow2Shifts,
+        first: X,
+    },
+    Any(Texture<'a, X>),
+}
+
+/// The shifts and mask of [`texel_pow2`].
+#[derive(Clone, Copy)]
+pub(crate) struct Pow2Shifts {
+    su: u32,
+    sv: u32,
+    hmask: u32,
+}
+
+impl<'a, X: Texel> Fetch<'a, X> {
+    pub(crate) fn new(t: &Texture<'a, X>) -> Self {
+        let (w, h) = (t.width(), t.height());
+        let (lw, lh) = (w.trailing_zeros(), h.trailing_zeros()); // ≤ 13 each
+        match (t.wrap(), t.texels().first()) {
+            (crate::texture::Wrap::Repeat, Some(&first))
+                if w.is_power_of_two() && h.is_power_of_two() && lw >= 1 =>
+            {
+                Fetch::Pow2 {
+                    texels: t.texels(),
+                    shifts: Pow2Shifts {
+                        // 1 ≤ lw, lh + lw ≤ 26: both shifts within 6..=31.
+                        su: 32 - lw,
+                        sv: 32 - lh - lw,
+                        hmask: (h - 1) << lw,
+                    },
+                    first,
+                }
+            }
+            _ => Fetch::Any(*t),
         }
-        // Wrapping: the values at the segment's end lie between the corners' (see the
-        // module docs); each is clamped to its plane's range.
-        for ((h, step), p) in h.iter_mut().zip(step).zip(p) {
-            *h = h
-                .wrapping_add(step.wrapping_mul(i64::from(m)))
-                .clamp(p.lo, p.hi);
-        }
-        let (ub, vb) = divide(h);
-        // u and v times SEGMENT step by Δu·SEGMENT/m a pixel: Δu itself over a whole
-        // segment, a floored quotient over the last, shorter one. |Δu| ≤ 2²⁵: below 2²⁹.
-        let (du, dv) = if m == SEGMENT {
-            (ub - ua, vb - va)
-        } else {
-            (
-                floor_div32((ub - ua) << SHIFT, m),
-                floor_div32((vb - va) << SHIFT, m),
-            )
-        };
-        let (mut u, mut v) = (ua << SHIFT, va << SHIFT);
-        for k in i..i + m {
-            pixel(k as usize, TexCoord::new(u >> SHIFT, v >> SHIFT));
-            u = u.wrapping_add(du);
-            v = v.wrapping_add(dv);
-        }
-        i += m;
-        (ua, va) = (ub, vb);
     }
 }
 
-/// [`UvPlanes::span`], affine.
+/// How far [`face_span`] shifts stepped coordinates (Q16 times [`SEGMENT`]) up for
+/// [`texel_pow2`]: to the fraction of a texture in all 32 bits, so that wrapping
+/// arithmetic is the repeat.
+const TOP: u32 = 32 - 16 - SHIFT;
+
+/// The texel at coordinates `u`, `v` whose 32 bits are the fraction of a texture (Q16
+/// times [`SEGMENT`] shifted up by [`TOP`]): ⌊u·W⌋ mod W is the top log₂ W bits of u,
+/// for negative u too (two's complement), and the same as ⌊(u ≫ 4)·W / 2¹⁶⌋ mod W
+/// (floors of divisions by powers of two compose); the row likewise, already times W.
 #[inline(always)]
-fn affine_span(p: &[Lin; 2], x0: i32, y: i32, n: i32, mut pixel: impl FnMut(usize, TexCoord)) {
-    let (mut u, mut v) = (p[0].at(x0, y), p[1].at(x0, y));
-    let (du, dv) = (p[0].sx, p[1].sx);
-    for k in 0..n.max(0) {
-        // Within ±2⁴⁰ (between the corners', clamped at the start; a row's pixels lie
-        // inside the triangle): the shifted value fits i32.
-        let uv = TexCoord::new((u >> F) as i32, (v >> F) as i32);
-        pixel(k as usize, uv);
-        u = u.wrapping_add(du).clamp(p[0].lo, p[0].hi);
-        v = v.wrapping_add(dv).clamp(p[1].lo, p[1].hi);
-    }
+fn texel_pow2<X: Copy>(texels: &[X], k: Pow2Shifts, first: X, u: u32, v: u32) -> X {
+    let col = u >> k.su;
+    let row = (v >> k.sv) & k.hmask;
+    // Below W·H, the slice's length: the fallback is never read.
+    texels.get((row | col) as usize).copied().unwrap_or(first)
 }
 
 /// The light along a span: one intensity for the face, or Gouraud's plane stepped as
@@ -399,6 +538,45 @@ where
         return stats;
     };
     let write = zbuf.write_enabled();
+    // The common case, the default depth test and one light for the face: a loop per
+    // segment over both rows, no call per pixel.
+    if let (DepthTest::Less, SpanLight::Face(i)) = (test, ts.light) {
+        let full = i == ONE && !C::DITHERED;
+        return match (Fetch::new(texture), full) {
+            (
+                Fetch::Pow2 {
+                    texels,
+                    shifts,
+                    first,
+                },
+                true,
+            ) => {
+                let fetch = move |u, v| texel_pow2(texels, shifts, first, u, v);
+                // Full light, undithered: no position, a constant intensity.
+                let colour = move |t: X, _: i32, _: i32| texel_color::<X, C>(t, ONE, 0, 0);
+                face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
+            }
+            (
+                Fetch::Pow2 {
+                    texels,
+                    shifts,
+                    first,
+                },
+                false,
+            ) => {
+                let fetch = move |u, v| texel_pow2(texels, shifts, first, u, v);
+                let colour = move |t: X, x: i32, y: i32| texel_color::<X, C>(t, i, x, y);
+                face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
+            }
+            (Fetch::Any(t), _) => {
+                let fetch = move |u: u32, v: u32| {
+                    t.sample_raw(TexCoord::new(u as i32 >> SHIFT, v as i32 >> SHIFT))
+                };
+                let colour = move |t: X, x: i32, y: i32| texel_color::<X, C>(t, i, x, y);
+                face_rows(frame, zbuf, clip, &ts, write, 0, fetch, colour)
+            }
+        };
+    }
     per_depth_test!(test, stats, |pass| {
         let mut spans = ts.setup.spans(clip);
         while let Some((y, x0, x1)) = spans.next_span() {
@@ -423,6 +601,84 @@ where
         }
         stats
     })
+}
+
+/// The rows of [`fill_textured_buffers`] for [`DepthTest::Less`] and one light for the
+/// face: each span by [`face_span`], the same pixels as the general loop.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn face_rows<C: embedded_graphics::pixelcolor::PixelColor, X>(
+    frame: &mut crate::ColorBuffer<'_, C>,
+    zbuf: &mut crate::ZBuffer<'_>,
+    clip: &Clip,
+    ts: &TexSetup,
+    write: bool,
+    up: u32,
+    fetch: impl Fn(u32, u32) -> X + Copy,
+    colour: impl Fn(X, i32, i32) -> C + Copy,
+) -> SpanStats {
+    let mut stats = SpanStats::default();
+    let mut spans = ts.setup.spans(clip);
+    while let Some((y, x0, x1)) = spans.next_span() {
+        let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1)) else {
+            continue;
+        };
+        let acc = ts.rows.at(x0, y);
+        let mut segments = ts.uv.segments(x0, y, x1 - x0);
+        let colour = move |t: X, k: usize| colour(t, x0 + k as i32, y);
+        let failed = if write {
+            face_span::<C, X, true>(zrow, crow, acc, ts.dz, &mut segments, up, fetch, colour)
+        } else {
+            face_span::<C, X, false>(zrow, crow, acc, ts.dz, &mut segments, up, fetch, colour)
+        };
+        stats.pixels_tested += (x1 - x0) as u32;
+        stats.pixels_written += (x1 - x0) as u32 - failed;
+    }
+    stats
+}
+
+/// The pixel loop of [`face_rows`]: a span's segments, each pixel's depth tested
+/// (`Less`) and written (`WRITE`), and its colour `colour(fetch(u, v), k)` for the
+/// k-th pixel, u and v the stepped coordinates (Q16 times [`SEGMENT`]) shifted up by
+/// `up` (wrapping). Out of line, so that the loop has the registers to itself. Returns
+/// the number of pixels that failed the test.
+#[allow(clippy::too_many_arguments)]
+#[inline(never)]
+fn face_span<C: Copy, X, const WRITE: bool>(
+    zrow: &mut [u16],
+    crow: &mut [C],
+    mut acc: u32,
+    dz: u32,
+    segments: &mut Segments,
+    up: u32,
+    fetch: impl Fn(u32, u32) -> X,
+    colour: impl Fn(X, usize) -> C,
+) -> u32 {
+    let mut failed = 0;
+    while let Some(s) = segments.next_segment() {
+        let end = s.first + s.len;
+        let (Some(zs), Some(cs)) = (zrow.get_mut(s.first..end), crow.get_mut(s.first..end)) else {
+            continue;
+        };
+        let ((u, v), (du, dv)) = (s.uv, s.step);
+        let (mut u, mut v) = ((u as u32) << up, (v as u32) << up);
+        let (du, dv) = ((du as u32) << up, (dv as u32) << up);
+        for (k, (d, c)) in zs.iter_mut().zip(cs.iter_mut()).enumerate() {
+            let z = (acc >> 16) as u16;
+            acc = acc.wrapping_add(dz);
+            if z < *d {
+                if WRITE {
+                    *d = z;
+                }
+                *c = colour(fetch(u, v), s.first + k);
+            } else {
+                super::span::one_failed(&mut failed);
+            }
+            u = u.wrapping_add(du);
+            v = v.wrapping_add(dv);
+        }
+    }
+    failed
 }
 
 /// Pixels a run to a draw target is gathered in before it is handed over.
