@@ -337,7 +337,6 @@ pub(crate) enum Fetch<'a, X> {
         texels: &'a [X],
         /// The texel's index is `(u ≫ su) | (v ≫ sv & hmask)`.
         shifts: Pow2Shifts,
-        first: X,
     },
     Any(Texture<'a, X>),
 }
@@ -354,8 +353,8 @@ impl<'a, X: Texel> Fetch<'a, X> {
     pub(crate) fn new(t: &Texture<'a, X>) -> Self {
         let (w, h) = (t.width(), t.height());
         let (lw, lh) = (w.trailing_zeros(), h.trailing_zeros()); // ≤ 13 each
-        match (t.wrap(), t.texels().first()) {
-            (crate::texture::Wrap::Repeat, Some(&first))
+        match t.wrap() {
+            crate::texture::Wrap::Repeat
                 if w.is_power_of_two() && h.is_power_of_two() && lw >= 1 =>
             {
                 Fetch::Pow2 {
@@ -366,7 +365,6 @@ impl<'a, X: Texel> Fetch<'a, X> {
                         sv: 32 - lh - lw,
                         hmask: (h - 1) << lw,
                     },
-                    first,
                 }
             }
             _ => Fetch::Any(*t),
@@ -384,11 +382,11 @@ const TOP: u32 = 32 - 16 - SHIFT;
 /// for negative u too (two's complement), and the same as ⌊(u ≫ 4)·W / 2¹⁶⌋ mod W
 /// (floors of divisions by powers of two compose); the row likewise, already times W.
 #[inline(always)]
-fn texel_pow2<X: Copy>(texels: &[X], k: Pow2Shifts, first: X, u: u32, v: u32) -> X {
+fn texel_pow2<X: Copy>(texels: &[X], k: Pow2Shifts, u: u32, v: u32) -> Option<X> {
     let col = u >> k.su;
     let row = (v >> k.sv) & k.hmask;
-    // Below W·H, the slice's length: the fallback is never read.
-    texels.get((row | col) as usize).copied().unwrap_or(first)
+    // Below W·H, the slice's length: always `Some`.
+    texels.get((row | col) as usize).copied()
 }
 
 /// The light along a span: one intensity for the face, or Gouraud's plane stepped as
@@ -543,34 +541,20 @@ where
     if let (DepthTest::Less, SpanLight::Face(i)) = (test, ts.light) {
         let full = i == ONE && !C::DITHERED;
         return match (Fetch::new(texture), full) {
-            (
-                Fetch::Pow2 {
-                    texels,
-                    shifts,
-                    first,
-                },
-                true,
-            ) => {
-                let fetch = move |u, v| texel_pow2(texels, shifts, first, u, v);
+            (Fetch::Pow2 { texels, shifts }, true) => {
+                let fetch = move |u, v| texel_pow2(texels, shifts, u, v);
                 // Full light, undithered: no position, a constant intensity.
                 let colour = move |t: X, _: i32, _: i32| texel_color::<X, C>(t, ONE, 0, 0);
                 face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
             }
-            (
-                Fetch::Pow2 {
-                    texels,
-                    shifts,
-                    first,
-                },
-                false,
-            ) => {
-                let fetch = move |u, v| texel_pow2(texels, shifts, first, u, v);
+            (Fetch::Pow2 { texels, shifts }, false) => {
+                let fetch = move |u, v| texel_pow2(texels, shifts, u, v);
                 let colour = move |t: X, x: i32, y: i32| texel_color::<X, C>(t, i, x, y);
                 face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
             }
             (Fetch::Any(t), _) => {
                 let fetch = move |u: u32, v: u32| {
-                    t.sample_raw(TexCoord::new(u as i32 >> SHIFT, v as i32 >> SHIFT))
+                    Some(t.sample_raw(TexCoord::new(u as i32 >> SHIFT, v as i32 >> SHIFT)))
                 };
                 let colour = move |t: X, x: i32, y: i32| texel_color::<X, C>(t, i, x, y);
                 face_rows(frame, zbuf, clip, &ts, write, 0, fetch, colour)
@@ -614,7 +598,7 @@ fn face_rows<C: embedded_graphics::pixelcolor::PixelColor, X>(
     ts: &TexSetup,
     write: bool,
     up: u32,
-    fetch: impl Fn(u32, u32) -> X + Copy,
+    fetch: impl Fn(u32, u32) -> Option<X> + Copy,
     colour: impl Fn(X, i32, i32) -> C + Copy,
 ) -> SpanStats {
     let mut stats = SpanStats::default();
@@ -651,7 +635,7 @@ fn face_span<C: Copy, X, const WRITE: bool>(
     dz: u32,
     segments: &mut Segments,
     up: u32,
-    fetch: impl Fn(u32, u32) -> X,
+    fetch: impl Fn(u32, u32) -> Option<X>,
     colour: impl Fn(X, usize) -> C,
 ) -> u32 {
     let mut failed = 0;
@@ -670,7 +654,10 @@ fn face_span<C: Copy, X, const WRITE: bool>(
                 if WRITE {
                     *d = z;
                 }
-                *c = colour(fetch(u, v), s.first + k);
+                // Always a texel (see `texel_pow2`): no fallback to keep at hand.
+                if let Some(t) = fetch(u, v) {
+                    *c = colour(t, s.first + k);
+                }
             } else {
                 super::span::one_failed(&mut failed);
             }
