@@ -1,6 +1,8 @@
 //! Textures: a table of texels in memory you provide (a `const` table in flash stays
 //! there), nearest sampling with repeat or clamp, and the span interpolators that turn
 //! a triangle's perspective-divided texture coordinates into a texel per pixel.
+//! [`Renderer::draw_textured`](crate::Renderer::draw_textured) draws a mesh with one
+//! (a [`Texturing`](crate::Texturing): the mesh's texture coordinates and the texture).
 //!
 //! # Formats
 //!
