@@ -38,7 +38,7 @@
 
 use embedded_graphics::pixelcolor::Rgb888;
 
-use crate::num::{div_floor_pair, div_floor_wide, floor_div32};
+use crate::num::{div_floor_pair, div_floor_signless, div_floor_wide, floor_div32};
 use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup, SpanStats};
 use crate::shade::{DisplayColor, Intensity, ONE};
 use crate::texture::{TexCoord, Texel, Texture, UV_LIMIT};
@@ -322,7 +322,14 @@ impl Segments {
 #[inline(always)]
 fn divide(h: [i64; 3]) -> (i32, i32) {
     let q = (h[2] >> F).max(1); // ≤ 2¹⁵
-    let (u, v) = div_floor_pair(h[0] >> F, h[1] >> F, q);
+    let (n1, n2) = (h[0] >> F, h[1] >> F); // below 2⁴⁰ in magnitude
+    let (u, v) = if crate::num::ARMV6M || crate::num::WIDE {
+        // A reciprocal of q (ARMv6-M), or a 64-bit divide instruction.
+        div_floor_pair(n1, n2, q)
+    } else {
+        // Two 16-bit digits of long division each, inline (q < 2¹⁶, |n| < 2⁴⁸).
+        (div_floor_signless(n1, q), div_floor_signless(n2, q))
+    };
     let lim = i64::from(UV_LIMIT);
     (u.clamp(-lim, lim) as i32, v.clamp(-lim, lim) as i32)
 }
