@@ -539,3 +539,47 @@ fn the_texture_bench_picture_has_the_pinned_checksum() {
     });
     assert_eq!(sum, TEXTURE_BENCH_CHECKSUM, "{sum:08x}");
 }
+
+/// Textures of every kind of size (power-of-two or not, square or not, one texel wide
+/// or high) on the cube's front face seen head-on: pixel (x, y) of the face shows texel
+/// (⌊u·W⌋, ⌊v·H⌋) with u = (x + ½ − 16)/32 and v = (y + ½ − 16)/32, whichever way the
+/// texel is found (shifts for power-of-two sizes, the texture's own sampling else),
+/// and a display with a Z-buffer gets the same pixels.
+#[test]
+fn every_texture_size_samples_the_texel_under_each_pixel_centre() {
+    let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::default(), Vec3::Y)
+        .unwrap()
+        .perspective(radians(90.0), 0.5, 10.0, Viewport::new(64, 64).unwrap())
+        .unwrap();
+    for (w, h) in [(4u32, 16u32), (16, 2), (3, 5), (2, 1), (1, 1), (64, 64)] {
+        // Texel (c, r) is (c << 11) | (r << 5) as raw RGB565 (c, r < 32 here; 64×64
+        // keeps the low 5 bits of each).
+        let texels: Vec<u16> = (0..w * h)
+            .map(|i| (((i % w) as u16 & 31) << 11) | (((i / w) as u16 & 31) << 5))
+            .collect();
+        let t = Texturing::new(&CUBE_UVS, Texture::new(&texels, w, h).unwrap());
+        let (px, _) = frame_pixels(64, 64, |frame| {
+            Renderer::new(&cube(Rgb888::WHITE), &camera, RenderOptions::default())?
+                .draw_textured(frame, &t)?;
+            Ok(())
+        });
+        for y in 16..48 {
+            for x in 16..48 {
+                let u = (f64::from(x) + 0.5 - 16.0) / 32.0;
+                let v = (f64::from(y) + 0.5 - 16.0) / 32.0;
+                let (c, r) = ((u * f64::from(w)) as u8 & 31, (v * f64::from(h)) as u8 & 31);
+                let got = px[(y * 64 + x) as usize];
+                assert_eq!((got.r(), got.g() & 31), (c, r), "{w}×{h} at ({x}, {y})");
+            }
+        }
+        let mut canvas = Canvas::new(64, 64);
+        let mut depth = vec![0u16; 64 * 64];
+        let mut zb = ZBuffer::new(&mut depth, 64, 64).unwrap();
+        zb.clear();
+        Renderer::new(&cube(Rgb888::WHITE), &camera, RenderOptions::default())
+            .unwrap()
+            .draw_textured(&mut WithDepth::new(&mut canvas, &mut zb), &t)
+            .unwrap();
+        assert!(canvas.px == px, "{w}×{h}: WithDepth");
+    }
+}
