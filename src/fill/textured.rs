@@ -390,10 +390,16 @@ const TOP: u32 = 32 - 16 - SHIFT;
 /// (floors of divisions by powers of two compose); the row likewise, already times W.
 #[inline(always)]
 fn texel_pow2<X: Copy>(texels: &[X], k: Pow2Shifts, u: u32, v: u32) -> Option<X> {
+    // Below W·H, the slice's length: always `Some`.
+    texels.get(texel_index_pow2(k, u, v)).copied()
+}
+
+/// The index of [`texel_pow2`]'s texel, below W·H.
+#[inline(always)]
+fn texel_index_pow2(k: Pow2Shifts, u: u32, v: u32) -> usize {
     let col = u >> k.su;
     let row = (v >> k.sv) & k.hmask;
-    // Below W·H, the slice's length: always `Some`.
-    texels.get((row | col) as usize).copied()
+    (row | col) as usize
 }
 
 /// The light along a span: one intensity for the face, or Gouraud's plane stepped as
@@ -552,6 +558,28 @@ where
                 let fetch = move |u, v| texel_pow2(texels, shifts, u, v);
                 // Full light, undithered: no position, a constant intensity.
                 let colour = move |t: X, _: i32, _: i32| texel_color::<X, C>(t, ONE, 0, 0);
+                face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
+            }
+            (Fetch::Pow2 { texels, shifts }, false) if !C::DITHERED => {
+                // Lit: the colour of the last texel is kept, as neighbouring pixels
+                // mostly show the same texel and lighting one costs some 60
+                // instructions. (Undithered: the colour does not depend on the pixel.)
+                let fetch = move |u, v| Some(texel_index_pow2(shifts, u, v));
+                let Some(&t0) = texels.first() else {
+                    return stats;
+                };
+                let last = core::cell::Cell::new((0, texel_color::<X, C>(t0, i, 0, 0)));
+                let colour = |at: usize, x: i32, y: i32| {
+                    let (k, c) = last.get();
+                    if k == at {
+                        return c;
+                    }
+                    let c = texels
+                        .get(at)
+                        .map_or(c, |&t| texel_color::<X, C>(t, i, x, y));
+                    last.set((at, c));
+                    c
+                };
                 face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
             }
             (Fetch::Pow2 { texels, shifts }, false) => {
