@@ -28,7 +28,7 @@ use zraster::{
 
 const WIDTH: u32 = 240;
 const HEIGHT: u32 = 160;
-/// Rows a band: the RAM drawing needs is WIDTH × BAND × (2 + 2) bytes (7.5 KiB).
+/// Rows a band: the RAM drawing needs is WIDTH × BAND × (2 + 2) bytes (15 KiB).
 const BAND: u32 = 16;
 
 /// The textured cube: −1..1 on each axis (positions in 1/16384), four vertices a face,
