@@ -10,12 +10,17 @@
 #   m0plus hot-banded    the bench's banded bunny drawn into a display that drops the
 #                        bands (region banded_sink of bench/mcu/src/main.rs)
 # UPDATE_BASELINE=1 bash bench/footprint.sh rewrites bench/footprint-baseline.txt.
+# UPDATE_README=1 bash bench/footprint.sh rewrites the README's table `footprint` (the
+# figures above, the largest functions and statics, the three hot working sets); without
+# it, a `readme:` line says whether the README holds this run's figures (bench/readme.sh).
 # Needs what bench/profile.sh needs (qemu-system-arm, gcc, llvm-nm and llvm-size from
 # Debian's llvm or rustup's llvm-tools) and the rustup target thumbv6m-none-eabi.
 set -euo pipefail
 bench=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 # shellcheck source=SCRIPTDIR/profile.sh
 source "$bench/profile.sh"
+# shellcheck source=SCRIPTDIR/readme.sh
+source "$bench/readme.sh"
 baseline="$bench/footprint-baseline.txt"
 limit=5
 nm=$(llvm_tool llvm-nm)
@@ -48,8 +53,8 @@ ram=$((data + bss + uninit))
 echo "rp2040 .text: $text bytes (all code; .rodata $rodata bytes)"
 echo "rp2040 static RAM: $ram bytes (.data $data + .bss $bss + .uninit $uninit)"
 awk '$3 ~ /^[bBdD]$/ && $2 !~ /^0+$/ && !seen[$1]++ { name = $0; sub(/^[^ ]+ +[^ ]+ +[^ ]+ +/, "", name); print $2, ($3 ~ /[bB]/ ? ".bss " : ".data"), name }' \
-  "$tmp/syms" | while read -r hexsize sec name; do echo "$((16#$hexsize)) $sec $name"; done | sort -k1,1nr |
-  awk 'NR <= 8 { size = $1; sec = $2; sub(/^[^ ]+ [^ ]+ /, ""); printf "  %7d  %-5s  %s\n", size, sec, $0 }'
+  "$tmp/syms" | while read -r hexsize sec name; do echo "$((16#$hexsize)) $sec $name"; done | sort -k1,1nr >"$tmp/statics"
+awk 'NR <= 8 { size = $1; sec = $2; sub(/^[^ ]+ [^ ]+ /, ""); printf "  %7d  %-5s  %s\n", size, sec, $0 }' "$tmp/statics"
 
 # ---- The bench firmware's hot code working sets on the M0+.
 echo
@@ -74,11 +79,49 @@ hot_set() {
   insns=${check#region total: }
   echo "hot working set (M0+, $2): $all bytes (zraster:: functions $z bytes; ${insns%% *} instructions)"
   hot=$all
+  # The README's row: bytes, zraster:: bytes, instructions.
+  hot_row="| $(readme_num "$all") | $(readme_num "$z") | $(readme_num "${insns%% *}") |"
 }
 hot_set banded_sink "banded bunny"
 banded=$hot
+hot_banded=$hot_row
 hot_set draw "whole-frame draw"
+hot_draw=$hot_row
 hot_set transform+draw "whole frame with its transform, like the banded one"
+hot_both=$hot_row
+
+# ---- The README's table (bench/readme.sh).
+echo
+# The statics of 64 bytes or more, by name (the firmware's own without its crate path),
+# then whatever else the static RAM holds, in one row.
+statics=$(awk -v ram="$ram" '
+  $1 >= 64 { size = $1; sec = $2; sub(/^[^ ]+ [^ ]+ /, ""); sub(/^zraster_rp2040_st7789::/, "");
+             printf "| `%s` %s | %d |\n", sec, "`" $0 "`", size; shown += size }
+  END { if (ram > shown) printf "| the rest of `.data`, `.bss` and `.uninit` (smaller statics, code run from RAM, padding) | %d |\n", ram - shown }' "$tmp/statics" |
+  while IFS='|' read -r _ label size _; do echo "|${label}| $(readme_num "${size// /}") |"; done)
+largest=$(head -n 8 "$tmp/zraster" | while read -r size name; do echo "| \`$name\` | $(readme_num "$size") |"; done)
+readme_table footprint "UPDATE_README=1 bash bench/footprint.sh" <<EOF
+| Raspberry Pi Pico firmware (\`examples/firmware/rp2040-st7789\`, thumbv6m-none-eabi) | bytes |
+|---|---:|
+| zraster's code: $(wc -l <"$tmp/zraster") functions named \`zraster::…\` | $(readme_num "$zcode") |
+| all code (\`.text\`) | $(readme_num "$text") |
+| flash data (\`.rodata\`) | $(readme_num "$rodata") |
+| static RAM (\`.data\` + \`.bss\` + \`.uninit\`) | $(readme_num "$ram") |
+$statics
+
+| zraster's largest functions in that firmware | bytes |
+|---|---:|
+$largest
+
+| hot code working set on the M0+ (\`bench/mcu\` under QEMU) | bytes | in \`zraster::\` functions | instructions |
+|---|---:|---:|---:|
+| the banded bunny (region \`banded_sink\`) $hot_banded
+| the whole-frame draw (\`draw\`) $hot_draw
+| the whole frame with its transform (\`transform+draw\`), like for like with the banded one $hot_both
+
+*Written by \`UPDATE_README=1 bash bench/footprint.sh\` from its run: symbol sizes by
+\`llvm-nm\`, sections by \`llvm-size\`, working sets by \`bench/profile.sh\`.*
+EOF
 
 # ---- Against the baseline.
 echo

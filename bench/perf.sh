@@ -6,6 +6,8 @@
 # Needs valgrind (Debian) for the first part; bench/mcu.sh needs qemu-system-arm (Debian)
 # and the rustup targets thumbv7em-none-eabihf and thumbv6m-none-eabi, and fails when a
 # whole frame costs more than 2 % over bench/baseline.txt.
+# UPDATE_README=1 bash bench/perf.sh rewrites the README's tables: bench/mcu.sh writes them,
+# with the x86-64 figures measured here (README_X86_FULL, README_X86_BANDED).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 N=${N:-10}
@@ -20,4 +22,4 @@ echo "x86-64 bunny-320: $(( (b - a) / N )) instructions per frame (callgrind, fr
 args+=(--band 16)
 c=$(ir "$N"); d=$(ir $((2 * N)))
 echo "x86-64 bunny-320 banded 16: $(( (d - c) / N )) instructions per frame"
-bash bench/mcu.sh
+README_X86_FULL=$(( (b - a) / N )) README_X86_BANDED=$(( (d - c) / N )) bash bench/mcu.sh
