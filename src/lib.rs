@@ -375,7 +375,9 @@ pub mod model;
 mod num;
 mod raster;
 mod render;
+pub mod scene;
 pub mod shade;
+pub mod shader;
 pub mod state;
 #[cfg(test)]
 mod testing;
