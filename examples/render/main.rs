@@ -12,25 +12,35 @@
 //! (`mtllib`) are read with [`MtlLoader`]: regular files only, of at most
 //! [`zraster_obj::MAX_MTL_BYTES`] (16 MiB), each file once; one that cannot be read is
 //! a warning on stderr, and faces whose `usemtl` it would have defined take `--color`.
+//!
+//! Textures: faces with `vt` coordinates whose material has a `map_Kd` PNG (read from
+//! the MTL file's folder) are drawn with the texel at the pixel centre's
+//! perspective-correct (u, v): column ⌊u·W⌋ mod W, row ⌊(1 − v)·H⌋ mod H (`-clamp on`
+//! clamps instead), lit as a `Kd` of the texel's colour. A texture that cannot be read is
+//! a warning, and its faces take their material's `Kd`.
+//!
+//! `--add FILE.obj@X,Y,Z` adds a model to the scene (see `USAGE`); the models share the
+//! frame and its depth buffer, drawn one after another.
 
 use std::io::Write;
-use std::path::Path;
 use std::process::exit;
 use std::time::{Duration, Instant};
 
+use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zraster::{
     camera::{Camera, Viewport},
     damage::Damage,
     math::{radians, Mat4, Vec3},
-    mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
-    shade::{Intensity, Light, Material, Shading, ONE},
+    shade::{Light, Material, Shading, ONE},
     BandBuffers, Bands, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, Frame, FrameStats,
-    RenderOptions, Renderer, ZBuffer,
+    RenderOptions, Renderer, Texturing, ZBuffer,
 };
-use zraster_obj::{fit_scale_f64, parse_obj_with, quantize, MtlLoader};
 use zraster_scenes::bus::SpiDisplay;
+
+mod model;
+use model::{Kd, Model};
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]
@@ -59,6 +69,13 @@ usage: render MODEL.obj [options]
                       damage_pixels and bus_bytes of the last frame
   --depth-fit         near and far from the model's bounds each frame (--near
                       stays the lowest near allowed, --far is ignored)
+  --add FILE.obj@X,Y,Z  another model in the scene (repeatable): fitted like
+                      MODEL (unless --no-fit), moved by (X, Y, Z) before the
+                      --yaw/--pitch rotation, drawn after MODEL into the same
+                      depth buffer
+Textures: faces with vt coordinates whose material has map_Kd FILE.png (relative
+to the MTL file) show the texel at the pixel's perspective-correct (u, v), lit as
+a colour is; a texture that cannot be read is a warning and its faces take Kd.
 Material libraries (mtllib) are read from MODEL.obj's folder: regular files only,
 of at most 16 MiB, each once. One that cannot be read is a warning, and faces whose
 material it would have defined take --color.";
@@ -89,6 +106,8 @@ struct Options {
     stats: bool,
     damage: bool,
     depth_fit: bool,
+    /// `--add`: more models, each moved by its offset.
+    adds: Vec<(String, Vec3)>,
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -148,6 +167,7 @@ fn parse_args(args: &[String]) -> Options {
         stats: false,
         damage: false,
         depth_fit: false,
+        adds: Vec::new(),
     };
     let mut model = None;
     let mut it = args.iter();
@@ -251,6 +271,17 @@ fn parse_args(args: &[String]) -> Options {
             "--stats" => o.stats = true,
             "--damage" => o.damage = true,
             "--depth-fit" => o.depth_fit = true,
+            "--add" => {
+                let v = value(a);
+                let Some((file, at)) = v.rsplit_once('@') else {
+                    usage_error(&format!("--add needs FILE.obj@X,Y,Z, got {v:?}"))
+                };
+                let xyz: Vec<f32> = at.split(',').map(|c| parse_f32(a, c.trim())).collect();
+                match xyz[..] {
+                    [x, y, z] if !file.is_empty() => o.adds.push((file.into(), Vec3::new(x, y, z))),
+                    _ => usage_error(&format!("--add needs FILE.obj@X,Y,Z, got {v:?}")),
+                }
+            }
             s if s.starts_with('-') && s.len() > 1 => usage_error(&format!("unknown option {s}")),
             s => {
                 if model.replace(s.to_string()).is_some() {
@@ -270,16 +301,20 @@ fn parse_args(args: &[String]) -> Options {
     o
 }
 
-/// One drawing of `frame` (the whole frame, or one band of it) in `mode`.
+/// One drawing of `frame` (the whole frame, or one band of it) by one of the scene's
+/// renderers, in `mode`, textured when it has a texture.
 fn draw_pass(
-    renderer: &mut Renderer<'_, '_, Kd>,
+    (renderer, texturing): &mut (Renderer<'_, '_, Kd>, Option<Texturing<'_, Rgb888>>),
     mode: Mode,
     sort: Option<&mut DepthSort<65536>>,
     frame: &mut Frame<'_, Rgb565>,
     line_color: Rgb565,
 ) -> Result<(), DrawError<core::convert::Infallible>> {
     match mode {
-        Mode::ZBuffer => renderer.draw(frame),
+        Mode::ZBuffer => match texturing {
+            Some(t) => renderer.draw_textured(frame, t),
+            None => renderer.draw(frame),
+        },
         Mode::Painter => match sort {
             Some(s) => renderer.draw_depth_sorted(frame.color_mut(), s),
             None => Ok(()),
@@ -292,16 +327,41 @@ fn draw_pass(
     }
 }
 
-/// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly.
-#[derive(Clone, Copy)]
-struct Kd([f32; 3]);
+/// The sum of the scene's renderers' statistics.
+fn total(stats: impl Iterator<Item = FrameStats>) -> FrameStats {
+    stats.fold(FrameStats::default(), |a, s| FrameStats {
+        triangles_in: a.triangles_in + s.triangles_in,
+        culled: a.culled + s.culled,
+        outside: a.outside + s.outside,
+        clipped: a.clipped + s.clipped,
+        drawn: a.drawn + s.drawn,
+        pixels_tested: a.pixels_tested + s.pixels_tested,
+        pixels_written: a.pixels_written + s.pixels_written,
+        runs: a.runs + s.runs,
+    })
+}
 
-impl Material<Rgb565> for Kd {
-    fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
-        let i = f32::from(i) / f32::from(ONE);
-        let q = |c: f32, max: f32| ((c * i * max + 0.5) as u32).min(max as u32) as u8;
-        Rgb565::new(q(self.0[0], 31.0), q(self.0[1], 63.0), q(self.0[2], 31.0))
+/// The box, in the space the models are placed in, holding every model's bounding box
+/// as `models[i]` places it.
+fn scene_bounds(boxes: impl Iterator<Item = ((Vec3, Vec3), Mat4)>) -> Option<(Vec3, Vec3)> {
+    let inf = f32::INFINITY;
+    let (mut lo, mut hi) = (Vec3::new(inf, inf, inf), Vec3::new(-inf, -inf, -inf));
+    let mut any = false;
+    for ((a, b), m) in boxes {
+        for k in 0..8 {
+            let pick = |bit: u32, x: f32, y: f32| if k & bit == 0 { x } else { y };
+            let c = m.transform_point(Vec3::new(
+                pick(1, a.x, b.x),
+                pick(2, a.y, b.y),
+                pick(4, a.z, b.z),
+            ));
+            let p = Vec3::new(c[0] / c[3], c[1] / c[3], c[2] / c[3]);
+            lo = Vec3::new(lo.x.min(p.x), lo.y.min(p.y), lo.z.min(p.z));
+            hi = Vec3::new(hi.x.max(p.x), hi.y.max(p.y), hi.z.max(p.z));
+            any = true;
+        }
     }
+    any.then_some((lo, hi))
 }
 
 fn write_pgm(path: &str, w: u32, h: u32, depth: &[u16]) -> std::io::Result<()> {
@@ -317,73 +377,38 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let o = parse_args(&args);
 
-    // ---- The model.
-    let bytes =
-        std::fs::read(&o.model).unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
-    let text = String::from_utf8(bytes)
-        .unwrap_or_else(|_| input_error(&format!("{}: not a text file", o.model)));
-    let dir = Path::new(&o.model)
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_default();
-    let mut libraries = MtlLoader::new(&dir);
-    let obj = parse_obj_with(&text, |name| libraries.load(name))
-        .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
-    for w in &obj.warnings {
-        eprintln!("render: warning: {}: {w}", o.model);
+    // ---- The models: MODEL, then each --add.
+    let gouraud = o.shade == Shade::Gouraud;
+    let mut warn = |w: String| eprintln!("render: warning: {w}");
+    let mut models = vec![(
+        Model::load(&o.model, o.color, o.fit, gouraud, &mut warn)
+            .unwrap_or_else(|e| input_error(&e)),
+        Vec3::default(),
+    )];
+    for (file, at) in &o.adds {
+        let m = Model::load(file, o.color, o.fit, gouraud, &mut warn)
+            .unwrap_or_else(|e| input_error(&e));
+        models.push((m, *at));
     }
-    if obj.triangles.is_empty() {
-        input_error(&format!("{}: no faces", o.model));
-    }
-    let q = quantize(&obj.positions, true);
-    // The mesh's position scale is q.scale times 2^-k, and the model matrix takes 2^k
-    // back. k is 0 unless the model reaches beyond 2^±16: then its normals' cross and
-    // dot products (the fourth power of its size) would overflow or vanish in f32, and
-    // a fit below f32's normal range would lose precision. k then brings the positions
-    // to about ±2^8. A power of two scales f32 arithmetic exactly, so the image is
-    // exactly that of the model scaled by 2^-k (drawn with k = 0).
-    let k = balance_exponent(q.scale);
-    let mesh_scale = (f64::from(q.scale) * pow2(-k)) as f32;
-    let indices = obj.triangle_indices();
-    let materials: Vec<Kd> = obj
-        .triangles
+    // What each renderer draws: the Z-buffer draws every part (untextured faces, then
+    // each texture's), the other modes every face untextured; model by model.
+    let parts: Vec<(&Model, &model::Part, Vec3)> = models
         .iter()
-        .map(|t| Kd(t.material.map_or(o.color, |m| obj.materials[m].kd)))
+        .flat_map(|(m, at)| {
+            let parts: Vec<&model::Part> = if o.mode == Mode::ZBuffer {
+                m.parts.iter().collect()
+            } else {
+                vec![&m.all]
+            };
+            parts.into_iter().map(move |p| (m, p, *at))
+        })
         .collect();
-    let mut mesh = Mesh {
-        positions: &q.positions,
-        scale: mesh_scale,
-        faces: Faces::Triangles {
-            indices: &indices,
-            materials: Materials::PerFace(&materials),
-        },
-        face_normals: None,
-        vertex_normals: None,
-    };
-    let mut face_normals = vec![[0i16; 3]; indices.len()];
-    let mut vertex_normals = vec![[0i16; 3]; q.positions.len()];
-    let mut scratch = vec![Vec3::default(); q.positions.len()];
-    compute_face_normals(&mesh, &mut face_normals)
-        .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
-    if o.shade == Shade::Gouraud {
-        compute_vertex_normals(&mesh, &mut scratch, &mut vertex_normals)
-            .unwrap_or_else(|e| input_error(&format!("{}: {e}", o.model)));
-    }
-    mesh = mesh.with_normals(Some(&face_normals), Some(&vertex_normals));
-
-    // Model space → fitted: centre the bounding box, largest extent 1 (positions are
-    // already stored around the bounding-box centre, q.offset).
-    let place = if o.fit {
-        let fit = (fit_scale_f64(&obj.positions) * pow2(k)) as f32;
-        Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit)
-    } else {
-        let at = Mat4::translation(Vec3::new(q.offset[0], q.offset[1], q.offset[2]));
-        if k == 0 {
-            at
-        } else {
-            at * Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * pow2(k) as f32)
-        }
-    };
+    let meshes: Vec<_> = parts.iter().map(|(m, p, _)| m.mesh(p)).collect();
+    let texturings: Vec<_> = parts
+        .iter()
+        .map(|(m, p, _)| m.texturing(p).unwrap_or_else(|e| input_error(&e)))
+        .collect();
+    let faces: usize = meshes.iter().map(|m| m.face_count()).sum();
 
     // ---- The frame.
     let (w, h) = (o.width, o.height);
@@ -422,15 +447,20 @@ fn main() {
     };
     let mut band_pixels = vec![Rgb565::BLACK; band_len];
     let mut band_depth = vec![u16::MAX; band_len];
+    // One renderer, untextured, in the Z-buffer: bands through `Bands`, binned.
+    let single = parts.len() == 1 && texturings[0].is_none() && o.mode == Mode::ZBuffer;
     let bins_len = match o.band {
-        Some(_) => BandBuffers::<Rgb565>::bins_needed(indices.len(), h, rows),
-        None => 0,
+        Some(_) if single => BandBuffers::<Rgb565>::bins_needed(faces, h, rows),
+        _ => 0,
     };
     let mut bins = vec![0u16; bins_len];
-    let mut cache = vec![CachedVertex::EMPTY; q.positions.len()];
+    let mut caches: Vec<Vec<CachedVertex>> = parts
+        .iter()
+        .map(|(m, p, _)| vec![CachedVertex::EMPTY; m.vertices(p)])
+        .collect();
     let mut sort: Option<Box<DepthSort<65536>>> = None;
     if o.mode == Mode::Painter {
-        if indices.len() > 65536 {
+        if meshes.iter().any(|m| m.face_count() > 65536) {
             input_error(&format!(
                 "{}: painter mode handles at most 65536 faces",
                 o.model
@@ -440,7 +470,7 @@ fn main() {
     }
     let mut stats = FrameStats::default();
     // --depth-fit: the model's box, for near and far each frame.
-    let bounds = mesh.bounds();
+    let bounds = models[0].0.bounds;
     // --damage: a display model behind a damage tracker (the display starts black).
     let mut shown = SpiDisplay::new(w, h, Rgb565::BLACK);
     let (mut last_spans, mut damage_row) = (
@@ -455,11 +485,26 @@ fn main() {
     for frame in 0..o.frames {
         progress.tick(frame);
         let yaw = o.yaw + o.spin * frame as f32;
-        let model = Mat4::rotation_x(radians(o.pitch)) * Mat4::rotation_y(radians(yaw)) * place;
-        let mut xf = camera.with_model(model);
-        if o.depth_fit {
+        let turn = Mat4::rotation_x(radians(o.pitch)) * Mat4::rotation_y(radians(yaw));
+        // Each model: placed (fitted), moved by its offset, then turned with the rest.
+        let place = |m: &Model, at: Vec3| turn * Mat4::translation(at) * m.place;
+        let mut fitted = camera;
+        if o.depth_fit && o.adds.is_empty() {
             if let Some((lo, hi)) = bounds {
-                xf = xf
+                // One model: its own box, as it has always been fitted.
+                fitted = camera
+                    .with_model(turn * models[0].0.place)
+                    .fit_depth(lo, hi, o.near)
+                    .unwrap_or_else(|e| input_error(&format!("--depth-fit: {e}")));
+            }
+        } else if o.depth_fit {
+            // A scene: the box around every model's box, as placed.
+            let boxes = models
+                .iter()
+                .filter_map(|(m, at)| Some((m.bounds?, place(m, *at))));
+            if let Some((lo, hi)) = scene_bounds(boxes) {
+                fitted = camera
+                    .with_model(Mat4::IDENTITY)
                     .fit_depth(lo, hi, o.near)
                     .unwrap_or_else(|e| input_error(&format!("--depth-fit: {e}")));
             }
@@ -471,30 +516,38 @@ fn main() {
             shown.bytes = 0;
             prev.flush(&mut damage.target(&mut shown)).ok();
         }
-        let mut renderer = Renderer::with_cache(&mesh, &xf, options, &mut cache)
-            .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
+        let mut renderers: Vec<_> = parts
+            .iter()
+            .zip(&meshes)
+            .zip(caches.iter_mut())
+            .zip(&texturings)
+            .map(|((((m, _, at), mesh), cache), texturing)| {
+                let xf = fitted.with_model(place(m, *at));
+                let r = Renderer::with_cache(mesh, &xf, options, cache)
+                    .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
+                (r, *texturing)
+            })
+            .collect();
+        let fail = |e: DrawError<core::convert::Infallible>| -> ! {
+            input_error(&format!("{}: {e}", o.model))
+        };
         if o.band.is_none() {
             // The whole frame at once, straight into the frame buffer.
             let mut whole = Frame::new(&mut frame_pixels, &mut depth_full, w, h)
                 .unwrap_or_else(|e| input_error(&e.to_string()));
             whole.clear(Rgb565::BLACK);
-            let result = draw_pass(
-                &mut renderer,
-                o.mode,
-                sort.as_deref_mut(),
-                &mut whole,
-                line_color,
-            );
-            if let Err(e) = result {
-                input_error(&format!("{}: {e}", o.model));
+            for r in &mut renderers {
+                draw_pass(r, o.mode, sort.as_deref_mut(), &mut whole, line_color)
+                    .unwrap_or_else(|e| fail(e));
             }
-            stats = renderer.stats();
+            stats = total(renderers.iter().map(|r| r.0.stats()));
             continue;
         }
         let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
             .unwrap_or_else(|e| input_error(&e.to_string()));
-        if o.mode == Mode::ZBuffer {
+        if single {
             // Band by band, triangles binned once per frame.
+            let renderer = &mut renderers[0].0;
             let mut bands =
                 BandBuffers::new(&mut band_pixels, &mut band_depth, w, rows, h, &mut bins)
                     .unwrap_or_else(|e| input_error(&e.to_string()));
@@ -519,6 +572,7 @@ fn main() {
             stats = renderer.stats();
             continue;
         }
+        // Every renderer into each band in turn (their vertices transformed once).
         let mut y = 0;
         while y < h {
             let n = rows.min(h - y);
@@ -528,22 +582,16 @@ fn main() {
                 .unwrap_or_else(|e| input_error(&e.to_string()));
             let mut band = Frame::from_buffers(color, zbuf);
             band.clear(Rgb565::BLACK);
-            let result = draw_pass(
-                &mut renderer,
-                o.mode,
-                sort.as_deref_mut(),
-                &mut band,
-                line_color,
-            );
-            if let Err(e) = result {
-                input_error(&format!("{}: {e}", o.model));
+            for r in &mut renderers {
+                draw_pass(r, o.mode, sort.as_deref_mut(), &mut band, line_color)
+                    .unwrap_or_else(|e| fail(e));
             }
             band.flush(&mut full).ok();
             let start = (y * w) as usize;
             depth_full[start..start + (n * w) as usize].copy_from_slice(band.depth().as_slice());
             y += n;
         }
-        stats = renderer.stats();
+        stats = total(renderers.iter().map(|r| r.0.stats()));
     }
 
     let elapsed = start.elapsed();
@@ -636,21 +684,4 @@ impl Progress {
             self.next = now + Duration::from_secs(1);
         }
     }
-}
-
-/// The k of `main`'s mesh scale `scale × 2^-k`: 0 for a model within 2^±16 (`scale` is
-/// its reach / 32767), else the k that brings `scale` into [2^-8, 2^-7) (positions to
-/// about ±2^8), within what an `f32` power of two can take back.
-fn balance_exponent(scale: f32) -> i32 {
-    let reach = f64::from(scale) * 32767.0;
-    if (pow2(-16)..=pow2(16)).contains(&reach) {
-        return 0;
-    }
-    let e = ((f64::from(scale).to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    (e + 8).clamp(-126, 127)
-}
-
-/// 2^e, for e in -1022..=1023.
-fn pow2(e: i32) -> f64 {
-    f64::from_bits(((e + 1023) as u64) << 52)
 }

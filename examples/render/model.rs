@@ -1,0 +1,304 @@
+//! A model for `render`: an OBJ file with its materials and textures, quantised into
+//! zraster meshes. Faces without a texture form one mesh over the file's positions;
+//! the faces of each texture form another over the positions split at texture seams
+//! (zraster indexes one vertex table for positions and texture coordinates).
+
+use std::path::Path;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use zraster::{
+    math::{Mat4, Vec3},
+    mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
+    shade::{Intensity, Material, ONE},
+    texture::{MeshUv, Texture, Wrap},
+    Texturing, UvMode,
+};
+use zraster_obj::{fit_scale_f64, load_textures, parse_obj_with, quantize, MtlLoader, ObjModel};
+
+/// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly.
+#[derive(Clone, Copy)]
+pub struct Kd(pub [f32; 3]);
+
+impl Material<Rgb565> for Kd {
+    fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
+        let i = f32::from(i) / f32::from(ONE);
+        let q = |c: f32, max: f32| ((c * i * max + 0.5) as u32).min(max as u32) as u8;
+        Rgb565::new(q(self.0[0], 31.0), q(self.0[1], 63.0), q(self.0[2], 31.0))
+    }
+}
+
+/// Faces drawn as one mesh: their vertex table (shared or split), corners, colours
+/// and normals, and the texture they are drawn with, if any.
+pub struct Part {
+    /// Which vertex table of the [`Model`]: the file's (`false`) or the split one.
+    split: bool,
+    pub indices: Vec<[u16; 3]>,
+    materials: Vec<Kd>,
+    face_normals: Vec<[i16; 3]>,
+    /// The texture (8-bit texels as the PNG has them, lit as a `Kd` of their value
+    /// is), its size and wrap.
+    texture: Option<(Vec<Rgb888>, u32, u32, Wrap)>,
+}
+
+/// A model read from an OBJ file, ready to draw.
+pub struct Model {
+    /// Positions as read (quantised), and split at texture seams (with the split
+    /// vertices' texture coordinates).
+    positions: Vec<[i16; 3]>,
+    split_positions: Vec<[i16; 3]>,
+    uvs: Vec<MeshUv>,
+    /// Model units per position step.
+    scale: f32,
+    /// Vertex normals over all faces, for each vertex table.
+    vertex_normals: Vec<[i16; 3]>,
+    split_normals: Vec<[i16; 3]>,
+    /// Every face, untextured, over the file's positions (painter, hidden-line and
+    /// wireframe draw it).
+    pub all: Part,
+    /// For the Z-buffer: the untextured faces, then each texture's faces.
+    pub parts: Vec<Part>,
+    /// Model space → fitted (`--fit`: centred, largest extent 1) or raw coordinates.
+    pub place: Mat4,
+    /// The bounding box of the positions, in model space.
+    pub bounds: Option<(Vec3, Vec3)>,
+}
+
+impl Model {
+    /// Read `path`: its materials from its folder, textures for faces with `vt`
+    /// coordinates; `color` for faces without a material. Warnings (a library or
+    /// texture that cannot be read, skipped statements) go to `warn`; `Err` says what
+    /// is wrong with the file.
+    pub fn load(
+        path: &str,
+        color: [f32; 3],
+        fit: bool,
+        gouraud: bool,
+        warn: &mut dyn FnMut(String),
+    ) -> Result<Model, String> {
+        let bytes = std::fs::read(path).map_err(|e| format!("{path}: {e}"))?;
+        let text = String::from_utf8(bytes).map_err(|_| format!("{path}: not a text file"))?;
+        let dir = Path::new(path)
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default();
+        let mut libraries = MtlLoader::new(&dir);
+        let obj = parse_obj_with(&text, |name| libraries.load(name))
+            .map_err(|e| format!("{path}: {e}"))?;
+        for w in &obj.warnings {
+            warn(format!("{path}: {w}"));
+        }
+        if obj.triangles.is_empty() {
+            return Err(format!("{path}: no faces"));
+        }
+        let mut notes = Vec::new();
+        let textures = load_textures(&obj, |p| libraries.load_texture(p), &mut notes);
+        for w in notes {
+            warn(format!("{path}: {w}"));
+        }
+        Model::build(&obj, &textures, color, fit, gouraud).map_err(|e| format!("{path}: {e}"))
+    }
+
+    fn build(
+        obj: &ObjModel,
+        textures: &zraster_obj::ModelTextures,
+        color: [f32; 3],
+        fit: bool,
+        gouraud: bool,
+    ) -> Result<Model, String> {
+        let q = quantize(&obj.positions, true);
+        // The mesh's position scale is q.scale times 2^-k, and the placement takes 2^k
+        // back. k is 0 unless the model reaches beyond 2^±16: then its normals' cross
+        // and dot products (the fourth power of its size) would overflow or vanish in
+        // f32, and a fit below f32's normal range would lose precision. k then brings
+        // the positions to about ±2^8. A power of two scales f32 arithmetic exactly, so
+        // the image is exactly that of the model scaled by 2^-k (drawn with k = 0).
+        let k = balance_exponent(q.scale);
+        let scale = (f64::from(q.scale) * pow2(-k)) as f32;
+        let kd =
+            |t: &zraster_obj::ObjTriangle| Kd(t.material.map_or(color, |m| obj.materials[m].kd));
+        let all = Part {
+            split: false,
+            indices: obj.triangle_indices(),
+            materials: obj.triangles.iter().map(kd).collect(),
+            face_normals: Vec::new(),
+            texture: None,
+        };
+        let mut model = Model {
+            positions: q.positions.clone(),
+            split_positions: Vec::new(),
+            uvs: Vec::new(),
+            scale,
+            vertex_normals: vec![[0; 3]; q.positions.len()],
+            split_normals: Vec::new(),
+            all,
+            parts: Vec::new(),
+            place: Mat4::default(),
+            bounds: None,
+        };
+        // Vertex normals over every face, so that seams split for textures stay smooth.
+        if gouraud {
+            let mut scratch = vec![Vec3::default(); q.positions.len()];
+            let mesh = model.mesh(&model.all);
+            let mut normals = vec![[0; 3]; q.positions.len()];
+            compute_vertex_normals(&mesh, &mut scratch, &mut normals).map_err(|e| e.to_string())?;
+            model.vertex_normals = normals;
+        }
+        model.parts = model.split_by_texture(obj, textures, &kd)?;
+        for i in 0..model.parts.len() {
+            let mut normals = vec![[0; 3]; model.parts[i].indices.len()];
+            compute_face_normals(&model.mesh(&model.parts[i]), &mut normals)
+                .map_err(|e| e.to_string())?;
+            model.parts[i].face_normals = normals;
+        }
+        let mut normals = vec![[0; 3]; model.all.indices.len()];
+        compute_face_normals(&model.mesh(&model.all), &mut normals).map_err(|e| e.to_string())?;
+        model.all.face_normals = normals;
+        model.bounds = model.mesh(&model.all).bounds();
+        // Model space → fitted: centre the bounding box, largest extent 1 (positions
+        // are already stored around the bounding-box centre, q.offset).
+        model.place = if fit {
+            let fit = (fit_scale_f64(&obj.positions) * pow2(k)) as f32;
+            Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * fit)
+        } else {
+            let at = Mat4::translation(Vec3::new(q.offset[0], q.offset[1], q.offset[2]));
+            if k == 0 {
+                at
+            } else {
+                at * Mat4::scaling(Vec3::new(1.0, 1.0, 1.0) * pow2(k) as f32)
+            }
+        };
+        Ok(model)
+    }
+
+    /// The Z-buffer's parts: all faces as one when nothing is textured; otherwise the
+    /// untextured faces, then one part per texture over the split vertex table.
+    fn split_by_texture(
+        &mut self,
+        obj: &ObjModel,
+        textures: &zraster_obj::ModelTextures,
+        kd: &dyn Fn(&zraster_obj::ObjTriangle) -> Kd,
+    ) -> Result<Vec<Part>, String> {
+        let textured = |t: &zraster_obj::ObjTriangle| textures.of_triangle(t).is_some();
+        if !obj.triangles.iter().any(textured) {
+            return Ok(vec![Part {
+                split: false,
+                indices: self.all.indices.clone(),
+                materials: self.all.materials.clone(),
+                face_normals: Vec::new(),
+                texture: None,
+            }]);
+        }
+        let split = obj.split_vertices(textured).map_err(|e| e.to_string())?;
+        self.split_positions = split
+            .vertices
+            .iter()
+            .map(|v| self.positions[v.position as usize])
+            .collect();
+        self.split_normals = split
+            .vertices
+            .iter()
+            .map(|v| self.vertex_normals[v.position as usize])
+            .collect();
+        self.uvs = split.uvs();
+        let split_indices = split.triangle_indices();
+        let mut plain = Part {
+            split: false,
+            indices: Vec::new(),
+            materials: Vec::new(),
+            face_normals: Vec::new(),
+            texture: None,
+        };
+        let mut parts: Vec<Part> = textures
+            .textures
+            .iter()
+            .map(|t| {
+                let texels = t.image.rgba.iter().map(|p| Rgb888::new(p[0], p[1], p[2]));
+                let wrap = if t.map.clamp {
+                    Wrap::Clamp
+                } else {
+                    Wrap::Repeat
+                };
+                Part {
+                    split: true,
+                    indices: Vec::new(),
+                    materials: Vec::new(),
+                    face_normals: Vec::new(),
+                    texture: Some((texels.collect(), t.image.width, t.image.height, wrap)),
+                }
+            })
+            .collect();
+        for (i, t) in obj.triangles.iter().enumerate() {
+            let (part, corners) = match textures.of_triangle(t) {
+                Some(k) => (&mut parts[k], split_indices[i]),
+                None => (&mut plain, self.all.indices[i]),
+            };
+            part.indices.push(corners);
+            part.materials.push(kd(t));
+        }
+        parts.insert(0, plain);
+        parts.retain(|p| !p.indices.is_empty());
+        Ok(parts)
+    }
+
+    /// The mesh of `part`, with its normals.
+    pub fn mesh<'a>(&'a self, part: &'a Part) -> Mesh<'a, Kd> {
+        let (positions, normals) = if part.split {
+            (&self.split_positions, &self.split_normals)
+        } else {
+            (&self.positions, &self.vertex_normals)
+        };
+        let face_normals = (!part.face_normals.is_empty()).then_some(&part.face_normals[..]);
+        Mesh {
+            positions,
+            scale: self.scale,
+            faces: Faces::Triangles {
+                indices: &part.indices,
+                materials: Materials::PerFace(&part.materials),
+            },
+            face_normals,
+            vertex_normals: Some(normals),
+        }
+    }
+
+    /// The vertex count of `part`'s table (the size of its vertex cache).
+    pub fn vertices(&self, part: &Part) -> usize {
+        if part.split {
+            self.split_positions.len()
+        } else {
+            self.positions.len()
+        }
+    }
+
+    /// How `part` is textured, if it is: perspective-correct, nearest texel.
+    pub fn texturing<'a>(
+        &'a self,
+        part: &'a Part,
+    ) -> Result<Option<Texturing<'a, Rgb888>>, String> {
+        let Some((texels, w, h, wrap)) = &part.texture else {
+            return Ok(None);
+        };
+        let texture = Texture::new(texels, *w, *h)
+            .map_err(|e| format!("texture of {w}x{h} texels: {e}"))?
+            .with_wrap(*wrap);
+        Ok(Some(
+            Texturing::new(&self.uvs, texture).with_mode(UvMode::Perspective),
+        ))
+    }
+}
+
+/// The k of the mesh scale `scale × 2^-k`: 0 for a model within 2^±16 (`scale` is its
+/// reach / 32767), else the k that brings `scale` into [2^-8, 2^-7) (positions to about
+/// ±2^8), within what an `f32` power of two can take back.
+fn balance_exponent(scale: f32) -> i32 {
+    let reach = f64::from(scale) * 32767.0;
+    if (pow2(-16)..=pow2(16)).contains(&reach) {
+        return 0;
+    }
+    let e = ((f64::from(scale).to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    (e + 8).clamp(-126, 127)
+}
+
+/// 2^e, for e in -1022..=1023.
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((e + 1023) as u64) << 52)
+}
