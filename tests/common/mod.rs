@@ -2,6 +2,8 @@
 //! three edge functions (top-left rule), depth from the exact plane equation.
 #![allow(dead_code)]
 
+pub mod cli;
+
 use zraster::{depth_at, ScreenVertex};
 
 /// Is the centre of pixel (px, py) covered by `tri` (either winding), by the top-left rule?
