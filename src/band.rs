@@ -34,6 +34,15 @@ use crate::{
 /// (2 · bands + 1), so that a head is the link "before" the chain's first triangle.
 const END: u16 = u16::MAX;
 
+/// Bin entries for a mesh of `triangles` triangles drawn in bands of `rows` of a
+/// `height`-row screen: one a triangle, and a head and a tail for each of the
+/// 2 · bands + 1 chains (see [`END`]). Saturates rather than overflow.
+pub(crate) const fn bins_for(triangles: usize, height: u32, rows: u32) -> usize {
+    let rows = if rows == 0 { 1 } else { rows };
+    let bands = height.div_ceil(rows) as usize; // < 2³²
+    triangles.saturating_add(2 * (2 * bands + 1))
+}
+
 /// Whether a banded draw sorted its triangles into bins ([`Renderer::binning`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Binning {
@@ -93,79 +102,139 @@ where
     where
         M: Copy + Material<D::Color>,
     {
-        renderer.draw_bands(self.display, self.buffers, self.background, &mut self.after)
+        self.draw_scene(core::slice::from_mut(renderer))
+    }
+
+    fn draw_scene<M, S: RenderState>(
+        &mut self,
+        objects: &mut [Renderer<'_, '_, M, S>],
+    ) -> Result<(), DrawError<Self::Error>>
+    where
+        M: Copy + Material<D::Color>,
+    {
+        draw_bands(
+            objects,
+            self.display,
+            self.buffers,
+            self.background,
+            &mut self.after,
+        )
+    }
+}
+
+/// Draw the frame of `objects` band by band into `display` (for [`Bands`]): each band
+/// cleared to `background`; every object's opaque faces drawn into it with the
+/// Z-buffer in (object, face) order, then their see-through ones; the band handed to
+/// `after` and sent with one `fill_contiguous`.
+///
+/// Each object bins its triangles once a frame into its own run of the bins (see
+/// [`BinRuns`]), or, when it cannot, walks its whole mesh in every band. One
+/// [`ColorCarry`] serves all: in each band the objects take the colours they kept in
+/// the band above in the order they kept them, since each object's faces carried into
+/// a band are exactly those it kept in the band above, walked in the same order.
+fn draw_bands<M, S, D, A>(
+    objects: &mut [Renderer<'_, '_, M, S>],
+    display: &mut D,
+    bands: &mut BandBuffers<'_, D::Color>,
+    background: D::Color,
+    after: &mut A,
+) -> Result<(), DrawError<D::Error>>
+where
+    M: Copy + Material<D::Color>,
+    S: RenderState,
+    D: DrawTarget,
+    A: AfterBand<D::Color>,
+{
+    let BandBuffers {
+        color,
+        depth,
+        width: w,
+        rows,
+        height,
+        bins,
+    } = bands;
+    let (w, rows, height) = (*w, *rows, *height);
+    let nb = height.div_ceil(rows);
+    let mut runs = BinRuns::new(height, rows);
+    for r in objects.iter_mut() {
+        let run = runs.next(r);
+        r.bin(bins.get_mut(run).unwrap_or(&mut []), height, rows)?;
+    }
+    let mut carry = ColorCarry::new(background);
+    // Whether the band buffers are still as cleared: no triangle was drawn into the
+    // band before (every object's chains were empty), nor, for the colours, an overlay
+    // (`after` only reads depth): then the band's clear is skipped.
+    let mut untouched = false;
+    for k in 0..nb {
+        let y0 = k * rows;
+        let n = rows.min(height - y0);
+        // new() checked both slices hold `width × rows` entries: the last, shorter
+        // band uses the front of them.
+        let mut color = ColorBuffer::new_band(color, w, n, y0 as i32)?;
+        let mut zbuf = ZBuffer::new_band(depth, w, n, y0 as i32)?;
+        if !untouched || A::DRAWS {
+            crate::num::fill(color.data_mut(), background);
+        }
+        if !untouched {
+            zbuf.clear();
+        }
+        carry.start_band();
+        // See-through faces are not binned: their pass may touch any band.
+        let mut touched = M::TRANSLUCENT;
+        let mut runs = BinRuns::new(height, rows);
+        for r in objects.iter_mut() {
+            let run = runs.next(r);
+            if r.binning == Binning::Binned {
+                let faces = BandFaces::new(bins.get(run).unwrap_or(&[]), r, nb, k);
+                touched |= !faces.is_empty();
+                r.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
+            } else {
+                touched = true;
+                r.draw_fused(&mut color, &mut zbuf)?;
+            }
+        }
+        for r in objects.iter_mut() {
+            r.draw_see_through_buffered(&mut color, &mut zbuf)?;
+        }
+        untouched = !touched;
+        after.after(&mut color, &zbuf);
+        color.flush(display)?;
+    }
+    Ok(())
+}
+
+/// Where each object's bins lie in the caller's slice: consecutive runs of
+/// [`bins_for`] entries, one an object in order. An object whose run is not (all) in
+/// the slice bins nothing ([`Unbinned::BinsTooShort`]).
+struct BinRuns {
+    next: usize,
+    height: u32,
+    rows: u32,
+}
+
+impl BinRuns {
+    fn new(height: u32, rows: u32) -> Self {
+        BinRuns {
+            next: 0,
+            height,
+            rows,
+        }
+    }
+
+    /// The run of the next object, `r`.
+    fn next<M: Copy, S>(&mut self, r: &Renderer<'_, '_, M, S>) -> core::ops::Range<usize> {
+        let start = self.next;
+        self.next = start.saturating_add(bins_for(r.mesh.face_count(), self.height, self.rows));
+        start..self.next
     }
 }
 
 impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
-    /// Draw the frame band by band into `display` (for [`Bands`]): each band cleared to
-    /// `background`, drawn with the Z-buffer, handed to `after` and sent with one
-    /// `fill_contiguous`.
-    fn draw_bands<D, A>(
-        &mut self,
-        display: &mut D,
-        bands: &mut BandBuffers<'_, D::Color>,
-        background: D::Color,
-        after: &mut A,
-    ) -> Result<(), DrawError<D::Error>>
-    where
-        D: DrawTarget,
-        M: Material<D::Color>,
-        A: AfterBand<D::Color>,
-    {
-        let nb = bands.bands();
-        let binned = self.bin(bands)?;
-        let (w, rows) = (bands.width, bands.rows);
-        let mut carry = ColorCarry::new(background);
-        // Whether the band buffers are still as cleared: no triangle was drawn into the
-        // band before (its chains were empty), nor, for the colours, an overlay (`after`
-        // only reads depth): then the band's clear is skipped.
-        let mut untouched = false;
-        for k in 0..nb {
-            let y0 = k * rows;
-            let n = rows.min(bands.height - y0);
-            // new() checked both slices hold `width × rows` entries: the last, shorter
-            // band uses the front of them.
-            let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
-            let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
-            if !untouched || A::DRAWS {
-                crate::num::fill(color.data_mut(), background);
-            }
-            if !untouched {
-                zbuf.clear();
-            }
-            untouched = false;
-            match binned {
-                Some(nt) => {
-                    // Layout of the bins (see `END`): tails, links, heads.
-                    let chains = 2 * nb as usize + 1;
-                    let slots = bands.bins.get(chains..).unwrap_or(&[]);
-                    let links = slots.get(..nt).unwrap_or(&[]);
-                    let heads = slots.get(nt..).unwrap_or(&[]);
-                    let head = |c: usize| heads.get(c).copied().unwrap_or(END);
-                    let k = k as usize;
-                    // The triangles of the band above that reach this one, this band's
-                    // own (those reaching the next band, the others), and the tall or
-                    // clipped ones, merged into face order.
-                    let above = if k > 0 { head(2 * k - 2) } else { END };
-                    let faces = BandFaces {
-                        links,
-                        heads: [above, head(2 * k), head(2 * k + 1), head(chains - 1)],
-                    };
-                    untouched = faces.is_empty();
-                    self.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
-                }
-                None => self.draw_fused(&mut color, &mut zbuf)?,
-            }
-            after.after(&mut color, &zbuf);
-            color.flush(display)?;
-        }
-        Ok(())
-    }
-
     /// Sort the visible triangles into bins (see [`END`]); `Some(triangle count)` when
     /// binned.
-    fn bin<C>(&mut self, bands: &mut BandBuffers<'_, C>) -> Result<Option<usize>, Error>
+    /// `bins` is this renderer's own run of them, for a screen of `height` rows drawn
+    /// `rows` at a time.
+    fn bin<C>(&mut self, bins: &mut [u16], height: u32, rows: u32) -> Result<Option<usize>, Error>
     where
         C: PixelColor,
         M: Material<C>,
@@ -184,9 +253,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             return off(self, Unbinned::Gouraud);
         }
         let nt = indices.len();
-        let nb = bands.bands() as usize;
-        let rows = bands.rows as i32;
-        let height = bands.height as i32;
+        let nb = height.div_ceil(rows) as usize;
+        if bins.len() < bins_for(nt, height, rows) {
+            return off(self, Unbinned::BinsTooShort);
+        }
+        let (rows, height) = (rows as i32, height as i32);
         let Some(cache) = self.cache.as_deref() else {
             return off(self, Unbinned::NoCache);
         };
@@ -195,14 +266,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         if nb > 250 || nt + chains > usize::from(END) {
             return off(self, Unbinned::TooLarge);
         }
-        if bands.bins.len() < BandBuffers::<C>::bins_needed(nt, bands.height, bands.rows) {
-            return off(self, Unbinned::BinsTooShort);
-        }
         self.binning = Binning::Binned;
         // Tails, then the links (one a triangle) and the heads as one array of slots:
         // a chain's tail starts at its head's slot, so that appending never asks whether
         // the chain is empty.
-        let (tails, slots) = bands.bins.split_at_mut(chains);
+        let (tails, slots) = bins.split_at_mut(chains);
         for (c, t) in tails.iter_mut().enumerate() {
             *t = (nt + c) as u16;
         }
@@ -280,7 +348,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             return self.draw_fused(frame, zbuf);
         };
         let lambert = self.shading() == Shading::Lambert;
-        carry.start_band();
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
         let px = per_colouring!(self, materials, lambert, |shade| {
             self.band_loop(frame, zbuf, indices, faces, carry, shade)?
@@ -314,6 +381,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
+            if self.see_through_face::<C>(f) {
+                // Drawn after the opaque faces. Skipped alike as kept and as taken, so
+                // the carried colours stay in step.
+                continue;
+            }
             let [a, b, c] = cached_triangle(cache, f, t)?;
             if how == Carry::Tall {
                 // Drawn in every band: clipped by the general path, or skipped when it
@@ -358,7 +430,24 @@ struct BandFaces<'a> {
     heads: [u16; 4],
 }
 
-impl BandFaces<'_> {
+impl<'a> BandFaces<'a> {
+    /// Band `k`'s faces of `r` (of `nb` bands), binned into `bins` this frame.
+    fn new<M: Copy, S>(bins: &'a [u16], r: &Renderer<'_, '_, M, S>, nb: u32, k: u32) -> Self {
+        // Layout of the bins (see `END`): tails, links, heads.
+        let (nt, chains, k) = (r.mesh.face_count(), 2 * nb as usize + 1, k as usize);
+        let slots = bins.get(chains..).unwrap_or(&[]);
+        let links = slots.get(..nt).unwrap_or(&[]);
+        let heads = slots.get(nt..).unwrap_or(&[]);
+        let head = |c: usize| heads.get(c).copied().unwrap_or(END);
+        // The triangles of the band above that reach this one, this band's own (those
+        // reaching the next band, the others), and the tall or clipped ones.
+        let above = if k > 0 { head(2 * k - 2) } else { END };
+        BandFaces {
+            links,
+            heads: [above, head(2 * k), head(2 * k + 1), head(chains - 1)],
+        }
+    }
+
     fn is_empty(&self) -> bool {
         self.heads == [END; 4]
     }

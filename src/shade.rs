@@ -77,13 +77,127 @@ pub fn to_intensity(i: f32) -> Intensity {
 /// `Rgb888` (a plain colour) is a material for every colour type that implements
 /// [`DisplayColor`]: all of embedded-graphics' (see there). Implement `Material` for
 /// your own type to use palettes or exact colour rules.
+///
+/// A material may be see-through ([`Translucent`]): faces whose
+/// [`alpha`](Material::alpha) is below 255 are left out of the opaque faces and drawn
+/// after them, depth-tested without writing depth, blended over what is drawn
+/// ([`blend`](Material::blend)). Plain colours are opaque at compile time
+/// ([`TRANSLUCENT`](Material::TRANSLUCENT) is `false`), so their loops never ask.
 pub trait Material<C>: Copy {
     /// Whether [`shade`](Material::shade) depends on the pixel position (dithering).
     /// When it does not, runs are filled with one colour (`fill_solid`).
     const DITHERED: bool = false;
 
+    /// Whether any value of the type can be see-through (an
+    /// [`alpha`](Material::alpha) below 255). `false` (the default) compiles the
+    /// transparency pass out.
+    const TRANSLUCENT: bool = false;
+
     /// The colour at intensity `i` (Q15) at pixel (x, y).
     fn shade(&self, i: Intensity, x: i32, y: i32) -> C;
+
+    /// Opacity: 255 opaque (the default), 0 invisible.
+    #[inline(always)]
+    fn alpha(&self) -> u8 {
+        255
+    }
+
+    /// `src` (this material's colour at pixel (x, y)) over `dst` (what the pixel
+    /// holds) at this material's [`alpha`](Material::alpha). The default is `src`.
+    #[inline(always)]
+    fn blend(&self, dst: C, src: C, x: i32, y: i32) -> C {
+        let _ = (dst, x, y);
+        src
+    }
+}
+
+/// A see-through colour: `color` at opacity `alpha` (255 opaque, 0 invisible), as an
+/// OBJ material's `d` (`alpha = round(d · 255)`, [`Translucent::from_opacity`]).
+///
+/// Faces of alpha below 255 are drawn after every opaque face of the renderer (of the
+/// whole [`Scene`](crate::scene::Scene) in a scene), depth-tested against the opaque
+/// ones and not writing depth, each blended over the pixel's colour:
+/// `dst + (src − dst) · alpha / 255` per channel ([`DisplayColor::blend`]; alpha 128
+/// is the exact mean, rounded down). They are drawn in (object, face) order, not
+/// sorted: where see-through faces overlap each other the result depends on that
+/// order, so sort them back to front yourself or keep them from overlapping. Faces of
+/// alpha 255 are opaque faces like any other.
+///
+/// A [`WithDepth`](crate::WithDepth) cannot read the display's colours: there the
+/// faces are drawn as a screen door instead, the share `alpha / 255` of each aligned
+/// 4×4 block of pixels (ordered, [`screen_door`]), the others left as they were.
+///
+/// ```
+/// use embedded_graphics::{pixelcolor::{Rgb565, Rgb888}, prelude::*};
+/// use zraster::shade::{Material, Translucent, ONE};
+///
+/// let glass = Translucent::new(Rgb888::new(0, 0, 255), 128);
+/// let red = Rgb565::new(31, 0, 0);
+/// let blue: Rgb565 = glass.shade(ONE, 0, 0);
+/// assert_eq!(glass.blend(red, blue, 0, 0), Rgb565::new(15, 0, 15)); // half of each
+/// assert_eq!(Translucent::from_opacity(Rgb888::WHITE, 0.5).alpha, 128);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Translucent {
+    /// The colour, lit as a plain `Rgb888` material.
+    pub color: Rgb888,
+    /// Opacity: 255 opaque, 0 invisible.
+    pub alpha: u8,
+}
+
+impl Translucent {
+    /// `color` at opacity `alpha`.
+    pub const fn new(color: Rgb888, alpha: u8) -> Self {
+        Translucent { color, alpha }
+    }
+
+    /// `color` at opacity `d` in 0.0..=1.0 (an MTL `d`; `Tr` is `1 − d`), rounded to
+    /// 1/255 and clamped; NaN is opaque.
+    pub fn from_opacity(color: Rgb888, d: f32) -> Self {
+        let a = d * 255.0 + 0.5;
+        let alpha = if a.is_nan() || a >= 255.0 {
+            255
+        } else if a > 0.0 {
+            a as u8
+        } else {
+            0
+        };
+        Translucent { color, alpha }
+    }
+}
+
+impl From<Rgb888> for Translucent {
+    /// An opaque material of that colour.
+    fn from(color: Rgb888) -> Self {
+        Translucent { color, alpha: 255 }
+    }
+}
+
+impl<C: DisplayColor> Material<C> for Translucent {
+    const DITHERED: bool = C::DITHERED;
+    const TRANSLUCENT: bool = true;
+
+    #[inline]
+    fn shade(&self, i: Intensity, x: i32, y: i32) -> C {
+        C::lit(self.color, i, x, y)
+    }
+
+    #[inline(always)]
+    fn alpha(&self) -> u8 {
+        self.alpha
+    }
+
+    #[inline]
+    fn blend(&self, dst: C, src: C, x: i32, y: i32) -> C {
+        C::blend(dst, src, self.alpha, x, y)
+    }
+}
+
+/// Whether a see-through face of opacity `alpha` covers pixel (x, y) where colours
+/// cannot be mixed (the screen door): over any aligned 4×4 block,
+/// `round(alpha · 16 / 255)` pixels are covered, in the Bayer order of [`dither`].
+pub fn screen_door(alpha: u8, x: i32, y: i32) -> bool {
+    dither_level(alpha, 1, x, y) != 0
 }
 
 /// A display colour that an `Rgb888` material, lit, turns into.
@@ -125,6 +239,20 @@ pub trait DisplayColor: PixelColor {
 
     /// The colour of `material` at intensity `i` (Q15) at pixel (x, y).
     fn lit(material: Rgb888, i: Intensity, x: i32, y: i32) -> Self;
+
+    /// `src` over `dst` at opacity `alpha` at pixel (x, y) (see [`Translucent`]).
+    /// RGB types and `Gray8` mix each channel, `dst + (src − dst) · alpha / 255`
+    /// rounded (alpha 128: the mean rounded down, `(a & b) + ((a ^ b) >> 1)`); the
+    /// default, which the dithered types keep, is the [`screen_door`]: `src` on the
+    /// pixels it covers, `dst` on the others.
+    #[inline]
+    fn blend(dst: Self, src: Self, alpha: u8, x: i32, y: i32) -> Self {
+        if screen_door(alpha, x, y) {
+            src
+        } else {
+            dst
+        }
+    }
 }
 
 impl<C: DisplayColor> Material<C> for Rgb888 {
@@ -165,6 +293,35 @@ fn lit_gray<C: GrayColor>(
     }
 }
 
+/// One channel of `src` over `dst` at opacity `a`: the mean rounded down at 128,
+/// else `(dst · (255 − a) + src · a) / 255` rounded.
+#[inline]
+fn mix(dst: u8, src: u8, a: u8) -> u8 {
+    if a == 128 {
+        return (dst & src) + ((dst ^ src) >> 1);
+    }
+    // ≤ 255 · 255 + 127 < 2²⁰, where div255 is exact.
+    let (d, s, a) = (u32::from(dst), u32::from(src), u32::from(a));
+    div255(d * (255 - a) + s * a + 127) as u8
+}
+
+/// An RGB colour blended channel by channel.
+#[inline]
+fn blend_rgb<C: RgbColor>(dst: C, src: C, a: u8, new: fn(u8, u8, u8) -> C) -> C {
+    new(
+        mix(dst.r(), src.r(), a),
+        mix(dst.g(), src.g(), a),
+        mix(dst.b(), src.b(), a),
+    )
+}
+
+/// Half of each 5-6-5 channel of two packed colours, rounded down, in one go: the low
+/// bit of each field is masked off before the shift so that none spills into the next.
+#[inline]
+fn half_565(a: u16, b: u16) -> u16 {
+    (a & b) + (((a ^ b) & 0xF7DE) >> 1)
+}
+
 macro_rules! rgb_colors {
     ($($t:ident),*) => {$(
         impl DisplayColor for $t {
@@ -174,11 +331,42 @@ macro_rules! rgb_colors {
             fn lit(m: Rgb888, i: Intensity, _x: i32, _y: i32) -> $t {
                 lit_rgb(m, i, $t::new)
             }
+
+            #[inline]
+            fn blend(dst: $t, src: $t, alpha: u8, _x: i32, _y: i32) -> $t {
+                blend_rgb(dst, src, alpha, $t::new)
+            }
         }
     )*};
 }
 
-rgb_colors!(Rgb555, Bgr555, Rgb565, Bgr565, Rgb666, Bgr666, Rgb888, Bgr888);
+rgb_colors!(Rgb555, Bgr555, Rgb666, Bgr666, Rgb888, Bgr888);
+
+/// The 16-bit types: their 50 % blend on the packed value.
+macro_rules! rgb565_colors {
+    ($($t:ident),*) => {$(
+        impl DisplayColor for $t {
+            const DITHERED: bool = false;
+
+            #[inline]
+            fn lit(m: Rgb888, i: Intensity, _x: i32, _y: i32) -> $t {
+                lit_rgb(m, i, $t::new)
+            }
+
+            #[inline]
+            fn blend(dst: $t, src: $t, alpha: u8, _x: i32, _y: i32) -> $t {
+                use embedded_graphics::{pixelcolor::raw::RawU16, prelude::IntoStorage};
+                if alpha == 128 {
+                    let half = half_565(dst.into_storage(), src.into_storage());
+                    return $t::from(RawU16::new(half));
+                }
+                blend_rgb(dst, src, alpha, $t::new)
+            }
+        }
+    )*};
+}
+
+rgb565_colors!(Rgb565, Bgr565);
 
 macro_rules! gray_colors {
     ($($t:ident: $dithered:expr),*) => {$(
@@ -193,7 +381,21 @@ macro_rules! gray_colors {
     )*};
 }
 
-gray_colors!(Gray2: true, Gray4: true, Gray8: false);
+gray_colors!(Gray2: true, Gray4: true);
+
+impl DisplayColor for Gray8 {
+    const DITHERED: bool = false;
+
+    #[inline]
+    fn lit(m: Rgb888, i: Intensity, x: i32, y: i32) -> Gray8 {
+        lit_gray(m, i, x, y, false, Gray8::new)
+    }
+
+    #[inline]
+    fn blend(dst: Gray8, src: Gray8, alpha: u8, _x: i32, _y: i32) -> Gray8 {
+        Gray8::new(mix(dst.luma(), src.luma(), alpha))
+    }
+}
 
 impl DisplayColor for BinaryColor {
     const DITHERED: bool = true;
@@ -272,175 +474,4 @@ pub fn dither_level(level: u8, max: u8, x: i32, y: i32) -> u8 {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn div255_is_exact_over_its_range() {
-        for x in 0..1u32 << 20 {
-            assert_eq!(div255_shifts(x), x / 255, "{x}");
-            assert_eq!(div255(x), x / 255, "{x}");
-        }
-        // The largest argument `channel` makes: 255 · 65535 · 255 plus the rounding half.
-        assert!((255 * 65535 * 255 + 255 * u32::from(ONE) / 2) >> 15 < 1 << 20);
-    }
-
-    #[test]
-    fn full_intensity_keeps_the_colour() {
-        let c = Rgb888::new(255, 128, 0);
-        let r: Rgb565 = c.shade(ONE, 0, 0);
-        assert_eq!(r, Rgb565::new(31, 32, 0));
-        let r: Rgb888 = c.shade(ONE, 0, 0);
-        assert_eq!(r, c);
-        let half: Rgb888 = c.shade(ONE / 2, 0, 0);
-        assert_eq!(half, Rgb888::new(128, 64, 0));
-        let over: Rgb888 = c.shade(u16::MAX, 0, 0);
-        assert_eq!(over, Rgb888::new(255, 255, 0));
-    }
-
-    #[test]
-    fn lambert_intensity() {
-        let l = Light::default();
-        assert_eq!(l.intensity(1.0), ONE);
-        assert_eq!(l.intensity(-0.5), to_intensity(0.2));
-        assert_eq!(l.intensity(0.5), to_intensity(0.6));
-        assert_eq!(to_intensity(f32::NAN), 0);
-        assert_eq!(to_intensity(3.0), u16::MAX);
-    }
-
-    #[test]
-    fn dithering_lights_the_right_share_of_each_block() {
-        for level in [0u8, 1, 17, 64, 128, 200, 254, 255] {
-            let on = (0..4)
-                .flat_map(|y| (0..4).map(move |x| (x, y)))
-                .filter(|&(x, y)| dither(level, x + 8, y + 4) == BinaryColor::On)
-                .count() as u32;
-            assert_eq!(on, (u32::from(level) * 16 + 127) / 255, "level {level}");
-        }
-    }
-
-    /// (200, 100, 50) lit and rounded to each RGB type's depth: 5 bits give
-    /// (24.3, 12.2, 6.1), 6 bits (49.4, 24.7, 12.4); at half intensity 5 bits give
-    /// (12.2, 6.1, 3.0), 6 bits (24.7, 12.4, 6.2).
-    #[test]
-    fn every_rgb_type_gets_its_channels_rounded_to_its_depth() {
-        let m = Rgb888::new(200, 100, 50);
-        fn both<C: DisplayColor>(m: Rgb888) -> (C, C) {
-            (m.shade(ONE, 3, 5), m.shade(ONE / 2, 3, 5))
-        }
-        assert_eq!(
-            both::<Rgb555>(m),
-            (Rgb555::new(24, 12, 6), Rgb555::new(12, 6, 3))
-        );
-        assert_eq!(
-            both::<Bgr555>(m),
-            (Bgr555::new(24, 12, 6), Bgr555::new(12, 6, 3))
-        );
-        assert_eq!(
-            both::<Rgb565>(m),
-            (Rgb565::new(24, 25, 6), Rgb565::new(12, 12, 3))
-        );
-        assert_eq!(
-            both::<Bgr565>(m),
-            (Bgr565::new(24, 25, 6), Bgr565::new(12, 12, 3))
-        );
-        assert_eq!(
-            both::<Rgb666>(m),
-            (Rgb666::new(49, 25, 12), Rgb666::new(25, 12, 6))
-        );
-        assert_eq!(
-            both::<Bgr666>(m),
-            (Bgr666::new(49, 25, 12), Bgr666::new(25, 12, 6))
-        );
-        assert_eq!(
-            both::<Rgb888>(m),
-            (Rgb888::new(200, 100, 50), Rgb888::new(100, 50, 25))
-        );
-        assert_eq!(
-            both::<Bgr888>(m),
-            (Bgr888::new(200, 100, 50), Bgr888::new(100, 50, 25))
-        );
-        // The channels land in their places: blue is the high field of a Bgr565.
-        let b: Bgr565 = Rgb888::new(0, 0, 255).shade(ONE, 0, 0);
-        assert_eq!(
-            embedded_graphics::prelude::IntoStorage::into_storage(b),
-            31 << 11
-        );
-        // None of them dithers; the grey ones below 8 bits and 1-bit do.
-        let dithered = [
-            <Rgb888 as Material<Rgb555>>::DITHERED,
-            <Rgb888 as Material<Bgr666>>::DITHERED,
-            <Rgb888 as Material<Gray8>>::DITHERED,
-            <Rgb888 as Material<Gray4>>::DITHERED,
-            <Rgb888 as Material<Gray2>>::DITHERED,
-            <Rgb888 as Material<BinaryColor>>::DITHERED,
-        ];
-        assert_eq!(dithered, [false, false, false, true, true, true]);
-    }
-
-    /// The luma of (200, 100, 50) is 124 (31978 / 256). In sixteenths of a step that
-    /// is 117 for Gray4 (124 · 15 · 16 / 255 = 116.7: step 7, 5 pixels of 16 one above)
-    /// and 23 for Gray2 (23.3: step 1, 7 of 16 above); on/off, 8 of 16 are on (7.8).
-    #[test]
-    fn grey_types_get_the_luma_dithered_below_eight_bits() {
-        let m = Rgb888::new(200, 100, 50);
-        assert_eq!(luma(m), 124);
-        let g8: Gray8 = m.shade(ONE, 0, 0);
-        assert_eq!(g8, Gray8::new(124));
-        let g8: Gray8 = m.shade(ONE / 2, 0, 0);
-        assert_eq!(g8, Gray8::new(62));
-        let block = |f: &dyn Fn(i32, i32) -> u8| {
-            let mut out = [[0u8; 4]; 4];
-            for (y, row) in out.iter_mut().enumerate() {
-                for (x, v) in row.iter_mut().enumerate() {
-                    // An aligned block away from the origin: the pattern repeats.
-                    *v = f(x as i32 + 12, y as i32 - 8);
-                }
-            }
-            out
-        };
-        // Bayer thresholds: [0 8 2 10] [12 4 14 6] [3 11 1 9] [15 7 13 5].
-        let g4 = block(&|x, y| <Rgb888 as Material<Gray4>>::shade(&m, ONE, x, y).luma());
-        assert_eq!(g4, [[8, 7, 8, 7], [7, 8, 7, 7], [8, 7, 8, 7], [7, 7, 7, 7]]);
-        let g2 = block(&|x, y| <Rgb888 as Material<Gray2>>::shade(&m, ONE, x, y).luma());
-        assert_eq!(g2, [[2, 1, 2, 1], [1, 2, 1, 2], [2, 1, 2, 1], [1, 1, 1, 2]]);
-        let on = block(&|x, y| {
-            u8::from(<Rgb888 as Material<BinaryColor>>::shade(&m, ONE, x, y).is_on())
-        });
-        assert_eq!(on, [[1, 0, 1, 0], [0, 1, 0, 1], [1, 0, 1, 0], [0, 1, 0, 1]]);
-        // White and black are flat at every depth.
-        let white = Rgb888::new(255, 255, 255);
-        for (x, y) in [(0, 0), (1, 2), (3, 3)] {
-            assert_eq!(
-                <Rgb888 as Material<Gray4>>::shade(&white, ONE, x, y),
-                Gray4::new(15)
-            );
-            assert_eq!(
-                <Rgb888 as Material<Gray2>>::shade(&white, ONE, x, y),
-                Gray2::new(3)
-            );
-            assert_eq!(
-                <Rgb888 as Material<Gray2>>::shade(&white, 0, x, y),
-                Gray2::new(0)
-            );
-        }
-    }
-
-    #[test]
-    fn dithered_blocks_add_up_to_the_level() {
-        for max in [1u8, 3, 15] {
-            for level in 0..=255u8 {
-                let mut sum = 0u32;
-                for y in 0..4 {
-                    for x in 0..4 {
-                        let v = dither_level(level, max, x - 4, y + 20);
-                        assert!(v <= max, "{level} {max}");
-                        sum += u32::from(v);
-                    }
-                }
-                let want = (u32::from(level) * u32::from(max) * 16 + 127) / 255;
-                assert_eq!(sum, want, "level {level} to {max}");
-            }
-        }
-    }
-}
+mod tests;

@@ -63,13 +63,12 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// per band and two more. (Meshes of more than 65,534 triangles are drawn without
     /// bins.)
     pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
-        let rows = if rows == 0 { 1 } else { rows };
-        let bands = height.div_ceil(rows) as usize; // < 2³²
-        triangles.saturating_add(2 * (2 * bands + 1))
+        crate::band::bins_for(triangles, height, rows)
     }
 }
 
-/// A display drawn band by band: [`Renderer::draw`] draws each band of rows into the
+/// A display drawn band by band: [`Renderer::draw`] (or [`Scene::draw`], for several
+/// meshes) draws each band of rows into the
 /// [`BandBuffers`], cleared to the background, and sends it to the display with one
 /// `fill_contiguous`. The picture, its depths and the stats are exactly those of a
 /// whole [`Frame`](super::Frame), in a fraction of its RAM.
@@ -105,6 +104,7 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
 /// ```
 ///
 /// [`Renderer::draw`]: crate::Renderer::draw
+/// [`Scene::draw`]: crate::scene::Scene::draw
 /// [`Renderer::with_cache`]: crate::Renderer::with_cache
 pub struct Bands<'a, 'b, D: DrawTarget, F = ()> {
     pub(crate) display: &'a mut D,

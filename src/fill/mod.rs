@@ -13,6 +13,7 @@ use embedded_graphics::{
 
 use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup, SpanStats};
 use crate::shade::{Intensity, Material};
+pub(crate) mod blend;
 mod small;
 mod span;
 

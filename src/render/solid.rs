@@ -4,6 +4,7 @@
 //! [`Frame`](crate::Frame)).
 
 use super::*;
+use crate::fill::blend::{blend_triangle, screen_door_triangle};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
 /// for the renderer's materials and shading, in one arm for each way of colouring (one
@@ -91,6 +92,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             first,
             0..self.mesh.face_count(),
             |f, mat, tri, lights| {
+                if see_through::<D::Color, M>(&mat) {
+                    return Ok(()); // drawn after the opaque faces
+                }
                 let lights = self.corner_lights(f, lights);
                 let s =
                     shade_triangle::<S, _, _>(target, Some(&mut *zbuf), &clip, tri, mat, lights)
@@ -135,6 +139,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 first,
                 0..self.mesh.face_count(),
                 |f, mat, tri, lights| {
+                    if see_through::<C, M>(&mat) {
+                        return Ok(()); // drawn after the opaque faces
+                    }
                     let s = match self.shading() {
                         Shading::Flat if !M::DITHERED => fill_flat_buffered::<S, _>(
                             frame,
@@ -198,6 +205,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 first,
                 core::iter::once(f),
                 |f, mat, tri, _| {
+                    if see_through::<C, M>(&mat) {
+                        return Ok(()); // drawn after the opaque faces
+                    }
                     let i = if lambert { self.face_light(f) } else { ONE };
                     more += target.fill(tri.each_ref(), mat.shade(i, 0, 0));
                     Ok(())
@@ -263,6 +273,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         for next in walk.by_ref() {
             match next? {
                 (f, Some([a, b, c])) => {
+                    if self.see_through_face::<C>(f) {
+                        continue; // drawn after the opaque faces
+                    }
                     let tri = [a.placed(), b.placed(), c.placed()];
                     if let Some((row0, row1)) = rows {
                         if outside_rows(&tri, row0, row1) {
@@ -282,5 +295,117 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut st = walk.stats();
         st.add_geometry(&clipped);
         Ok((st, px))
+    }
+}
+
+/// Whether a face of material `m` is left out of the opaque faces, to be drawn after
+/// them (a constant `false` for opaque material types).
+#[inline(always)]
+pub(crate) fn see_through<C, M: Material<C>>(m: &M) -> bool {
+    M::TRANSLUCENT && m.alpha() < u8::MAX
+}
+
+impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
+    /// Whether face `f` is see-through (see [`see_through`]).
+    #[inline(always)]
+    pub(crate) fn see_through_face<C>(&self, f: usize) -> bool
+    where
+        M: Material<C>,
+    {
+        M::TRANSLUCENT
+            && self
+                .mesh
+                .face(f)
+                .is_some_and(|(_, m)| see_through::<C, M>(&m))
+    }
+
+    /// Whether the mesh may have see-through faces: its material type can be, and its
+    /// one material (if it has one) is.
+    fn may_see_through<C>(&self) -> bool
+    where
+        M: Material<C>,
+    {
+        match self.mesh.faces {
+            _ if !M::TRANSLUCENT => false,
+            Faces::Triangles {
+                materials: crate::mesh::Materials::Uniform(m),
+                ..
+            } => see_through::<C, M>(&m),
+            _ => true,
+        }
+    }
+
+    /// The see-through faces, after every opaque one (of this mesh, or of every mesh of
+    /// a scene), blended over `frame` in face order: depth-tested against `zbuf` without
+    /// writing it. Geometry was counted by the opaque pass; this adds pixel counts.
+    pub(crate) fn draw_see_through_buffered<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        if !self.may_see_through::<C>() {
+            return Ok(());
+        }
+        let clip = clip_of(frame, zbuf);
+        let mut px = FrameStats::default();
+        self.for_each_triangle::<core::convert::Infallible>(
+            &clip,
+            false,
+            0..self.mesh.face_count(),
+            |f, mat, tri, lights| {
+                if see_through::<C, M>(&mat) {
+                    let lights = self.corner_lights(f, lights);
+                    px.add_fill(blend_triangle::<S, _, _>(
+                        frame, zbuf, &clip, tri, mat, lights,
+                    ));
+                }
+                Ok(())
+            },
+        )
+        .map_err(|e| match e {
+            DrawError::Input(e) => e,
+            DrawError::Target(never) => match never {},
+        })?;
+        self.stats.add_pixel_counts(&px);
+        Ok(())
+    }
+
+    /// [`draw_see_through_buffered`](Renderer::draw_see_through_buffered) for a display
+    /// whose colours cannot be read: each see-through face as a screen door of its
+    /// alpha (see [`Translucent`](crate::shade::Translucent)).
+    pub(crate) fn draw_see_through_runs<D>(
+        &mut self,
+        display: &mut D,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), DrawError<D::Error>>
+    where
+        D: DrawTarget,
+        M: Material<D::Color>,
+    {
+        if !self.may_see_through::<D::Color>() {
+            return Ok(());
+        }
+        let clip = clip_of(display, zbuf);
+        let mut px = FrameStats::default();
+        self.for_each_triangle(
+            &clip,
+            false,
+            0..self.mesh.face_count(),
+            |f, mat, tri, lights| {
+                if see_through::<D::Color, M>(&mat) {
+                    let lights = self.corner_lights(f, lights);
+                    let s = screen_door_triangle::<S, _, _>(display, zbuf, &clip, tri, mat, lights)
+                        .map_err(DrawError::Target)?;
+                    px.add_pixels(s);
+                }
+                Ok(())
+            },
+        )?;
+        self.stats.add_pixel_counts(&px);
+        Ok(())
     }
 }

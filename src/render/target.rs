@@ -17,7 +17,12 @@ pub(crate) mod sealed {
 /// The three are all there is (the trait is sealed): each says what memory you have,
 /// and the renderer takes the fastest way to draw into it. The pictures, depths and
 /// [`FrameStats`] pixel counts are the same whichever you pick (only
-/// [`runs`](FrameStats::runs) differs, as a [`Frame`] hands over none).
+/// [`runs`](FrameStats::runs) differs, as a [`Frame`] hands over none), with one
+/// exception: see-through faces ([`Translucent`](crate::shade::Translucent)) are
+/// blended over a [`Frame`]'s or [`Bands`](crate::Bands)' colours, but drawn as a
+/// screen door into a [`WithDepth`], whose display's colours cannot be read.
+///
+/// Several meshes share one target in a [`Scene`](crate::scene::Scene).
 pub trait DepthTarget: sealed::Sealed {
     /// The target's pixel colour.
     type Color: PixelColor;
@@ -32,6 +37,21 @@ pub trait DepthTarget: sealed::Sealed {
     ) -> Result<(), DrawError<Self::Error>>
     where
         M: Copy + Material<Self::Color>;
+
+    /// Draw every mesh of `objects` into the target: their opaque faces in (object,
+    /// face) order, then their see-through ones (what [`Scene::draw`] calls).
+    ///
+    /// [`Scene::draw`]: crate::scene::Scene::draw
+    #[doc(hidden)]
+    fn draw_scene<M, S: RenderState>(
+        &mut self,
+        objects: &mut [Renderer<'_, '_, M, S>],
+    ) -> Result<(), DrawError<Self::Error>>
+    where
+        M: Copy + Material<Self::Color>,
+    {
+        objects.iter_mut().try_for_each(|r| self.draw_mesh(r))
+    }
 }
 
 impl<C: PixelColor> sealed::Sealed for Frame<'_, C> {}
@@ -49,8 +69,24 @@ impl<C: PixelColor> DepthTarget for Frame<'_, C> {
     where
         M: Copy + Material<C>,
     {
+        self.draw_scene(core::slice::from_mut(renderer))
+    }
+
+    fn draw_scene<M, S: RenderState>(
+        &mut self,
+        objects: &mut [Renderer<'_, '_, M, S>],
+    ) -> Result<(), DrawError<Self::Error>>
+    where
+        M: Copy + Material<C>,
+    {
         let (color, depth) = self.parts_mut();
-        renderer.draw_fused(color, depth).map_err(DrawError::Input)
+        for r in objects.iter_mut() {
+            r.draw_fused(color, depth)?;
+        }
+        for r in objects.iter_mut() {
+            r.draw_see_through_buffered(color, depth)?;
+        }
+        Ok(())
     }
 }
 
@@ -61,6 +97,11 @@ impl<C: PixelColor> DepthTarget for Frame<'_, C> {
 /// Use it when the display has no frame buffer of yours in RAM: the Z-buffer is then
 /// all the memory drawing needs (2 bytes a pixel, or a band of rows: only the rows it
 /// holds are drawn). With RAM for colours too, a [`Frame`] is faster.
+///
+/// See-through faces ([`Translucent`](crate::shade::Translucent)) cannot be blended
+/// here, as the display's colours cannot be read: they are drawn as a screen door (the
+/// share alpha / 255 of each 4×4 block of their pixels, depth-tested, without depth
+/// writes), never as an error.
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
@@ -112,7 +153,23 @@ impl<D: DrawTarget> DepthTarget for WithDepth<'_, '_, D> {
     where
         M: Copy + Material<D::Color>,
     {
-        renderer.draw_runs(self.display, self.depth)
+        self.draw_scene(core::slice::from_mut(renderer))
+    }
+
+    fn draw_scene<M, S: RenderState>(
+        &mut self,
+        objects: &mut [Renderer<'_, '_, M, S>],
+    ) -> Result<(), DrawError<Self::Error>>
+    where
+        M: Copy + Material<D::Color>,
+    {
+        for r in objects.iter_mut() {
+            r.draw_runs(self.display, self.depth)?;
+        }
+        for r in objects.iter_mut() {
+            r.draw_see_through_runs(self.display, self.depth)?;
+        }
+        Ok(())
     }
 }
 
@@ -128,7 +185,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     ///   [`BandBuffers`](crate::BandBuffers), each band cleared and sent for you.
     ///
     /// A [`Frame`] or [`WithDepth`] is not cleared here: clear it before the first call of
-    /// a frame. Several meshes (one [`Renderer`] each) may be drawn into the same one.
+    /// a frame. Several meshes (one [`Renderer`] each) may be drawn into the same one;
+    /// into [`Bands`](crate::Bands), draw them together as a
+    /// [`Scene`](crate::scene::Scene).
+    ///
+    /// See-through faces ([`Translucent`](crate::shade::Translucent) materials of alpha
+    /// below 255) are drawn after the mesh's opaque ones, depth-tested without writing
+    /// depth, in face order.
     ///
     /// Errors: [`DrawError::Input`] for a face table that refers to missing vertices or
     /// materials or has a face of fewer than three vertices (the faces before it may be
