@@ -2,7 +2,7 @@
 //! there), nearest sampling with repeat or clamp, and the span interpolators that turn
 //! a triangle's perspective-divided texture coordinates into a texel per pixel.
 //! [`Renderer::draw_textured`](crate::Renderer::draw_textured) draws a mesh with one
-//! (a [`Texturing`](crate::Texturing): the mesh's texture coordinates and the texture).
+//! (a [`Texturing`]: the mesh's texture coordinates and the texture).
 //!
 //! # Formats
 //!
@@ -365,6 +365,78 @@ impl<'a, T: Texel> Texture<'a, T> {
 #[inline]
 pub fn modulate<C: DisplayColor>(texel: impl Into<Rgb888>, i: Intensity, x: i32, y: i32) -> C {
     C::lit(texel.into(), i, x, y)
+}
+
+/// How texture coordinates are interpolated across a face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum UvMode {
+    /// Perspective-correct: u/w, v/w and 1/w stepped along each row, an exact division
+    /// every 16 pixels and at the row's last pixel, u and v stepped linearly between
+    /// (within a bounded error, see [`PerspectiveSpan`]).
+    #[default]
+    Perspective,
+    /// Affine: u and v stepped linearly across the screen triangle, no division. Exact
+    /// for faces square to the view; faces at a slant swim.
+    Affine,
+}
+
+/// What a textured draw needs besides the mesh: each vertex's texture coordinates (a
+/// table beside the mesh's positions, as `obj2rust` writes it: `NAME_UVS`), the
+/// texture, and how coordinates are interpolated (perspective-correct by default).
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use embedded_graphics::prelude::*;
+/// use zraster::texture::{MeshUv, Texture};
+/// use zraster::{math::{radians, Vec3}, mesh::{Mesh, Materials}, Camera, Viewport};
+/// use zraster::{Frame, RenderOptions, Renderer, Texturing, UvMode};
+///
+/// // A square facing the camera, UVs 0..1 across it, and a 2×2 checker (raw RGB565).
+/// const POSITIONS: [[i16; 3]; 4] = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]];
+/// const INDICES: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
+/// const UVS: [MeshUv; 4] = [[0, 4096], [4096, 4096], [4096, 0], [0, 0]]; // v down
+/// const CHECKER: [u16; 4] = [0xF800, 0x07E0, 0x001F, 0xFFFF]; // red green / blue white
+/// let mesh = Mesh::triangles(&POSITIONS, 1.0, &INDICES, embedded_graphics::pixelcolor::Rgb888::BLACK);
+/// let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::default(), Vec3::Y)?
+///     .perspective(radians(60.0), 0.5, 10.0, Viewport::new(32, 32)?)?;
+/// let mut pixels = [Rgb565::BLACK; 32 * 32];
+/// let mut depth = [0u16; 32 * 32];
+/// let mut frame = Frame::new(&mut pixels, &mut depth, 32, 32)?;
+/// frame.clear(Rgb565::BLACK);
+/// let texturing = Texturing::new(&UVS, Texture::new(&CHECKER, 2, 2)?);
+/// Renderer::new(&mesh, &camera, RenderOptions::default())?.draw_textured(&mut frame, &texturing)?;
+/// // The top left quarter of the square is the top left texel, and so on.
+/// assert_eq!(frame.color().pixel(12, 12), Some(Rgb565::RED));
+/// assert_eq!(frame.color().pixel(19, 12), Some(Rgb565::GREEN));
+/// assert_eq!(frame.color().pixel(12, 19), Some(Rgb565::BLUE));
+/// assert_eq!(frame.color().pixel(19, 19), Some(Rgb565::WHITE));
+/// # Ok::<(), zraster::Error>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Texturing<'a, T> {
+    /// One texture coordinate pair per mesh vertex (Q12, v down the image): at least as
+    /// many as the mesh has vertices ([`Mesh::check_uvs`](crate::mesh::Mesh::check_uvs)).
+    pub uvs: &'a [MeshUv],
+    /// The texture.
+    pub texture: Texture<'a, T>,
+    /// How texture coordinates are interpolated across a face.
+    pub mode: UvMode,
+}
+
+impl<'a, T: Texel> Texturing<'a, T> {
+    /// `texture` placed on the mesh by `uvs`, perspective-correct.
+    pub const fn new(uvs: &'a [MeshUv], texture: Texture<'a, T>) -> Self {
+        Texturing {
+            uvs,
+            texture,
+            mode: UvMode::Perspective,
+        }
+    }
+
+    /// The same with coordinates interpolated by `mode`.
+    pub const fn with_mode(self, mode: UvMode) -> Self {
+        Texturing { mode, ..self }
+    }
 }
 
 mod span;

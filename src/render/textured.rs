@@ -19,68 +19,15 @@ use embedded_graphics::pixelcolor::Rgb888;
 use super::walk::Corner;
 use super::*;
 use crate::buffer::{AfterBand, Bands, Frame};
-use crate::fill::{fill_textured_buffers, fill_textured_runs, TexCorners, UvMode};
+use crate::fill::{fill_textured_buffers, fill_textured_runs, TexCorners};
+#[cfg(doc)]
+use crate::fill::UvMode;
+use crate::raster::SpanStats;
 use crate::shade::DisplayColor;
-use crate::texture::{MeshUv, TexCoord, Texel, Texture, UV_LIMIT};
-
-/// What a textured draw needs besides the mesh: each vertex's texture coordinates (a
-/// table beside the mesh's positions, as `obj2rust` writes it: `NAME_UVS`), the
-/// texture, and how coordinates are interpolated (perspective-correct by default).
-///
-/// ```
-/// use embedded_graphics::pixelcolor::Rgb565;
-/// use embedded_graphics::prelude::*;
-/// use zraster::texture::{MeshUv, Texture};
-/// use zraster::{math::{radians, Vec3}, mesh::{Mesh, Materials}, Camera, Viewport};
-/// use zraster::{Frame, RenderOptions, Renderer, Texturing, UvMode};
-///
-/// // A square facing the camera, UVs 0..1 across it, and a 2×2 checker (raw RGB565).
-/// const POSITIONS: [[i16; 3]; 4] = [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]];
-/// const INDICES: [[u16; 3]; 2] = [[0, 1, 2], [0, 2, 3]];
-/// const UVS: [MeshUv; 4] = [[0, 4096], [4096, 4096], [4096, 0], [0, 0]]; // v down
-/// const CHECKER: [u16; 4] = [0xF800, 0x07E0, 0x001F, 0xFFFF]; // red green / blue white
-/// let mesh = Mesh::triangles(&POSITIONS, 1.0, &INDICES, embedded_graphics::pixelcolor::Rgb888::BLACK);
-/// let camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::default(), Vec3::Y)?
-///     .perspective(radians(60.0), 0.5, 10.0, Viewport::new(32, 32)?)?;
-/// let mut pixels = [Rgb565::BLACK; 32 * 32];
-/// let mut depth = [0u16; 32 * 32];
-/// let mut frame = Frame::new(&mut pixels, &mut depth, 32, 32)?;
-/// frame.clear(Rgb565::BLACK);
-/// let texturing = Texturing::new(&UVS, Texture::new(&CHECKER, 2, 2)?);
-/// Renderer::new(&mesh, &camera, RenderOptions::default())?.draw_textured(&mut frame, &texturing)?;
-/// // The top left quarter of the square is the top left texel, and so on.
-/// assert_eq!(frame.color().pixel(12, 12), Some(Rgb565::RED));
-/// assert_eq!(frame.color().pixel(19, 12), Some(Rgb565::GREEN));
-/// assert_eq!(frame.color().pixel(12, 19), Some(Rgb565::BLUE));
-/// assert_eq!(frame.color().pixel(19, 19), Some(Rgb565::WHITE));
-/// # Ok::<(), zraster::Error>(())
-/// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Texturing<'a, T> {
-    /// One texture coordinate pair per mesh vertex (Q12, v down the image): at least as
-    /// many as the mesh has vertices ([`Mesh::check_uvs`](crate::mesh::Mesh::check_uvs)).
-    pub uvs: &'a [MeshUv],
-    /// The texture.
-    pub texture: Texture<'a, T>,
-    /// How texture coordinates are interpolated across a face.
-    pub mode: UvMode,
-}
-
-impl<'a, T: Texel> Texturing<'a, T> {
-    /// `texture` placed on the mesh by `uvs`, perspective-correct.
-    pub const fn new(uvs: &'a [MeshUv], texture: Texture<'a, T>) -> Self {
-        Texturing {
-            uvs,
-            texture,
-            mode: UvMode::Perspective,
-        }
-    }
-
-    /// The same with coordinates interpolated by `mode`.
-    pub const fn with_mode(self, mode: UvMode) -> Self {
-        Texturing { mode, ..self }
-    }
-}
+use crate::shader::{Fragment, PixelShader};
+pub use crate::texture::Texturing;
+use crate::texture::{MeshUv, TexCoord, Texel, UV_LIMIT};
+use crate::DepthTest;
 
 /// A corner of a textured triangle: its outcode and screen position (as the untextured
 /// walk has them), clip w, texture coordinates and Gouraud light.
@@ -109,8 +56,9 @@ impl Corner for TexVertex {
     }
 }
 
-/// Something [`Renderer::draw_textured`] draws into: a [`Frame`], a [`WithDepth`] or
-/// [`Bands`], as for [`Renderer::draw`] ([`DepthTarget`]). Sealed.
+/// Something [`Renderer::draw_textured`] and [`Renderer::draw_with_shader`] draw
+/// into: a [`Frame`], a [`WithDepth`] or [`Bands`], as for [`Renderer::draw`]
+/// ([`DepthTarget`]). Sealed.
 pub trait TexturedTarget: sealed::Sealed {
     /// The target's pixel colour.
     type Color: DisplayColor;
@@ -129,6 +77,15 @@ pub trait TexturedTarget: sealed::Sealed {
         X: Texel,
         X::Color: Into<Rgb888> + 'static,
         Self::Color: 'static;
+
+    /// Draw `renderer`'s mesh coloured by `shader` (what
+    /// [`Renderer::draw_with_shader`] calls).
+    #[doc(hidden)]
+    fn draw_shaded_mesh<M: Copy, S: RenderState, P: PixelShader<Self::Color, M>>(
+        &mut self,
+        renderer: &mut Renderer<'_, '_, M, S>,
+        shader: &P,
+    ) -> Result<(), DrawError<Self::Error>>;
 }
 
 impl<C: DisplayColor> TexturedTarget for Frame<'_, C> {
@@ -150,6 +107,17 @@ impl<C: DisplayColor> TexturedTarget for Frame<'_, C> {
             .draw_textured_buffers(color, depth, texturing)
             .map_err(DrawError::Input)
     }
+
+    fn draw_shaded_mesh<M: Copy, S: RenderState, P: PixelShader<C, M>>(
+        &mut self,
+        renderer: &mut Renderer<'_, '_, M, S>,
+        shader: &P,
+    ) -> Result<(), DrawError<Self::Error>> {
+        let (color, depth) = self.parts_mut();
+        renderer
+            .draw_shaded_buffers(color, depth, shader)
+            .map_err(DrawError::Input)
+    }
 }
 
 impl<D: DrawTarget> TexturedTarget for WithDepth<'_, '_, D>
@@ -169,8 +137,36 @@ where
         X::Color: Into<Rgb888> + 'static,
         D::Color: 'static,
     {
-        let (display, depth) = self.parts();
-        renderer.draw_textured_runs(display, depth, texturing)
+        let (display, zbuf) = self.parts();
+        let texture = texturing.texture;
+        let mode = texturing.mode;
+        renderer.draw_attr_runs(display, zbuf, Some(texturing.uvs), |t, z, c, f| {
+            fill_textured_runs(t, z, c.clip, c.test, c.tri, c.corners, &texture, mode, f.1)
+        })
+    }
+
+    fn draw_shaded_mesh<M: Copy, S: RenderState, P: PixelShader<D::Color, M>>(
+        &mut self,
+        renderer: &mut Renderer<'_, '_, M, S>,
+        shader: &P,
+    ) -> Result<(), DrawError<Self::Error>> {
+        let (display, zbuf) = self.parts();
+        let uvs = shader.uvs();
+        let mode = uvs.map(|(_, m)| m);
+        renderer.draw_attr_runs(display, zbuf, uvs.map(|(u, _)| u), |t, z, c, (m, light)| {
+            let shade = |x, y, depth, uv, light| {
+                shader.shade(&Fragment {
+                    x,
+                    y,
+                    depth,
+                    uv,
+                    light,
+                    material: m,
+                })
+            };
+            c.corners
+                .fill_shaded_runs(t, z, c.clip, c.test, c.tri, mode, light, shade)
+        })
     }
 }
 
@@ -195,21 +191,54 @@ where
         X::Color: Into<Rgb888> + 'static,
         D::Color: 'static,
     {
-        let bands = &mut *self.buffers;
-        let (w, rows, height) = (bands.width, bands.rows, bands.height);
-        for k in 0..bands.bands() {
-            let y0 = k * rows;
-            let n = rows.min(height - y0);
-            let mut color = ColorBuffer::new_band(&mut *bands.color, w, n, y0 as i32)?;
-            let mut zbuf = ZBuffer::new_band(&mut *bands.depth, w, n, y0 as i32)?;
-            crate::num::fill(color.data_mut(), self.background);
-            zbuf.clear();
-            renderer.draw_textured_buffers(&mut color, &mut zbuf, texturing)?;
-            self.after.after(&mut color, &zbuf);
-            color.flush(self.display)?;
-        }
-        Ok(())
+        each_band(self, |color, zbuf| {
+            renderer.draw_textured_buffers(color, zbuf, texturing)
+        })
     }
+
+    fn draw_shaded_mesh<M: Copy, S: RenderState, P: PixelShader<D::Color, M>>(
+        &mut self,
+        renderer: &mut Renderer<'_, '_, M, S>,
+        shader: &P,
+    ) -> Result<(), DrawError<Self::Error>> {
+        each_band(self, |color, zbuf| {
+            renderer.draw_shaded_buffers(color, zbuf, shader)
+        })
+    }
+}
+
+/// Each band of `bands` cleared, drawn by `draw` and handed to the display.
+fn each_band<D, F>(
+    bands: &mut Bands<'_, '_, D, F>,
+    mut draw: impl FnMut(&mut ColorBuffer<'_, D::Color>, &mut ZBuffer<'_>) -> Result<(), Error>,
+) -> Result<(), DrawError<D::Error>>
+where
+    D: DrawTarget,
+    F: AfterBand<D::Color>,
+{
+    let buffers = &mut *bands.buffers;
+    let (w, rows, height) = (buffers.width, buffers.rows, buffers.height);
+    for k in 0..buffers.bands() {
+        let y0 = k * rows;
+        let n = rows.min(height - y0);
+        let mut color = ColorBuffer::new_band(&mut *buffers.color, w, n, y0 as i32)?;
+        let mut zbuf = ZBuffer::new_band(&mut *buffers.depth, w, n, y0 as i32)?;
+        crate::num::fill(color.data_mut(), bands.background);
+        zbuf.clear();
+        draw(&mut color, &mut zbuf)?;
+        bands.after.after(&mut color, &zbuf);
+        color.flush(bands.display)?;
+    }
+    Ok(())
+}
+
+/// One triangle to fill, as [`Renderer::draw_attr_buffers`] and [`Renderer::draw_attr_runs`]
+/// hand it over: where it may draw, its depth test, its corners.
+struct ToFill<'a> {
+    clip: &'a Clip,
+    test: DepthTest,
+    tri: &'a [ScreenVertex; 3],
+    corners: &'a TexCorners,
 }
 
 impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
@@ -250,6 +279,33 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         target.draw_textured_mesh(self, texturing)
     }
 
+    /// Draw the mesh with the Z-buffer into `target`, each pixel that passes the depth
+    /// test coloured by `shader` (see [`shader`](crate::shader)): coverage, depth and
+    /// clipping are those of [`draw`](Renderer::draw), the targets those of
+    /// [`draw_textured`](Renderer::draw_textured). The [`Fragment`] has the pixel's
+    /// position and depth, the face's material, the light of the options' shading and,
+    /// when the shader has a UV table ([`PixelShader::uvs`]), the texture coordinates
+    /// interpolated as [`draw_textured`](Renderer::draw_textured) does.
+    ///
+    /// The shader is a type parameter: its `shade` is inlined into its own pixel loop.
+    ///
+    /// Errors: [`Error::InvalidParameter`] when the shader's UV table is shorter than
+    /// the vertex table, and those of [`draw`](Renderer::draw).
+    pub fn draw_with_shader<T, P>(
+        &mut self,
+        target: &mut T,
+        shader: &P,
+    ) -> Result<(), DrawError<T::Error>>
+    where
+        T: TexturedTarget,
+        P: PixelShader<T::Color, M>,
+    {
+        if let Some((uvs, _)) = shader.uvs() {
+            self.mesh.check_uvs(uvs).map_err(DrawError::Input)?;
+        }
+        target.draw_shaded_mesh(self, shader)
+    }
+
     /// [`draw_textured`](Renderer::draw_textured) into a colour buffer and a Z-buffer.
     pub(crate) fn draw_textured_buffers<C, X>(
         &mut self,
@@ -262,28 +318,76 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         X: Texel,
         X::Color: Into<Rgb888> + 'static,
     {
+        let (texture, mode) = (&texturing.texture, texturing.mode);
+        self.draw_attr_buffers(frame, zbuf, Some(texturing.uvs), |fr, z, c, (_, light)| {
+            fill_textured_buffers(
+                fr, z, c.clip, c.test, c.tri, c.corners, texture, mode, light,
+            )
+        })
+    }
+
+    /// [`draw_with_shader`](Renderer::draw_with_shader) into a colour buffer and a
+    /// Z-buffer.
+    pub(crate) fn draw_shaded_buffers<C, P>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        shader: &P,
+    ) -> Result<(), Error>
+    where
+        C: DisplayColor,
+        P: PixelShader<C, M>,
+    {
+        let uvs = shader.uvs();
+        let mode = uvs.map(|(_, m)| m);
+        self.draw_attr_buffers(frame, zbuf, uvs.map(|(u, _)| u), |fr, z, c, (m, light)| {
+            let shade = |x, y, depth, uv, light| {
+                shader.shade(&Fragment {
+                    x,
+                    y,
+                    depth,
+                    uv,
+                    light,
+                    material: m,
+                })
+            };
+            c.corners
+                .fill_shaded_buffers(fr, z, c.clip, c.test, c.tri, mode, light, shade)
+        })
+    }
+
+    /// Each triangle of the mesh (with texture coordinates from `uvs`, if any) filled
+    /// by `fill` into a colour buffer and a Z-buffer, with its face's material and its
+    /// corners' lights; the counts recorded.
+    fn draw_attr_buffers<C: PixelColor>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        uvs: Option<&[MeshUv]>,
+        mut fill: impl FnMut(
+            &mut ColorBuffer<'_, C>,
+            &mut ZBuffer<'_>,
+            &ToFill<'_>,
+            (M, [Intensity; 3]),
+        ) -> SpanStats,
+    ) -> Result<(), Error> {
         let clip = clip_of(frame, zbuf);
         let test = S::depth_test(zbuf.test());
         let first = !self.counted;
         let mut pixels = FrameStats::default();
         let geometry = self
             .for_each_textured::<core::convert::Infallible>(
-                texturing.uvs,
+                uvs,
                 &clip,
                 first,
-                |tri, corners, lights| {
-                    let s = fill_textured_buffers(
-                        frame,
-                        zbuf,
-                        &clip,
+                |tri, corners, lights, m| {
+                    let c = ToFill {
+                        clip: &clip,
                         test,
                         tri,
                         corners,
-                        &texturing.texture,
-                        texturing.mode,
-                        lights,
-                    );
-                    pixels.add_pixels(s);
+                    };
+                    pixels.add_pixels(fill(frame, zbuf, &c, (m, lights)));
                     Ok(())
                 },
             )
@@ -296,41 +400,34 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         Ok(())
     }
 
-    /// [`draw_textured`](Renderer::draw_textured) into a draw target through a
-    /// Z-buffer.
-    pub(crate) fn draw_textured_runs<D, X>(
+    /// [`draw_attr_buffers`](Renderer::draw_attr_buffers) into a draw target through a Z-buffer.
+    fn draw_attr_runs<D: DrawTarget>(
         &mut self,
         target: &mut D,
         zbuf: &mut ZBuffer<'_>,
-        texturing: &Texturing<'_, X>,
-    ) -> Result<(), DrawError<D::Error>>
-    where
-        D: DrawTarget,
-        D::Color: DisplayColor + 'static,
-        X: Texel,
-        X::Color: Into<Rgb888> + 'static,
-    {
+        uvs: Option<&[MeshUv]>,
+        mut fill: impl FnMut(
+            &mut D,
+            &mut ZBuffer<'_>,
+            &ToFill<'_>,
+            (M, [Intensity; 3]),
+        ) -> Result<SpanStats, D::Error>,
+    ) -> Result<(), DrawError<D::Error>> {
         let clip = clip_of(target, zbuf);
         let test = S::depth_test(zbuf.test());
         let first = !self.counted;
         let mut pixels = FrameStats::default();
-        let geometry =
-            self.for_each_textured(texturing.uvs, &clip, first, |tri, corners, lights| {
-                let s = fill_textured_runs(
-                    target,
-                    zbuf,
-                    &clip,
-                    test,
-                    tri,
-                    corners,
-                    &texturing.texture,
-                    texturing.mode,
-                    lights,
-                )
-                .map_err(DrawError::Target)?;
-                pixels.add_pixels(s);
-                Ok(())
-            })?;
+        let geometry = self.for_each_textured(uvs, &clip, first, |tri, corners, lights, m| {
+            let c = ToFill {
+                clip: &clip,
+                test,
+                tri,
+                corners,
+            };
+            let s = fill(target, zbuf, &c, (m, lights)).map_err(DrawError::Target)?;
+            pixels.add_pixels(s);
+            Ok(())
+        })?;
         self.count(geometry);
         self.stats.add_pixel_counts(&pixels);
         Ok(())
@@ -339,13 +436,16 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Vertex `i` of face `f` for textured drawing: transformed, classified and
     /// projected as [`project_vertex`](Renderer::project_vertex) does, with its clip w,
     /// texture coordinates and Gouraud light.
-    fn tex_vertex(&self, i: u16, f: usize, uvs: &[MeshUv]) -> Result<TexVertex, Error> {
+    fn tex_vertex(&self, i: u16, f: usize, uvs: Option<&[MeshUv]>) -> Result<TexVertex, Error> {
         let bad = || Error::IndexOutOfRange {
             face: f,
             index: usize::from(i),
         };
         let p = self.mesh.positions.get(usize::from(i)).ok_or_else(bad)?;
-        let uv = uvs.get(usize::from(i)).ok_or_else(bad)?;
+        let uv = match uvs {
+            Some(uvs) => TexCoord::from_mesh(*uvs.get(usize::from(i)).ok_or_else(bad)?),
+            None => TexCoord::default(),
+        };
         let c = self.fixed.apply(p);
         let (code, screen) = if crate::num::INTEGER_PROJECTION {
             self.map.project_fixed(&c)
@@ -362,7 +462,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             code,
             screen,
             w: c.zw().1,
-            uv: TexCoord::from_mesh(*uv),
+            uv,
             light,
         })
     }
@@ -373,20 +473,21 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// with the other attributes in clip space.
     pub(crate) fn for_each_textured<E>(
         &self,
-        uvs: &[MeshUv],
+        uvs: Option<&[MeshUv]>,
         clip: &Clip,
         first: bool,
         mut emit: impl FnMut(
             &[ScreenVertex; 3],
             &TexCorners,
             [Intensity; 3],
+            M,
         ) -> Result<(), DrawError<E>>,
     ) -> Result<FrameStats, DrawError<E>> {
         let mut st = FrameStats::default();
         let cull = self.options.cull;
         let rows = (!first).then(|| clip.subpixel_rows());
         for f in 0..self.mesh.face_count() {
-            let (vs, _) = self.face(f)?;
+            let (vs, material) = self.face(f)?;
             for (i0, i1, i2) in fan(vs) {
                 let v0 = self.tex_vertex(i0, f, uvs)?;
                 let v1 = self.tex_vertex(i1, f, uvs)?;
@@ -400,7 +501,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         uv: [v0.uv, v1.uv, v2.uv],
                     };
                     let lights = self.corner_lights(f, [v0.light, v1.light, v2.light]);
-                    emit(&tri, &corners, lights)?;
+                    emit(&tri, &corners, lights, material)?;
                 }
                 if seen != Seen::Clip {
                     continue;
@@ -457,7 +558,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         uv: [a.uv, b.uv, c.uv],
                     };
                     let lights = self.corner_lights(f, [a.light, b.light, c.light]);
-                    emit(&tri, &corners, lights)?;
+                    emit(&tri, &corners, lights, material)?;
                 }
             }
         }

@@ -44,24 +44,19 @@ use crate::shade::{DisplayColor, Intensity, ONE};
 use crate::texture::{TexCoord, Texel, Texture, UV_LIMIT};
 use crate::DepthTest;
 
-/// How texture coordinates are interpolated across a face.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
-pub enum UvMode {
-    /// Perspective-correct: u/w, v/w and 1/w stepped along each row, an exact division
-    /// every 16 pixels and at the row's last pixel, u and v stepped linearly between
-    /// (within a bounded error, see [`PerspectiveSpan`](crate::texture::PerspectiveSpan)).
-    #[default]
-    Perspective,
-    /// Affine: u and v stepped linearly across the screen triangle, no division. Exact
-    /// for faces square to the view; faces at a slant swim.
-    Affine,
-}
+mod runs;
+mod shaded;
+mod span;
+pub(crate) use runs::fill_textured_runs;
+use span::{face_rows, texel_index_pow2, texel_pow2, Fetch, TOP};
+
+pub use crate::texture::UvMode;
 
 /// Fractional bits of the attribute planes.
 pub(crate) const F: u32 = 16;
 /// Pixels between exact divisions along a row.
 pub(crate) const SEGMENT: i32 = 16;
-const SHIFT: u32 = SEGMENT.trailing_zeros();
+pub(crate) const SHIFT: u32 = SEGMENT.trailing_zeros();
 /// q of a triangle's nearest corner.
 const Q_BITS: u32 = 15;
 
@@ -130,11 +125,17 @@ pub(crate) enum UvPlanes {
     Perspective([Lin; 3]),
     /// u and v in Q32.
     Affine([Lin; 2]),
+    /// No texture coordinates: every pixel's are 0.
+    None,
 }
 
 impl UvPlanes {
     /// The planes of `tri` (zero area: `None`).
-    pub(crate) fn new(tri: &[ScreenVertex; 3], c: &TexCorners, mode: UvMode) -> Option<Self> {
+    pub(crate) fn new(
+        tri: &[ScreenVertex; 3],
+        c: &TexCorners,
+        mode: Option<UvMode>,
+    ) -> Option<Self> {
         let [p0, p1, p2] = tri;
         let (dx1, dy1) = (
             i128::from(p1.x()) - i128::from(p0.x()),
@@ -152,8 +153,11 @@ impl UvPlanes {
         let u = c.uv.map(|t| i64::from(t.u).clamp(-lim, lim));
         let v = c.uv.map(|t| i64::from(t.v).clamp(-lim, lim));
         Some(match mode {
-            UvMode::Affine => UvPlanes::Affine([Lin::new(tri, u, area2), Lin::new(tri, v, area2)]),
-            UvMode::Perspective => {
+            None => UvPlanes::None,
+            Some(UvMode::Affine) => {
+                UvPlanes::Affine([Lin::new(tri, u, area2), Lin::new(tri, v, area2)])
+            }
+            Some(UvMode::Perspective) => {
                 // 1 ≤ w < 2⁴⁵ (clamped: a clipped corner's w comes from f32).
                 let w = c.w.map(|w| w.clamp(1, 1 << 45));
                 let wmin = w[0].min(w[1]).min(w[2]);
@@ -175,6 +179,12 @@ impl UvPlanes {
     /// `pixel(k, uv)` for k = 0..n.
     #[inline(always)]
     pub(crate) fn span(&self, x0: i32, y: i32, n: i32, mut pixel: impl FnMut(usize, TexCoord)) {
+        if let UvPlanes::None = self {
+            for k in 0..n.max(0) as usize {
+                pixel(k, TexCoord::default());
+            }
+            return;
+        }
         let mut segments = self.segments(x0, y, n);
         while let Some(s) = segments.next_segment() {
             let (mut u, mut v) = s.uv;
@@ -202,6 +212,7 @@ impl UvPlanes {
                 [(p[0].lo, p[0].hi), (p[1].lo, p[1].hi), (0, 0)],
                 false,
             ),
+            UvPlanes::None => ([0; 3], [0; 3], [(0, 0); 3], false),
         };
         let mut s = Segments {
             h,
@@ -334,74 +345,6 @@ fn divide(h: [i64; 3]) -> (i32, i32) {
     (u.clamp(-lim, lim) as i32, v.clamp(-lim, lim) as i32)
 }
 
-/// How a span's pixels find their texel from the stepped u and v (Q16 times
-/// [`SEGMENT`]): for a repeating texture of power-of-two sizes (W ≥ 2) by shifts
-/// and masks (the texel ⌊u·W⌋ mod W is bits of u), else through
-/// [`Texture::sample_raw`].
-#[derive(Clone, Copy)]
-pub(crate) enum Fetch<'a, X> {
-    Pow2 {
-        texels: &'a [X],
-        /// The texel's index is `(u ≫ su) | (v ≫ sv & hmask)`.
-        shifts: Pow2Shifts,
-    },
-    Any(Texture<'a, X>),
-}
-
-/// The shifts and mask of [`texel_pow2`].
-#[derive(Clone, Copy)]
-pub(crate) struct Pow2Shifts {
-    su: u32,
-    sv: u32,
-    hmask: u32,
-}
-
-impl<'a, X: Texel> Fetch<'a, X> {
-    pub(crate) fn new(t: &Texture<'a, X>) -> Self {
-        let (w, h) = (t.width(), t.height());
-        let (lw, lh) = (w.trailing_zeros(), h.trailing_zeros()); // ≤ 13 each
-        match t.wrap() {
-            crate::texture::Wrap::Repeat
-                if w.is_power_of_two() && h.is_power_of_two() && lw >= 1 =>
-            {
-                Fetch::Pow2 {
-                    texels: t.texels(),
-                    shifts: Pow2Shifts {
-                        // 1 ≤ lw, lh + lw ≤ 26: both shifts within 6..=31.
-                        su: 32 - lw,
-                        sv: 32 - lh - lw,
-                        hmask: (h - 1) << lw,
-                    },
-                }
-            }
-            _ => Fetch::Any(*t),
-        }
-    }
-}
-
-/// How far [`face_span`] shifts stepped coordinates (Q16 times [`SEGMENT`]) up for
-/// [`texel_pow2`]: to the fraction of a texture in all 32 bits, so that wrapping
-/// arithmetic is the repeat.
-const TOP: u32 = 32 - 16 - SHIFT;
-
-/// The texel at coordinates `u`, `v` whose 32 bits are the fraction of a texture (Q16
-/// times [`SEGMENT`] shifted up by [`TOP`]): ⌊u·W⌋ mod W is the top log₂ W bits of u,
-/// for negative u too (two's complement), and the same as ⌊(u ≫ 4)·W / 2¹⁶⌋ mod W
-/// (floors of divisions by powers of two compose); the row likewise, already times W.
-#[inline(always)]
-fn texel_pow2<X: Copy>(texels: &[X], k: Pow2Shifts, u: u32, v: u32) -> Option<X> {
-    // Below W·H, the slice's length: always `Some`.
-    texels.get(texel_index_pow2(k, u, v)).copied()
-}
-
-/// The index of [`texel_pow2`]'s texel, below W·H.
-#[inline(always)]
-fn texel_index_pow2(k: Pow2Shifts, u: u32, v: u32) -> usize {
-    let col = u >> k.su;
-    let row = (v >> k.sv) & k.hmask;
-    (row | col) as usize
-}
-
 /// The light along a span: one intensity for the face, or Gouraud's plane stepped as
 /// [`shade_triangle`](super::shade_triangle) steps it (so that a texel is lit exactly
 /// as a flat colour of its value would be).
@@ -469,7 +412,7 @@ impl TexSetup {
     pub(crate) fn new(
         tri: &[ScreenVertex; 3],
         corners: &TexCorners,
-        mode: UvMode,
+        mode: Option<UvMode>,
         light: [Intensity; 3],
     ) -> Option<Self> {
         let setup = Setup::new(tri)?;
@@ -541,11 +484,11 @@ where
     X::Color: Into<Rgb888> + 'static,
     C: DisplayColor + 'static,
 {
-    let mut stats = SpanStats::default();
+    let stats = SpanStats::default();
     if clip.is_empty() {
         return stats;
     }
-    let Some(ts) = TexSetup::new(tri, corners, mode, light) else {
+    let Some(ts) = TexSetup::new(tri, corners, Some(mode), light) else {
         return stats;
     };
     let write = zbuf.write_enabled();
@@ -596,192 +539,9 @@ where
             }
         };
     }
-    per_depth_test!(test, stats, |pass| {
-        let mut spans = ts.setup.spans(clip);
-        while let Some((y, x0, x1)) = spans.next_span() {
-            let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1))
-            else {
-                continue;
-            };
-            let mut written = 0;
-            ts.span(y, x0, x1, |k, z, uv, i| {
-                if let (Some(d), Some(c)) = (zrow.get_mut(k), crow.get_mut(k)) {
-                    if pass(z, *d) {
-                        if write {
-                            *d = z;
-                        }
-                        *c = texel_color(texture.sample_raw(uv), i, x0 + k as i32, y);
-                        written += 1;
-                    }
-                }
-            });
-            stats.pixels_tested += (x1 - x0) as u32;
-            stats.pixels_written += written;
-        }
-        stats
-    })
-}
-
-/// The rows of [`fill_textured_buffers`] for [`DepthTest::Less`] and one light for the
-/// face: each span by [`face_span`], the same pixels as the general loop.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn face_rows<C: embedded_graphics::pixelcolor::PixelColor, X>(
-    frame: &mut crate::ColorBuffer<'_, C>,
-    zbuf: &mut crate::ZBuffer<'_>,
-    clip: &Clip,
-    ts: &TexSetup,
-    write: bool,
-    up: u32,
-    fetch: impl Fn(u32, u32) -> Option<X> + Copy,
-    colour: impl Fn(X, i32, i32) -> C + Copy,
-) -> SpanStats {
-    let mut stats = SpanStats::default();
-    let mut spans = ts.setup.spans(clip);
-    while let Some((y, x0, x1)) = spans.next_span() {
-        let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1)) else {
-            continue;
-        };
-        let acc = ts.rows.at(x0, y);
-        let mut segments = ts.uv.segments(x0, y, x1 - x0);
-        let colour = move |t: X, k: usize| colour(t, x0 + k as i32, y);
-        let failed = if write {
-            face_span::<C, X, true>(zrow, crow, acc, ts.dz, &mut segments, up, fetch, colour)
-        } else {
-            face_span::<C, X, false>(zrow, crow, acc, ts.dz, &mut segments, up, fetch, colour)
-        };
-        stats.pixels_tested += (x1 - x0) as u32;
-        stats.pixels_written += (x1 - x0) as u32 - failed;
-    }
-    stats
-}
-
-/// The pixel loop of [`face_rows`]: a span's segments, each pixel's depth tested
-/// (`Less`) and written (`WRITE`), and its colour `colour(fetch(u, v), k)` for the
-/// k-th pixel, u and v the stepped coordinates (Q16 times [`SEGMENT`]) shifted up by
-/// `up` (wrapping). Out of line, so that the loop has the registers to itself. Returns
-/// the number of pixels that failed the test.
-#[allow(clippy::too_many_arguments)]
-#[inline(never)]
-fn face_span<C: Copy, X, const WRITE: bool>(
-    zrow: &mut [u16],
-    crow: &mut [C],
-    mut acc: u32,
-    dz: u32,
-    segments: &mut Segments,
-    up: u32,
-    fetch: impl Fn(u32, u32) -> Option<X>,
-    colour: impl Fn(X, usize) -> C,
-) -> u32 {
-    let mut failed = 0;
-    while let Some(s) = segments.next_segment() {
-        let end = s.first + s.len;
-        let (Some(zs), Some(cs)) = (zrow.get_mut(s.first..end), crow.get_mut(s.first..end)) else {
-            continue;
-        };
-        let ((u, v), (du, dv)) = (s.uv, s.step);
-        let (mut u, mut v) = ((u as u32) << up, (v as u32) << up);
-        let (du, dv) = ((du as u32) << up, (dv as u32) << up);
-        for (k, (d, c)) in zs.iter_mut().zip(cs.iter_mut()).enumerate() {
-            let z = (acc >> 16) as u16;
-            acc = acc.wrapping_add(dz);
-            if z < *d {
-                if WRITE {
-                    *d = z;
-                }
-                // Always a texel (see `texel_pow2`): no fallback to keep at hand.
-                if let Some(t) = fetch(u, v) {
-                    *c = colour(t, s.first + k);
-                }
-            } else {
-                super::span::one_failed(&mut failed);
-            }
-            u = u.wrapping_add(du);
-            v = v.wrapping_add(dv);
-        }
-    }
-    failed
-}
-
-/// Pixels a run to a draw target is gathered in before it is handed over.
-const RUN: usize = 32;
-
-/// Fill a textured triangle into any draw target through a Z-buffer: each row's passing
-/// pixels as runs of colours (`fill_contiguous`, at most [`RUN`] pixels each), the same
-/// colours as [`fill_textured_buffers`].
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn fill_textured_runs<D, X>(
-    target: &mut D,
-    zbuf: &mut crate::ZBuffer<'_>,
-    clip: &Clip,
-    test: DepthTest,
-    tri: &[ScreenVertex; 3],
-    corners: &TexCorners,
-    texture: &Texture<'_, X>,
-    mode: UvMode,
-    light: [Intensity; 3],
-) -> Result<SpanStats, D::Error>
-where
-    D: embedded_graphics::prelude::DrawTarget,
-    D::Color: DisplayColor + 'static,
-    X: Texel,
-    X::Color: Into<Rgb888> + 'static,
-{
-    let mut stats = SpanStats::default();
-    if clip.is_empty() {
-        return Ok(stats);
-    }
-    let Some(ts) = TexSetup::new(tri, corners, mode, light) else {
-        return Ok(stats);
+    let texture = *texture;
+    let shade = move |x: i32, y: i32, _: u16, uv: TexCoord, i: Intensity| {
+        texel_color::<X, C>(texture.sample_raw(uv), i, x, y)
     };
-    let write = zbuf.write_enabled();
-    let background = texel_color::<X, D::Color>(texture.sample_raw(TexCoord::default()), ONE, 0, 0);
-    per_depth_test!(test, Ok(stats), |pass| {
-        let mut spans = ts.setup.spans(clip);
-        while let Some((y, x0, x1)) = spans.next_span() {
-            let Some(zrow) = zbuf.span_mut(y, x0, x1) else {
-                continue;
-            };
-            stats.pixels_tested += (x1 - x0) as u32;
-            // The run being gathered: its first pixel and its colours.
-            let mut run = [background; RUN];
-            let (mut start, mut len) = (0usize, 0usize);
-            let mut result = Ok(());
-            let mut flush =
-                |start: usize, len: usize, run: &[D::Color; RUN], stats: &mut SpanStats| {
-                    if len == 0 {
-                        return Ok(());
-                    }
-                    stats.runs += 1;
-                    stats.pixels_written += len as u32;
-                    let rect = super::run_rect(y, x0 + start as i32, x0 + (start + len) as i32);
-                    target.fill_contiguous(&rect, run.iter().take(len).copied())
-                };
-            ts.span(y, x0, x1, |k, z, uv, i| {
-                if result.is_err() {
-                    return;
-                }
-                let Some(d) = zrow.get_mut(k) else { return };
-                if pass(z, *d) {
-                    if write {
-                        *d = z;
-                    }
-                    if len == RUN || (len > 0 && start + len != k) {
-                        result = flush(start, len, &run, &mut stats);
-                        len = 0;
-                    }
-                    if len == 0 {
-                        start = k;
-                    }
-                    if let Some(slot) = run.get_mut(len) {
-                        *slot = texel_color(texture.sample_raw(uv), i, x0 + k as i32, y);
-                    }
-                    len += 1;
-                }
-            });
-            result?;
-            flush(start, len, &run, &mut stats)?;
-        }
-        Ok(stats)
-    })
+    shaded::shaded_rows(frame, zbuf, clip, test, &ts, shade)
 }
