@@ -110,8 +110,9 @@ impl FrameStats {
 /// A vertex transformed and projected once per frame (8 bytes), so that every band
 /// and every face sharing it reuses the work. See [`Renderer::with_cache`].
 ///
-/// It holds the screen position of a vertex inside the view volume within ±2048 pixels
-/// of the origin (x and y in 12.4, depth in 16.16). Any other vertex is marked and
+/// It holds the screen position of a vertex inside the view volume within ±1024 pixels
+/// of the origin (x and y in 1/16 pixel below 2¹⁴ in magnitude, so that the cull pass
+/// works out areas in `i32`; depth in 16.16). Any other vertex is marked and
 /// holds its outcode: faces using it take the general path, which clips them or
 /// projects that vertex again.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -131,7 +132,7 @@ impl CachedVertex {
     /// The entry for a vertex with outcode `code` and screen position `v`.
     #[inline]
     pub(crate) fn new(code: u8, v: ScreenVertex) -> CachedVertex {
-        let fits = |c: i32| c.unsigned_abs() <= i16::MAX as u32;
+        let fits = |c: i32| c.unsigned_abs() < 1 << 14;
         if code == 0 && fits(v.x()) && fits(v.y()) {
             CachedVertex {
                 x: v.x() as i16,
@@ -147,7 +148,7 @@ impl CachedVertex {
         }
     }
 
-    /// Whether the entry holds no screen position (outside, or beyond ±2048 pixels).
+    /// Whether the entry holds no screen position (outside, or beyond ±1024 pixels).
     #[inline(always)]
     pub(crate) fn marked(&self) -> bool {
         self.x == Self::MARK

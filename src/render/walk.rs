@@ -29,21 +29,6 @@ pub(crate) trait Corner {
     fn xy(&self) -> (i32, i32);
 }
 
-impl Corner for CachedVertex {
-    #[inline(always)]
-    fn needs_clip(&self) -> bool {
-        self.marked()
-    }
-    #[inline(always)]
-    fn code(&self) -> u8 {
-        CachedVertex::code(self)
-    }
-    #[inline(always)]
-    fn xy(&self) -> (i32, i32) {
-        CachedVertex::xy(self)
-    }
-}
-
 impl Corner for Fetched {
     #[inline(always)]
     fn needs_clip(&self) -> bool {
@@ -110,19 +95,63 @@ pub(crate) fn decide<V: Corner>([a, b, c]: [&V; 3], rows: Option<(i32, i32)>, cu
     Seen::Front
 }
 
-/// The faces `first..` of a cached triangle mesh through [`decide`]: yields each face
-/// to draw (`Some` corners) or to clip (`None`), in face order. Its loop holds no call,
-/// and counts only the rare outcomes and the drawn faces (the culled ones, most of
-/// them, are what is left over), so the compiler keeps its state in registers.
+/// The faces `first..` of a cached triangle mesh through the decisions of [`decide`]:
+/// yields each face to draw (`Some` corners) or to clip (`None`), in face order.
+///
+/// Its loop is the cull pass of a frame, so it is written for the common face (placed
+/// corners, culled): three indices, three cache entries, an area in `i32` (cached
+/// coordinates lie within ±2¹⁴, see [`CachedVertex`]) and one unsigned compare against
+/// the cull mode's range of dropped areas ([`DropRange`]). It counts only the rare
+/// outcomes and the drawn faces (the culled ones, most of them, are what is left over),
+/// so the compiler keeps its few values in registers.
 pub(crate) struct CachedWalk<'a> {
     faces: core::slice::Iter<'a, [u16; 3]>,
-    /// The number of the next face.
-    f: usize,
+    /// The number of the first face.
+    first: usize,
     walked: usize,
     cache: &'a [CachedVertex],
-    cull: Cull,
+    drop: DropRange,
     /// Faces by outcome: clipped (counted by the general path), outside, drawn.
     tally: [u32; 3],
+}
+
+/// The twice-signed screen areas a cull mode drops, as `area − lo ≤ span` in unsigned
+/// arithmetic: one subtraction and one compare a face for any mode (zero is in every
+/// range: a zero-area face is never drawn).
+#[derive(Clone, Copy)]
+pub(crate) struct DropRange {
+    lo: i32,
+    span: u32,
+}
+
+impl DropRange {
+    pub(crate) fn of(cull: Cull) -> DropRange {
+        let (lo, hi) = match cull {
+            // Front faces have negative screen area (see `Cull::drops`).
+            Cull::Back => (0, i32::MAX),
+            Cull::Front => (i32::MIN, 0),
+            Cull::None => (0, 0),
+        };
+        DropRange {
+            lo,
+            span: hi.wrapping_sub(lo) as u32,
+        }
+    }
+
+    /// Whether a face of twice-signed screen area `area` is dropped.
+    #[inline(always)]
+    pub(crate) fn drops(self, area: i32) -> bool {
+        area.wrapping_sub(self.lo) as u32 <= self.span
+    }
+}
+
+/// Twice the signed area of three placed cache entries: their coordinates lie within
+/// ±2¹⁴ (1/16 pixel), so each difference is below 2¹⁵, each product below 2³⁰ and the
+/// area below 2³¹ in magnitude.
+#[inline(always)]
+fn cached_area(a: &CachedVertex, b: &CachedVertex, c: &CachedVertex) -> i32 {
+    let ((xa, ya), (xb, yb), (xc, yc)) = (a.xy(), b.xy(), c.xy());
+    (xb - xa) * (yc - ya) - (xc - xa) * (yb - ya)
 }
 
 impl<'a> CachedWalk<'a> {
@@ -138,10 +167,10 @@ impl<'a> CachedWalk<'a> {
         let faces = indices.get(faces).unwrap_or(&[]);
         CachedWalk {
             faces: faces.iter(),
-            f: first,
+            first,
             walked: faces.len(),
             cache,
-            cull,
+            drop: DropRange::of(cull),
             tally: [0; 3],
         }
     }
@@ -166,26 +195,30 @@ impl<'a> Iterator for CachedWalk<'a> {
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
+        let (cache, drop) = (self.cache, self.drop);
         loop {
             let t = self.faces.next()?;
-            let f = self.f;
-            self.f += 1;
-            let v = match cached_triangle(self.cache, f, t) {
-                Ok(v) => v,
-                Err(e) => return Some(Err(e)),
+            // The face just taken: its number from how many are left (worked out for the
+            // faces that leave the loop only).
+            let f = |rest: &core::slice::Iter<'_, _>| self.first + self.walked - rest.len() - 1;
+            let get = |i: u16| cache.get(usize::from(i));
+            let (Some(a), Some(b), Some(c)) = (get(t[0]), get(t[1]), get(t[2])) else {
+                let f = f(&self.faces);
+                return Some(cached_triangle(cache, f, t).map(|_| (f, None)));
             };
-            match decide(v, None, self.cull) {
-                Seen::Culled | Seen::OffRows => continue,
-                Seen::Front => {
-                    self.tally[2] += 1;
-                    return Some(Ok((f, Some(v))));
+            if a.marked() | b.marked() | c.marked() {
+                if a.code() & b.code() & c.code() != 0 {
+                    self.tally[1] += 1;
+                    continue;
                 }
-                Seen::Clip => {
-                    self.tally[0] += 1;
-                    return Some(Ok((f, None)));
-                }
-                Seen::Outside => self.tally[1] += 1,
+                self.tally[0] += 1;
+                return Some(Ok((f(&self.faces), None)));
             }
+            if drop.drops(cached_area(a, b, c)) {
+                continue;
+            }
+            self.tally[2] += 1;
+            return Some(Ok((f(&self.faces), Some([a, b, c]))));
         }
     }
 }
@@ -308,5 +341,45 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             y1: 0,
         };
         self.for_each_triangle(&clip, true, core::iter::once(f), |_, _, _, _| Ok(()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The cull pass's unsigned range test drops exactly what `Cull::drops` drops, over
+    /// every area a cached triangle can have.
+    #[test]
+    fn drop_ranges_are_the_cull_modes() {
+        let areas = [i32::MIN + 1, -(1 << 30), -2, -1, 0, 1, 2, 1 << 30, i32::MAX];
+        for cull in [Cull::Back, Cull::Front, Cull::None] {
+            for a in areas {
+                assert_eq!(
+                    DropRange::of(cull).drops(a),
+                    cull.drops(i64::from(a)),
+                    "{cull:?} {a}"
+                );
+            }
+        }
+    }
+
+    /// The `i32` area of cached corners is the exact area at the cache's extremes.
+    #[test]
+    fn cached_areas_are_exact_at_the_limits() {
+        let m = (1 << 14) - 1;
+        let v = |x: i32, y: i32| CachedVertex::new(0, ScreenVertex::from_raw(x, y, 0));
+        let corners = [(-m, -m), (m, -m), (m, m), (-m, m), (0, 0), (m, 0)];
+        for p in corners {
+            for q in corners {
+                for r in corners {
+                    let (a, b, c) = (v(p.0, p.1), v(q.0, q.1), v(r.0, r.1));
+                    assert!(!(a.marked() | b.marked() | c.marked()));
+                    assert_eq!(i64::from(cached_area(&a, &b, &c)), signed_area(p, q, r));
+                }
+            }
+        }
+        // One step further out is not placed: it takes the general path.
+        assert!(v(1 << 14, 0).marked() && v(0, -(1 << 14)).marked());
     }
 }
