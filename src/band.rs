@@ -254,9 +254,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
         let nt = indices.len();
         let nb = height.div_ceil(rows) as usize;
-        if bins.len() < bins_for(nt, height, rows) {
-            return off(self, Unbinned::BinsTooShort);
-        }
+        let needed = bins_for(nt, height, rows);
         let (rows, height) = (rows as i32, height as i32);
         let Some(cache) = self.cache.as_deref() else {
             return off(self, Unbinned::NoCache);
@@ -265,6 +263,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // Slot numbers (below `nt + chains`) and triangle numbers fit u16.
         if nb > 250 || nt + chains > usize::from(END) {
             return off(self, Unbinned::TooLarge);
+        }
+        if bins.len() < needed {
+            return off(self, Unbinned::BinsTooShort);
         }
         self.binning = Binning::Binned;
         // Tails, then the links (one a triangle) and the heads as one array of slots:

@@ -370,3 +370,51 @@ fn a_display_gets_a_screen_door() {
     assert_eq!(d(20, 30), Rgb565::RED);
     assert_eq!(d(5, 5), Rgb565::BLACK);
 }
+
+/// On a dithered display (16 greys) a see-through face is a screen door in a frame and
+/// in bands alike (its colours are not mixed but ordered, as the shading is): bands of
+/// every height give the whole frame's picture.
+#[test]
+fn dithered_types_screen_door_the_same_in_bands() {
+    use embedded_graphics::pixelcolor::{Gray4, GrayColor};
+    let squares = Squares::new(&[
+        (
+            [-1.0, -1.0, 1.0, 1.0, 0.0],
+            Translucent::new(Rgb888::new(90, 90, 90), 255),
+        ),
+        (
+            [-0.5, -0.5, 1.5, 1.5, 0.5],
+            Translucent::new(Rgb888::WHITE, 100),
+        ),
+    ]);
+    let mesh = squares.mesh();
+    let (mut pixels, mut depth) = (
+        vec![Gray4::BLACK; (W * H) as usize],
+        vec![0; (W * H) as usize],
+    );
+    let mut frame = Frame::new(&mut pixels, &mut depth, W, H).unwrap();
+    frame.clear(Gray4::BLACK);
+    Renderer::new(&mesh, &camera(), flat())
+        .unwrap()
+        .draw(&mut frame)
+        .unwrap();
+    // Over black, white at 100/255 covers round(100 · 16 / 255) = 6 of every 16 pixels.
+    let lit = (0..4)
+        .flat_map(|y| (0..4).map(move |x| (52 + x, 4 + y)))
+        .filter(|&(x, y)| frame.color().pixel(x, y) == Some(Gray4::WHITE))
+        .count();
+    assert_eq!(lit, 6);
+    for rows in [1, 4, 7, 16, H] {
+        let mut shown = vec![Gray4::new(3); (W * H) as usize];
+        let mut display = ColorBuffer::new(&mut shown, W, H).unwrap();
+        let (mut cb, mut zb) = (
+            vec![Gray4::BLACK; (W * rows) as usize],
+            vec![0; (W * rows) as usize],
+        );
+        let mut buffers = BandBuffers::new(&mut cb, &mut zb, W, rows, H, &mut []).unwrap();
+        let mut r = Renderer::new(&mesh, &camera(), flat()).unwrap();
+        r.draw(&mut Bands::new(&mut display, &mut buffers, Gray4::BLACK))
+            .unwrap();
+        assert!(shown == frame.color().as_slice(), "rows {rows}");
+    }
+}
