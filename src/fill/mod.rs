@@ -239,14 +239,15 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState> FlatTarget<'a, 'z, 'c, C, S> {
     }
 
     /// Fill one triangle in `color`.
-    pub(crate) fn fill(&mut self, [a, b, c]: [&ScreenVertex; 3], color: C) -> SpanStats {
-        let tri = &[*a, *b, *c];
+    pub(crate) fn fill(&mut self, tri: [&ScreenVertex; 3], color: C) -> SpanStats {
         match self {
+            // The corners stay where they are: no copy of the triangle a call.
             FlatTarget::Fused { b, test, write, .. } => {
                 fill_fused::<S, C>(b, *test, *write, tri, color)
             }
             FlatTarget::Split { frame, zbuf, clip } => {
-                fill_split::<S, C>(frame, zbuf, clip, tri, color)
+                let [p, q, r] = tri;
+                fill_split::<S, C>(frame, zbuf, clip, &[*p, *q, *r], color)
             }
         }
     }
@@ -259,7 +260,7 @@ fn fill_fused<S: RenderState, C: Copy>(
     b: &mut Buffers<'_, '_, C>,
     test: DepthTest,
     write: bool,
-    tri: &[ScreenVertex; 3],
+    tri: [&ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
     // A constant when the state fixes it: then only its loops are built.
@@ -274,6 +275,8 @@ fn fill_fused<S: RenderState, C: Copy>(
             runs: 0,
         };
     }
+    let [p, q, r] = tri;
+    let tri = &[*p, *q, *r];
     let Some(setup) = Setup::new(tri) else {
         return SpanStats::default();
     };

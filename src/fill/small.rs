@@ -47,7 +47,7 @@ struct Row {
 #[inline(always)]
 pub(crate) fn fill_small<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
-    tri: &[ScreenVertex; 3],
+    tri: [&ScreenVertex; 3],
     color: C,
     write: bool,
     pass: impl Fn(u16, u16) -> bool + Copy,
@@ -63,7 +63,7 @@ pub(crate) fn fill_small<C: Copy>(
 #[inline(always)]
 fn fill_small_with<E: SmallEdge, C: Copy>(
     b: &mut Buffers<'_, '_, C>,
-    tri: &[ScreenVertex; 3],
+    tri: [&ScreenVertex; 3],
     color: C,
     write: bool,
     pass: impl Fn(u16, u16) -> bool + Copy,

@@ -184,8 +184,7 @@ pub(crate) fn plane_origin(p0: &ScreenVertex, sx: i64, sy: i64) -> u32 {
 /// rounding moves the depth by less than 2¹⁰·2⁻¹² = ¼ unit: each pixel's stored depth is
 /// within one unit of the exactly rounded plane value.
 #[inline(always)]
-pub(crate) fn small_steps(tri: &[ScreenVertex; 3]) -> Option<(i64, i64)> {
-    let [p0, p1, p2] = tri;
+pub(crate) fn small_steps([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(i64, i64)> {
     let (dx1, dy1) = (p1.x - p0.x, p1.y - p0.y);
     let (dx2, dy2) = (p2.x - p0.x, p2.y - p0.y);
     let area = dx1 * dy2 - dx2 * dy1; // |·| < 2²⁷
@@ -241,7 +240,7 @@ impl DepthRows {
             Some((rows, sx as u32))
         };
         if setup.small {
-            let (sx, sy) = small_steps(tri)?;
+            let (sx, sy) = small_steps(tri.each_ref())?;
             return fast(sx, sy);
         }
         let plane = Plane::new(tri, zs)?;
