@@ -237,15 +237,19 @@ pub(crate) fn recip62(d: u32) -> u64 {
     }
     // d in [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²): guess 2⁶² over the middle of that range.
     let i = ((d >> 22) & 0xff) as usize;
-    let mut x = u32::from(RECIP_TABLE.get(i).copied().unwrap_or(u16::MAX)) << 16;
-    for _ in 0..2 {
-        // x ← x + x·e/2⁶², e = 2⁶² − d·x: |e| < 2⁵⁴ here, so e/2²⁴ fits 30 bits and
-        // x ≤ 2⁶²/d + 1 < 2³² − 2 after each step (Newton's method for 1/d approaches
-        // from below, and rounding the correction down adds at most 1).
-        let e = (1i64 << 62) - mul_wide(d, x) as i64;
-        let m = (mul_wide(x, (e.unsigned_abs() >> 24) as u32) >> 38) as u32;
-        x = if e >= 0 { x + m } else { x - m };
-    }
+    let t = u32::from(RECIP_TABLE.get(i).copied().unwrap_or(u16::MAX));
+    // Two Newton steps x ← x + x·e/2⁶², e = 2⁶² − d·x: |e| < 2⁵⁴ here, so e/2²⁴ fits
+    // 30 bits and x ≤ 2⁶²/d + 1 < 2³² − 2 after each step (Newton's method for 1/d
+    // approaches from below, and rounding the correction down adds at most 1).
+    // The first from x = t·2¹⁶, whose products are t's 16 bits times 32 (d·t < 2⁴⁷,
+    // t·e/2²⁴ < 2⁴⁶: both stay below 2⁶⁴ shifted back up by 16): two multiplies each.
+    let e = (1i64 << 62) - (mul_narrow_parts(t, d) << 16) as i64;
+    let m = ((mul_narrow_parts(t, (e.unsigned_abs() >> 24) as u32) << 16) >> 38) as u32;
+    let x = t << 16;
+    let mut x = if e >= 0 { x + m } else { x - m };
+    let e = (1i64 << 62) - mul_wide(d, x) as i64;
+    let m = (mul_wide(x, (e.unsigned_abs() >> 24) as u32) >> 38) as u32;
+    x = if e >= 0 { x + m } else { x - m };
     // Within a few units now: step to the quotient whose remainder lies in [0, d).
     let mut e = (1i64 << 62) - mul_wide(d, x) as i64;
     while e < 0 {
