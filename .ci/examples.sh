@@ -18,7 +18,7 @@ else
   for f in examples/lesson*.rs; do
     names+=("$(basename "$f" .rs)")
   done
-  names+=(bunny cube hidden_line oled painter)
+  names+=(bunny cube hidden_line oled painter scene textured fog)
 fi
 
 build_args=()

@@ -390,6 +390,7 @@ pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use model::{Model, ModelStyle};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
+pub use scene::Scene;
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };

@@ -370,3 +370,69 @@ fn bad_add_options_exit_2() {
     fails_with(&[sq, "--add", &format!("{sq}@1,nan,2")], "finite number");
     fails_with(&[sq, "--add", "/nonexistent/b.obj@0,0,0"], "b.obj");
 }
+
+/// MTL `d` (and `Tr`, its complement): see-through faces drawn after the opaque ones,
+/// blended over them, their depth not written. A blue square at opacity `d` in front
+/// of a red one (listed first, so order in the file does not matter).
+#[test]
+fn see_through_materials_blend_over_what_is_behind() {
+    let dir = folder("alpha");
+    let obj = "mtllib m.mtl\n\
+               v -0.5 -0.5 0\nv 0.5 -0.5 0\nv 0.5 0.5 0\nv -0.5 0.5 0\n\
+               v -1 -1 -0.5\nv 1 -1 -0.5\nv 1 1 -0.5\nv -1 1 -0.5\n\
+               usemtl glass\nf 1 2 3 4\nusemtl red\nf 5 6 7 8\n";
+    std::fs::write(dir.join("q.obj"), obj).unwrap();
+    let run = |glass: &str, extra: &[&str], name: &str| {
+        std::fs::write(
+            dir.join("m.mtl"),
+            format!("newmtl red\nKd 1 0 0\nnewmtl glass\nKd 0 0 1\n{glass}\n"),
+        )
+        .unwrap();
+        let (out, depth) = (
+            dir.join(format!("{name}.png")),
+            dir.join(format!("{name}.pgm")),
+        );
+        let q = dir.join("q.obj");
+        let args = [
+            q.to_str().unwrap(),
+            "--no-fit",
+            "--shade",
+            "none",
+            "--stats",
+        ];
+        let outs = [
+            "--out",
+            out.to_str().unwrap(),
+            "--depth-out",
+            depth.to_str().unwrap(),
+        ];
+        let stats = run_ok(&[&args[..], &outs, extra].concat());
+        let pgm = std::fs::read(&depth).unwrap();
+        (load(&out), pgm, stats)
+    };
+    let rgb = |r, g, b| -> Rgb888 { Rgb565::new(r, g, b).into() };
+    let (centre, edge) = (Point::new(160, 120), Point::new(212, 120));
+    // d 0.5: alpha 128, the mean of the two, rounded down.
+    let (half, half_depth, half_stats) = run("d 0.5", &[], "half");
+    assert_eq!(half.get_pixel(centre), rgb(15, 0, 15));
+    assert_eq!(half.get_pixel(edge), rgb(31, 0, 0));
+    // Tr 0.75 is d 0.25: alpha 64, red + (blue − red) · 64 / 255 rounded.
+    let (quarter, _, _) = run("Tr 0.75", &[], "quarter");
+    assert_eq!(quarter.get_pixel(centre), rgb(23, 0, 8));
+    // Opaque glass hides the red; its depth is the one stored there. See-through, the
+    // red square's depth stays.
+    let (opaque, opaque_depth, _) = run("d 1", &[], "opaque");
+    assert_eq!(opaque.get_pixel(centre), rgb(0, 0, 31));
+    let at = |pgm: &[u8], p: Point| {
+        let i = pgm.len() - 2 * (W * H) as usize + 2 * (p.y as usize * W as usize + p.x as usize);
+        u16::from_be_bytes([pgm[i], pgm[i + 1]])
+    };
+    let (red_only, red_depth, _) = run("d 0", &[], "clear");
+    assert_eq!(red_only.get_pixel(centre), rgb(31, 0, 0));
+    assert_eq!(at(&half_depth, centre), at(&red_depth, centre));
+    assert!(at(&opaque_depth, centre) < at(&half_depth, centre));
+    // In bands: the same picture, depths and counts.
+    let (banded, banded_depth, banded_stats) = run("d 0.5", &["--band", "7"], "banded");
+    assert!(banded.diff(&half).is_none());
+    assert_eq!((banded_depth, banded_stats), (half_depth, half_stats));
+}

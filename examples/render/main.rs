@@ -19,6 +19,10 @@
 //! clamps instead), lit as a `Kd` of the texel's colour. A texture that cannot be read is
 //! a warning, and its faces take their material's `Kd`.
 //!
+//! MTL `d` (or `Tr`): faces of opacity below 1 are drawn after every opaque face of the
+//! scene, depth-tested without writing depth, blended over what is drawn (zraster's
+//! `Translucent` rule; textured faces are drawn opaque).
+//!
 //! `--add FILE.obj@X,Y,Z` adds a model to the scene (see `USAGE`); the models share the
 //! frame and its depth buffer, drawn one after another.
 
@@ -26,7 +30,6 @@ use std::io::Write;
 use std::process::exit;
 use std::time::{Duration, Instant};
 
-use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
 use embedded_graphics_simulator::{OutputSettings, SimulatorDisplay};
 use zraster::{
@@ -35,7 +38,7 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     shade::{Light, Material, Shading, ONE},
     BandBuffers, Bands, CachedVertex, ColorBuffer, Cull, DepthSort, DrawError, Frame, FrameStats,
-    RenderOptions, Renderer, Texturing, ZBuffer,
+    RenderOptions, Renderer, Scene, ZBuffer,
 };
 use zraster_scenes::bus::SpiDisplay;
 
@@ -75,7 +78,9 @@ usage: render MODEL.obj [options]
                       depth buffer
 Textures: faces with vt coordinates whose material has map_Kd FILE.png (relative
 to the MTL file) show the texel at the pixel's perspective-correct (u, v), lit as
-a colour is; a texture that cannot be read is a warning and its faces take Kd.
+a colour is; a texture that cannot be read is a warning and its faces take Kd. MTL d ALPHA
+(or Tr = 1 - d): see-through faces, drawn after the opaque ones with the depth
+test on and depth writes off, blended over them (textured faces stay opaque).
 Material libraries (mtllib) are read from MODEL.obj's folder: regular files only,
 of at most 16 MiB, each once. One that cannot be read is a warning, and faces whose
 material it would have defined take --color.";
@@ -302,19 +307,16 @@ fn parse_args(args: &[String]) -> Options {
 }
 
 /// One drawing of `frame` (the whole frame, or one band of it) by one of the scene's
-/// renderers, in `mode`, textured when it has a texture.
+/// renderers, in `mode`.
 fn draw_pass(
-    (renderer, texturing): &mut (Renderer<'_, '_, Kd>, Option<Texturing<'_, Rgb888>>),
+    renderer: &mut Renderer<'_, '_, Kd>,
     mode: Mode,
     sort: Option<&mut DepthSort<65536>>,
     frame: &mut Frame<'_, Rgb565>,
     line_color: Rgb565,
 ) -> Result<(), DrawError<core::convert::Infallible>> {
     match mode {
-        Mode::ZBuffer => match texturing {
-            Some(t) => renderer.draw_textured(frame, t),
-            None => renderer.draw(frame),
-        },
+        Mode::ZBuffer => renderer.draw(frame),
         Mode::Painter => match sort {
             Some(s) => renderer.draw_depth_sorted(frame.color_mut(), s),
             None => Ok(()),
@@ -408,7 +410,6 @@ fn main() {
         .iter()
         .map(|(m, p, _)| m.texturing(p).unwrap_or_else(|e| input_error(&e)))
         .collect();
-    let faces: usize = meshes.iter().map(|m| m.face_count()).sum();
 
     // ---- The frame.
     let (w, h) = (o.width, o.height);
@@ -437,7 +438,7 @@ fn main() {
         light: Light::default(),
     };
     let rows = o.band.unwrap_or(h);
-    let line_color = Kd(o.color).shade(ONE, 0, 0);
+    let line_color = Kd(o.color, 255).shade(ONE, 0, 0);
     let mut frame_pixels = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth_full = vec![u16::MAX; (w * h) as usize];
     let band_len = if o.band.is_some() {
@@ -447,10 +448,15 @@ fn main() {
     };
     let mut band_pixels = vec![Rgb565::BLACK; band_len];
     let mut band_depth = vec![u16::MAX; band_len];
-    // One renderer, untextured, in the Z-buffer: bands through `Bands`, binned.
-    let single = parts.len() == 1 && texturings[0].is_none() && o.mode == Mode::ZBuffer;
-    let bins_len = match o.band {
-        Some(_) if single => BandBuffers::<Rgb565>::bins_needed(faces, h, rows),
+    // The Z-buffer draws the untextured parts as one scene (opaque faces first, then the
+    // see-through ones), into bands binned when no part is textured.
+    let zbuffer = o.mode == Mode::ZBuffer;
+    let scene_bands = zbuffer && texturings.iter().all(Option::is_none);
+    let bins_len: usize = match o.band {
+        Some(_) if scene_bands => meshes
+            .iter()
+            .map(|m| BandBuffers::<Rgb565>::bins_needed(m.face_count(), h, rows))
+            .sum(),
         _ => 0,
     };
     let mut bins = vec![0u16; bins_len];
@@ -516,38 +522,51 @@ fn main() {
             shown.bytes = 0;
             prev.flush(&mut damage.target(&mut shown)).ok();
         }
-        let mut renderers: Vec<_> = parts
+        // The textured parts (opaque) and the untextured ones, each its own renderer.
+        let (mut plain, mut textured) = (Vec::new(), Vec::new());
+        for ((((m, _, at), mesh), cache), texturing) in parts
             .iter()
             .zip(&meshes)
             .zip(caches.iter_mut())
             .zip(&texturings)
-            .map(|((((m, _, at), mesh), cache), texturing)| {
-                let xf = fitted.with_model(place(m, *at));
-                let r = Renderer::with_cache(mesh, &xf, options, cache)
-                    .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
-                (r, *texturing)
-            })
-            .collect();
+        {
+            let xf = fitted.with_model(place(m, *at));
+            let r = Renderer::with_cache(mesh, &xf, options, cache)
+                .unwrap_or_else(|e| input_error(&format!("transform: {e}")));
+            match texturing {
+                Some(t) => textured.push((r, *t)),
+                None => plain.push(r),
+            }
+        }
         let fail = |e: DrawError<core::convert::Infallible>| -> ! {
             input_error(&format!("{}: {e}", o.model))
+        };
+        // One drawing of a frame or band: the textured parts, then the scene.
+        let mut draw_all = |frame: &mut Frame<'_, Rgb565>| {
+            for (r, t) in &mut textured {
+                r.draw_textured(frame, t).unwrap_or_else(|e| fail(e));
+            }
+            if zbuffer {
+                Scene::new(&mut plain)
+                    .draw(frame)
+                    .unwrap_or_else(|e| fail(e));
+                return;
+            }
+            for r in &mut plain {
+                draw_pass(r, o.mode, sort.as_deref_mut(), frame, line_color)
+                    .unwrap_or_else(|e| fail(e));
+            }
         };
         if o.band.is_none() {
             // The whole frame at once, straight into the frame buffer.
             let mut whole = Frame::new(&mut frame_pixels, &mut depth_full, w, h)
                 .unwrap_or_else(|e| input_error(&e.to_string()));
             whole.clear(Rgb565::BLACK);
-            for r in &mut renderers {
-                draw_pass(r, o.mode, sort.as_deref_mut(), &mut whole, line_color)
-                    .unwrap_or_else(|e| fail(e));
-            }
-            stats = total(renderers.iter().map(|r| r.0.stats()));
-            continue;
-        }
-        let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
-            .unwrap_or_else(|e| input_error(&e.to_string()));
-        if single {
-            // Band by band, triangles binned once per frame.
-            let renderer = &mut renderers[0].0;
+            draw_all(&mut whole);
+        } else if scene_bands {
+            // Band by band, each object's triangles binned once per frame.
+            let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
+                .unwrap_or_else(|e| input_error(&e.to_string()));
             let mut bands =
                 BandBuffers::new(&mut band_pixels, &mut band_depth, w, rows, h, &mut bins)
                     .unwrap_or_else(|e| input_error(&e.to_string()));
@@ -561,37 +580,41 @@ fn main() {
                         depth_full[start..start + band.len()].copy_from_slice(band);
                     }
                 });
-            let result = renderer.draw(&mut target);
+            let result = Scene::new(&mut plain).draw(&mut target);
             if let Err(e) = result {
                 input_error(&format!("{}: {e:?}", o.model));
             }
             // Same picture without bins, only slower: say so once.
-            if let (0, zraster::Binning::Off(why)) = (frame, renderer.binning()) {
+            let unbinned = plain.iter().find_map(|r| match r.binning() {
+                zraster::Binning::Off(why) => Some(why),
+                _ => None,
+            });
+            if let (0, Some(why)) = (frame, unbinned) {
                 eprintln!("warning: bands drawn without binning ({why})");
             }
-            stats = renderer.stats();
-            continue;
-        }
-        // Every renderer into each band in turn (their vertices transformed once).
-        let mut y = 0;
-        while y < h {
-            let n = rows.min(h - y);
-            let color = ColorBuffer::new_band(&mut band_pixels, w, n, y as i32)
+        } else {
+            // Every renderer into each band in turn (their vertices transformed once).
+            let mut full = ColorBuffer::new(&mut frame_pixels, w, h)
                 .unwrap_or_else(|e| input_error(&e.to_string()));
-            let zbuf = ZBuffer::new_band(&mut band_depth, w, n, y as i32)
-                .unwrap_or_else(|e| input_error(&e.to_string()));
-            let mut band = Frame::from_buffers(color, zbuf);
-            band.clear(Rgb565::BLACK);
-            for r in &mut renderers {
-                draw_pass(r, o.mode, sort.as_deref_mut(), &mut band, line_color)
-                    .unwrap_or_else(|e| fail(e));
+            let mut y = 0;
+            while y < h {
+                let n = rows.min(h - y);
+                let color = ColorBuffer::new_band(&mut band_pixels, w, n, y as i32)
+                    .unwrap_or_else(|e| input_error(&e.to_string()));
+                let zbuf = ZBuffer::new_band(&mut band_depth, w, n, y as i32)
+                    .unwrap_or_else(|e| input_error(&e.to_string()));
+                let mut band = Frame::from_buffers(color, zbuf);
+                band.clear(Rgb565::BLACK);
+                draw_all(&mut band);
+                band.flush(&mut full).ok();
+                let start = (y * w) as usize;
+                depth_full[start..start + (n * w) as usize]
+                    .copy_from_slice(band.depth().as_slice());
+                y += n;
             }
-            band.flush(&mut full).ok();
-            let start = (y * w) as usize;
-            depth_full[start..start + (n * w) as usize].copy_from_slice(band.depth().as_slice());
-            y += n;
         }
-        stats = total(renderers.iter().map(|r| r.0.stats()));
+        let all = plain.iter().chain(textured.iter().map(|(r, _)| r));
+        stats = total(all.map(Renderer::stats));
     }
 
     let elapsed = start.elapsed();

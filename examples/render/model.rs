@@ -9,21 +9,33 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use zraster::{
     math::{Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
-    shade::{Intensity, Material, ONE},
+    shade::{DisplayColor, Intensity, Material, Translucent, ONE},
     texture::{MeshUv, Texture, Wrap},
     Texturing, UvMode,
 };
 use zraster_obj::{fit_scale_f64, load_textures, parse_obj_with, quantize, MtlLoader, ObjModel};
 
-/// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly.
+/// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly; and
+/// its opacity (MTL `d`, 255 opaque): see-through faces are drawn after the opaque
+/// ones, blended over them.
 #[derive(Clone, Copy)]
-pub struct Kd(pub [f32; 3]);
+pub struct Kd(pub [f32; 3], pub u8);
 
 impl Material<Rgb565> for Kd {
+    const TRANSLUCENT: bool = true;
+
     fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
         let i = f32::from(i) / f32::from(ONE);
         let q = |c: f32, max: f32| ((c * i * max + 0.5) as u32).min(max as u32) as u8;
         Rgb565::new(q(self.0[0], 31.0), q(self.0[1], 63.0), q(self.0[2], 31.0))
+    }
+
+    fn alpha(&self) -> u8 {
+        self.1
+    }
+
+    fn blend(&self, dst: Rgb565, src: Rgb565, x: i32, y: i32) -> Rgb565 {
+        <Rgb565 as DisplayColor>::blend(dst, src, self.1, x, y)
     }
 }
 
@@ -114,8 +126,14 @@ impl Model {
         // the image is exactly that of the model scaled by 2^-k (drawn with k = 0).
         let k = balance_exponent(q.scale);
         let scale = (f64::from(q.scale) * pow2(-k)) as f32;
-        let kd =
-            |t: &zraster_obj::ObjTriangle| Kd(t.material.map_or(color, |m| obj.materials[m].kd));
+        // Opacity d rounded to 1/255 as zraster rounds it (NaN opaque).
+        let kd = |t: &zraster_obj::ObjTriangle| match t.material {
+            Some(m) => {
+                let (kd, d) = (obj.materials[m].kd, obj.materials[m].alpha);
+                Kd(kd, Translucent::from_opacity(Rgb888::new(0, 0, 0), d).alpha)
+            }
+            None => Kd(color, 255),
+        };
         let all = Part {
             split: false,
             indices: obj.triangle_indices(),
