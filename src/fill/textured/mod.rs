@@ -48,7 +48,7 @@ mod runs;
 mod shaded;
 mod span;
 pub(crate) use runs::fill_textured_runs;
-use span::{face_rows, texel_index_pow2, texel_pow2, Fetch, TOP};
+use span::{pow2_rows, Fetch};
 
 pub use crate::texture::UvMode;
 
@@ -332,8 +332,20 @@ impl Segments {
 /// ⌊u·q / q⌋ and ⌊v·q / q⌋ of values with [`F`] fractional bits, clamped to ±2²⁴.
 #[inline(always)]
 fn divide(h: [i64; 3]) -> (i32, i32) {
-    let q = (h[2] >> F).max(1); // ≤ 2¹⁵
-    let (n1, n2) = (h[0] >> F, h[1] >> F); // below 2⁴⁰ in magnitude
+    let q = h[2] >> F; // ≤ 2¹⁵
+                       // 1 ≤ q < 2¹⁶ (one unsigned comparison) and a divide instruction: two 16-bit digits
+                       // each, the clamp read off the first.
+    if crate::num::DIVIDE && !crate::num::WIDE && (q as u64).wrapping_sub(1) < 0xFFFF {
+        if let (Some(u), Some(v)) = (div_clamped(h[0], q as u32), div_clamped(h[1], q as u32)) {
+            return (u, v);
+        }
+    }
+    divide_wide(h[0] >> F, h[1] >> F, q.max(1))
+}
+
+/// ⌊n1 / q⌋ and ⌊n2 / q⌋ clamped to ±2²⁴, for any values (q ≥ 1).
+#[inline(always)]
+fn divide_wide(n1: i64, n2: i64, q: i64) -> (i32, i32) {
     let (u, v) = if crate::num::ARMV6M || crate::num::WIDE {
         // A reciprocal of q (ARMv6-M), or a 64-bit divide instruction.
         div_floor_pair(n1, n2, q)
@@ -343,6 +355,30 @@ fn divide(h: [i64; 3]) -> (i32, i32) {
     };
     let lim = i64::from(UV_LIMIT);
     (u.clamp(-lim, lim) as i32, v.clamp(-lim, lim) as i32)
+}
+
+/// ⌊(h ≫ 16) / q⌋ clamped to ±2²⁴ ([`UV_LIMIT`]) for 1 ≤ q < 2¹⁶ (the caller's
+/// check), if |h ≫ 16| < 2⁴⁷ (else `None`): the sign folded in as `div_floor_signless` does (⌊n/q⌋ = s ^ ⌊m/q⌋
+/// for m = n ^ s, s = 0 or −1 by n's sign), m divided by two 16-bit digits whose first
+/// tells whether the quotient reaches 2²⁴ (it does from 2⁸ on).
+#[inline(always)]
+fn div_clamped(h: i64, q: u32) -> Option<i32> {
+    let s = h >> 63;
+    let x = (h ^ s) as u64; // m = x ≫ 16
+    let hi = (x >> 32) as u32; // m ≫ 16
+    if hi >> 31 != 0 {
+        return None;
+    }
+    let s = s as i32;
+    let q1 = hi / q;
+    if q1 >> 8 != 0 {
+        return Some(if s < 0 { -UV_LIMIT } else { UV_LIMIT });
+    }
+    // r1 < q < 2¹⁶: the second digit's dividend fits 32 bits.
+    let r1 = hi - q1 * q;
+    let q0 = (r1 << 16 | (x as u32) >> 16) / q;
+    // Below 2²⁴: as i32, and s ^ it is within ±2²⁴ too.
+    Some((q1 << 16 | q0) as i32 ^ s)
 }
 
 /// The light along a span: one intensity for the face, or Gouraud's plane stepped as
@@ -491,51 +527,40 @@ where
     let Some(ts) = TexSetup::new(tri, corners, Some(mode), light) else {
         return stats;
     };
-    let write = zbuf.write_enabled();
     // The common case, the default depth test and one light for the face: a loop per
     // segment over both rows, no call per pixel.
     if let (DepthTest::Less, SpanLight::Face(i)) = (test, ts.light) {
         let full = i == ONE && !C::DITHERED;
         return match (Fetch::new(texture), full) {
-            (Fetch::Pow2 { texels, shifts }, true) => {
-                let fetch = move |u, v| texel_pow2(texels, shifts, u, v);
+            (Fetch::Pow2(tex), true) => {
                 // Full light, undithered: no position, a constant intensity.
-                let colour = move |t: X, _: i32, _: i32| texel_color::<X, C>(t, ONE, 0, 0);
-                face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
+                let colour = move |t: X, _: usize| texel_color::<X, C>(t, ONE, 0, 0);
+                pow2_rows(frame, zbuf, clip, &ts, tex, colour)
             }
-            (Fetch::Pow2 { texels, shifts }, false) if !C::DITHERED => {
+            (Fetch::Pow2(tex), false) if !C::DITHERED => {
                 // Lit: the colour of the last texel is kept, as neighbouring pixels
                 // mostly show the same texel and lighting one costs some 60
                 // instructions. (Undithered: the colour does not depend on the pixel.)
-                let fetch = move |u, v| Some(texel_index_pow2(shifts, u, v));
-                let Some(&t0) = texels.first() else {
+                let Some(&t0) = texture.texels().first() else {
                     return stats;
                 };
                 let last = core::cell::Cell::new((0, texel_color::<X, C>(t0, i, 0, 0)));
-                let colour = |at: usize, x: i32, y: i32| {
+                let colour = |t: X, at: usize| {
                     let (k, c) = last.get();
                     if k == at {
                         return c;
                     }
-                    let c = texels
-                        .get(at)
-                        .map_or(c, |&t| texel_color::<X, C>(t, i, x, y));
+                    let c = texel_color::<X, C>(t, i, 0, 0);
                     last.set((at, c));
                     c
                 };
-                face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
+                pow2_rows(frame, zbuf, clip, &ts, tex, colour)
             }
-            (Fetch::Pow2 { texels, shifts }, false) => {
-                let fetch = move |u, v| texel_pow2(texels, shifts, u, v);
-                let colour = move |t: X, x: i32, y: i32| texel_color::<X, C>(t, i, x, y);
-                face_rows(frame, zbuf, clip, &ts, write, TOP, fetch, colour)
-            }
-            (Fetch::Any(t), _) => {
-                let fetch = move |u: u32, v: u32| {
-                    Some(t.sample_raw(TexCoord::new(u as i32 >> SHIFT, v as i32 >> SHIFT)))
+            (Fetch::Pow2(_), false) | (Fetch::Any(_), _) => {
+                let colour = move |x: i32, y: i32, _: u16, uv: TexCoord, i: Intensity| {
+                    texel_color::<X, C>(texture.sample_raw(uv), i, x, y)
                 };
-                let colour = move |t: X, x: i32, y: i32| texel_color::<X, C>(t, i, x, y);
-                face_rows(frame, zbuf, clip, &ts, write, 0, fetch, colour)
+                shaded::shaded_rows(frame, zbuf, clip, test, &ts, colour)
             }
         };
     }
@@ -545,3 +570,6 @@ where
     };
     shaded::shaded_rows(frame, zbuf, clip, test, &ts, shade)
 }
+
+#[cfg(test)]
+mod tests;

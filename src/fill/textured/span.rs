@@ -1,29 +1,27 @@
 //! The fast pixel loop of textured spans: the default depth test, one light a face.
 
-use super::{Segments, TexSetup, SHIFT};
+use super::{Segments, TexSetup, SEGMENT, SHIFT};
 use crate::raster::{Clip, SpanStats};
 use crate::texture::{Texel, Texture};
 
 /// How a span's pixels find their texel from the stepped u and v (Q16 times
-/// [`SEGMENT`]): for a repeating texture of power-of-two sizes (W ≥ 2) by shifts
-/// and masks (the texel ⌊u·W⌋ mod W is bits of u), else through
-/// [`Texture::sample_raw`].
+/// [`SEGMENT`](super::SEGMENT)): for a repeating texture of power-of-two sizes (at least
+/// 2×2) by shifts ([`Pow2`]), else through [`Texture::sample_raw`].
 #[derive(Clone, Copy)]
 pub(crate) enum Fetch<'a, X> {
-    Pow2 {
-        texels: &'a [X],
-        /// The texel's index is `(u ≫ su) | (v ≫ sv & hmask)`.
-        shifts: Pow2Shifts,
-    },
+    Pow2(Pow2<'a, X>),
     Any(Texture<'a, X>),
 }
 
-/// The shifts and mask of [`texel_pow2`].
+/// A repeating texture of W × H texels, both powers of two from 2 on: the texel of
+/// coordinates whose 32 bits are the fraction of a texture (see [`TOP`]) is at column
+/// `u ≫ (32 − log₂ W)` and row `v ≫ (32 − log₂ H)`.
 #[derive(Clone, Copy)]
-pub(crate) struct Pow2Shifts {
-    su: u32,
-    sv: u32,
-    hmask: u32,
+pub(crate) struct Pow2<'a, X> {
+    /// Exactly W·H texels.
+    texels: &'a [X],
+    lw: u32,
+    lh: u32,
 }
 
 impl<'a, X: Texel> Fetch<'a, X> {
@@ -32,73 +30,52 @@ impl<'a, X: Texel> Fetch<'a, X> {
         let (lw, lh) = (w.trailing_zeros(), h.trailing_zeros()); // ≤ 13 each
         match t.wrap() {
             crate::texture::Wrap::Repeat
-                if w.is_power_of_two() && h.is_power_of_two() && lw >= 1 =>
+                if w.is_power_of_two() && h.is_power_of_two() && lw >= 1 && lh >= 1 =>
             {
-                Fetch::Pow2 {
+                Fetch::Pow2(Pow2 {
                     texels: t.texels(),
-                    shifts: Pow2Shifts {
-                        // 1 ≤ lw, lh + lw ≤ 26: both shifts within 6..=31.
-                        su: 32 - lw,
-                        sv: 32 - lh - lw,
-                        hmask: (h - 1) << lw,
-                    },
-                }
+                    lw,
+                    lh,
+                })
             }
             _ => Fetch::Any(*t),
         }
     }
 }
 
-/// How far [`face_span`] shifts stepped coordinates (Q16 times [`SEGMENT`]) up for
-/// [`texel_pow2`]: to the fraction of a texture in all 32 bits, so that wrapping
-/// arithmetic is the repeat.
+/// How far the fast loops shift stepped coordinates (Q16 times
+/// [`SEGMENT`](super::SEGMENT)) up for [`Pow2`]: to the fraction of a texture in all 32
+/// bits, so that wrapping arithmetic is the repeat. ⌊u·W⌋ mod W is then the top log₂ W
+/// bits of u, for negative u too (two's complement), and the same as ⌊(u ≫ 4)·W / 2¹⁶⌋
+/// mod W (floors of divisions by powers of two compose).
 pub(super) const TOP: u32 = 32 - 16 - SHIFT;
 
-/// The texel at coordinates `u`, `v` whose 32 bits are the fraction of a texture (Q16
-/// times [`SEGMENT`] shifted up by [`TOP`]): ⌊u·W⌋ mod W is the top log₂ W bits of u,
-/// for negative u too (two's complement), and the same as ⌊(u ≫ 4)·W / 2¹⁶⌋ mod W
-/// (floors of divisions by powers of two compose); the row likewise, already times W.
+/// The rows of [`fill_textured_buffers`](super::fill_textured_buffers) for
+/// [`DepthTest::Less`](crate::DepthTest::Less), one light for the face and a [`Pow2`]
+/// texture: each span by [`pow2_span`], the same pixels as the general loop;
+/// `colour(texel, index)` is the pixel's colour for a texel at an index.
 #[inline(always)]
-pub(super) fn texel_pow2<X: Copy>(texels: &[X], k: Pow2Shifts, u: u32, v: u32) -> Option<X> {
-    // Below W·H, the slice's length: always `Some`.
-    texels.get(texel_index_pow2(k, u, v)).copied()
-}
-
-/// The index of [`texel_pow2`]'s texel, below W·H.
-#[inline(always)]
-pub(super) fn texel_index_pow2(k: Pow2Shifts, u: u32, v: u32) -> usize {
-    let col = u >> k.su;
-    let row = (v >> k.sv) & k.hmask;
-    (row | col) as usize
-}
-
-/// The rows of [`fill_textured_buffers`] for [`DepthTest::Less`] and one light for the
-/// face: each span by [`face_span`], the same pixels as the general loop.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-pub(super) fn face_rows<C: embedded_graphics::pixelcolor::PixelColor, X>(
+pub(super) fn pow2_rows<C: embedded_graphics::pixelcolor::PixelColor, X: Copy>(
     frame: &mut crate::ColorBuffer<'_, C>,
     zbuf: &mut crate::ZBuffer<'_>,
     clip: &Clip,
     ts: &TexSetup,
-    write: bool,
-    up: u32,
-    fetch: impl Fn(u32, u32) -> Option<X> + Copy,
-    colour: impl Fn(X, i32, i32) -> C + Copy,
+    tex: Pow2<'_, X>,
+    colour: impl FnMut(X, usize) -> C + Copy,
 ) -> SpanStats {
     let mut stats = SpanStats::default();
+    let write = zbuf.write_enabled();
     let mut spans = ts.setup.spans(clip);
     while let Some((y, x0, x1)) = spans.next_span() {
         let (Some(zrow), Some(crow)) = (zbuf.span_mut(y, x0, x1), frame.span_mut(y, x0, x1)) else {
             continue;
         };
         let acc = ts.rows.at(x0, y);
-        let mut segments = ts.uv.segments(x0, y, x1 - x0);
-        let colour = move |t: X, k: usize| colour(t, x0 + k as i32, y);
+        let segments = ts.uv.segments(x0, y, x1 - x0);
         let failed = if write {
-            face_span::<C, X, true>(zrow, crow, acc, ts.dz, &mut segments, up, fetch, colour)
+            pow2_span::<C, X, true>(zrow, crow, acc, ts.dz, segments, tex, colour)
         } else {
-            face_span::<C, X, false>(zrow, crow, acc, ts.dz, &mut segments, up, fetch, colour)
+            pow2_span::<C, X, false>(zrow, crow, acc, ts.dz, segments, tex, colour)
         };
         stats.pixels_tested += (x1 - x0) as u32;
         stats.pixels_written += (x1 - x0) as u32 - failed;
@@ -106,48 +83,66 @@ pub(super) fn face_rows<C: embedded_graphics::pixelcolor::PixelColor, X>(
     stats
 }
 
-/// The pixel loop of [`face_rows`]: a span's segments, each pixel's depth tested
-/// (`Less`) and written (`WRITE`), and its colour `colour(fetch(u, v), k)` for the
-/// k-th pixel, u and v the stepped coordinates (Q16 times [`SEGMENT`]) shifted up by
-/// `up` (wrapping). Out of line, so that the loop has the registers to itself. Returns
-/// the number of pixels that failed the test.
+/// A span of [`pow2_rows`], segment by segment in two passes, each loop with few enough
+/// values to keep them all in registers: the segment's colours `colour(texel, index)`
+/// into a buffer, the texel index `(v ≫ sv)·W + (u ≫ su)` (below W·H, masked by
+/// W·H − 1, a no-op, so that the compiler sees it in bounds); then each pixel's depth
+/// tested (`Less`) and written (`WRITE`), and the colour copied where it passes. Out of
+/// line. Returns the number of pixels that failed the test.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn face_span<C: Copy, X, const WRITE: bool>(
+fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
     zrow: &mut [u16],
     crow: &mut [C],
-    mut acc: u32,
+    acc: u32,
     dz: u32,
-    segments: &mut Segments,
-    up: u32,
-    fetch: impl Fn(u32, u32) -> Option<X>,
-    colour: impl Fn(X, usize) -> C,
+    mut segments: Segments,
+    tex: Pow2<'_, X>,
+    mut colour: impl FnMut(X, usize) -> C,
 ) -> u32 {
+    // A length the compiler knows to be a power of two (W·H ≤ 2²⁶).
+    let Some(texels) = tex.texels.get(..1usize << (tex.lw + tex.lh)) else {
+        return 0;
+    };
+    let Some(&t0) = texels.first() else {
+        return 0;
+    };
+    let (su, sv, w) = (32 - tex.lw, 32 - tex.lh, 1u32 << tex.lw);
+    let mask = texels.len() - 1;
+    let mut buf = [colour(t0, 0); SEGMENT as usize];
     let mut failed = 0;
     while let Some(s) = segments.next_segment() {
         let end = s.first + s.len;
-        let (Some(zs), Some(cs)) = (zrow.get_mut(s.first..end), crow.get_mut(s.first..end)) else {
+        let (Some(zs), Some(cs), Some(bs)) = (
+            zrow.get_mut(s.first..end),
+            crow.get_mut(s.first..end),
+            buf.get_mut(..s.len),
+        ) else {
             continue;
         };
-        let ((u, v), (du, dv)) = (s.uv, s.step);
-        let (mut u, mut v) = ((u as u32) << up, (v as u32) << up);
-        let (du, dv) = ((du as u32) << up, (dv as u32) << up);
-        for (k, (d, c)) in zs.iter_mut().zip(cs.iter_mut()).enumerate() {
+        let [mut u, mut v, du, dv] =
+            [s.uv.0, s.uv.1, s.step.0, s.step.1].map(|x| (x as u32) << TOP);
+        for b in bs.iter_mut() {
+            let at = ((v >> sv).wrapping_mul(w).wrapping_add(u >> su)) as usize & mask;
+            if let Some(&t) = texels.get(at) {
+                *b = colour(t, at);
+            }
+            u = u.wrapping_add(du);
+            v = v.wrapping_add(dv);
+        }
+        // The depth at the segment's first pixel: `first` steps on.
+        let mut acc = acc.wrapping_add(dz.wrapping_mul(s.first as u32));
+        for ((d, c), b) in zs.iter_mut().zip(cs.iter_mut()).zip(bs.iter()) {
             let z = (acc >> 16) as u16;
             acc = acc.wrapping_add(dz);
             if z < *d {
                 if WRITE {
                     *d = z;
                 }
-                // Always a texel (see `texel_pow2`): no fallback to keep at hand.
-                if let Some(t) = fetch(u, v) {
-                    *c = colour(t, s.first + k);
-                }
+                *c = *b;
             } else {
                 crate::fill::span::one_failed(&mut failed);
             }
-            u = u.wrapping_add(du);
-            v = v.wrapping_add(dv);
         }
     }
     failed
