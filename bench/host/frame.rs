@@ -6,6 +6,9 @@
 //! - `fill-bound cube`: the seeds' cube filling a 320×240 screen.
 //! - `tiny triangles`: 2000 triangles of a few pixels each, screen space (setup cost).
 //! - `transform`: the bunny's 1839 vertices transformed and projected alone.
+//! - `scene`: bunny-320 with two cubes (12 triangles each) beside it, each object its own
+//!   model matrix, drawn as one `Scene`: whole frame, and in 16-row bands with every
+//!   object binned.
 //!
 //! Times on a shared host move around; the instruction counts in the README (callgrind,
 //! QEMU) are the figures to compare across commits.
@@ -16,10 +19,10 @@ use embedded_graphics::prelude::*;
 use std::hint::black_box;
 use zraster::{
     camera::{Camera, Viewport},
-    math::{radians, Vec3},
-    mesh::CUBE,
-    BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, ScreenVertex,
-    ZBuffer,
+    math::{radians, Mat4, Vec3},
+    mesh::{Mesh, CUBE, CUBE_POSITIONS},
+    BandBuffers, Bands, CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, Scene,
+    ScreenVertex, ZBuffer,
 };
 
 use zraster_bench_scene::{self as scene, bunny, H, W};
@@ -117,5 +120,83 @@ fn benches(c: &mut Criterion) {
     });
 }
 
-criterion_group!(render, benches);
+/// The unit cube as 12 triangles, outward (binning wants triangles).
+const CUBE_TRIANGLES: [[u16; 3]; 12] = [
+    [0, 1, 2],
+    [0, 2, 3],
+    [1, 5, 6],
+    [1, 6, 2],
+    [2, 6, 7],
+    [2, 7, 3],
+    [3, 7, 4],
+    [3, 4, 0],
+    [0, 4, 5],
+    [0, 5, 1],
+    [7, 6, 5],
+    [7, 5, 4],
+];
+
+fn scene_benches(c: &mut Criterion) {
+    let n = (W * H) as usize;
+    let (mut pixels, mut depth) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
+    let (bunny_mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
+    let cube = Mesh::triangles(
+        &CUBE_POSITIONS,
+        1.0 / 16384.0,
+        &CUBE_TRIANGLES,
+        embedded_graphics::pixelcolor::Rgb888::new(90, 160, 220),
+    );
+    // Two small cubes left and right of the bunny, in the bench camera's model space.
+    let small = |x: f32| {
+        xf.with_model(
+            Mat4::translation(Vec3::new(x, -0.05, 0.0)) * Mat4::scaling(Vec3::new(0.2, 0.2, 0.2)),
+        )
+    };
+    let (left, right) = (small(-0.75), small(0.55));
+    let mut bunny_cache = vec![CachedVertex::EMPTY; bunny::BUNNY_POSITIONS.len()];
+    let (mut cache_l, mut cache_r) = ([CachedVertex::EMPTY; 8], [CachedVertex::EMPTY; 8]);
+    let rows = 16;
+    let (mut band_px, mut band_z) = (
+        vec![Rgb565::BLACK; (W * rows) as usize],
+        vec![0u16; (W * rows) as usize],
+    );
+    let bins_len = [bunny::BUNNY_INDICES.len(), 12, 12]
+        .map(|f| BandBuffers::<Rgb565>::bins_needed(f, H, rows))
+        .iter()
+        .sum();
+    let mut bins = vec![0u16; bins_len];
+    c.bench_function("scene: bunny-320 and two cubes", |b| {
+        b.iter(|| {
+            let mut frame = Frame::new(&mut pixels, &mut depth, W, H).unwrap();
+            frame.clear(Rgb565::BLACK);
+            let mut objects = [
+                Renderer::with_cache(&bunny_mesh, &xf, opts, &mut bunny_cache).unwrap(),
+                Renderer::with_cache(&cube, &left, opts, &mut cache_l).unwrap(),
+                Renderer::with_cache(&cube, &right, opts, &mut cache_r).unwrap(),
+            ];
+            let mut scene = Scene::new(&mut objects);
+            scene.draw(&mut frame).unwrap();
+            black_box(scene.stats())
+        })
+    });
+    c.bench_function("scene: bunny-320 and two cubes, banded 16", |b| {
+        b.iter(|| {
+            let mut frame = ColorBuffer::new(&mut pixels, W, H).unwrap();
+            let mut bands =
+                BandBuffers::new(&mut band_px, &mut band_z, W, rows, H, &mut bins).unwrap();
+            let mut objects = [
+                Renderer::with_cache(&bunny_mesh, &xf, opts, &mut bunny_cache).unwrap(),
+                Renderer::with_cache(&cube, &left, opts, &mut cache_l).unwrap(),
+                Renderer::with_cache(&cube, &right, opts, &mut cache_r).unwrap(),
+            ];
+            let mut scene = Scene::new(&mut objects);
+            scene
+                .draw(&mut Bands::new(&mut frame, &mut bands, Rgb565::BLACK))
+                .unwrap();
+            black_box(scene.stats())
+        })
+    });
+}
+
+criterion_group!(render, benches, scene_benches);
 criterion_main!(render);
