@@ -472,3 +472,53 @@ fn bad_input_is_an_error_never_a_panic() {
         });
     }
 }
+
+/// The textured draw's fast loop (default depth test, one light a face, a repeating
+/// power-of-two texture) where pixels fail the depth test: the cube drawn without
+/// culling (its back faces behind its front ones, in every order), over a large cube
+/// drawn first that hides part of it, on a 96-pixel-wide frame (rows of many whole
+/// segments). The texel shader, which takes the general loop, is the reference.
+#[test]
+fn the_fast_textured_loop_agrees_with_the_shader_where_pixels_fail_the_depth_test() {
+    let (w, h) = (96u32, 64u32);
+    let mut normals = [[0i16; 3]; 24];
+    let mesh = with_normals(&mut normals);
+    let wall = Mesh::triangles(&POSITIONS, 1.0 / 16384.0 * 1.1, &INDICES, Rgb888::CSS_TEAL);
+    let texture = Texture::new(&TEXELS, 8, 8).unwrap();
+    for (k, dist) in [3.0f32, 2.2].into_iter().enumerate() {
+        let cam = camera(w, h, dist, k + 3);
+        // The wall: the big cube moved half a unit right and back.
+        let wall_cam = cam.with_model(Mat4::translation(Vec3::new(0.6, 0.0, -0.9)));
+        for shading in [Shading::Flat, Shading::Lambert] {
+            for mode in [UvMode::Perspective, UvMode::Affine] {
+                let options = RenderOptions {
+                    shading,
+                    cull: zraster::Cull::None,
+                    ..Default::default()
+                };
+                let what = format!("distance {dist}, {shading:?}, {mode:?}");
+                let t = Texturing::new(&UVS, texture).with_mode(mode);
+                let mut stats = Vec::new();
+                let mut draw = |textured: bool| {
+                    frame_of(w, h, |f| {
+                        Renderer::new(&wall, &wall_cam, RenderOptions::default())?.draw(f)?;
+                        let mut r = Renderer::new(&mesh, &cam, options)?;
+                        if textured {
+                            r.draw_textured(f, &t)?;
+                        } else {
+                            r.draw_with_shader(f, &Textured::from(t))?;
+                        }
+                        stats.push(r.stats());
+                        Ok(())
+                    })
+                };
+                let (fast, general) = (draw(true), draw(false));
+                assert!(fast == general, "{what}");
+                assert_eq!(stats[0], stats[1], "{what}");
+                let s = stats[0];
+                assert!(s.pixels_written > 500, "{what}: {s:?}");
+                assert!(s.pixels_tested > s.pixels_written + 300, "{what}: {s:?}");
+            }
+        }
+    }
+}

@@ -109,40 +109,125 @@ fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
     };
     let (su, sv, w) = (32 - tex.lw, 32 - tex.lh, 1u32 << tex.lw);
     let mask = texels.len() - 1;
-    let mut buf = [colour(t0, 0); SEGMENT as usize];
+    let mut buf = [colour(t0, 0); SEG];
     let mut failed = 0;
+    let look = (texels, su, sv, w, mask);
     while let Some(s) = segments.next_segment() {
         let end = s.first + s.len;
-        let (Some(zs), Some(cs), Some(bs)) = (
-            zrow.get_mut(s.first..end),
-            crow.get_mut(s.first..end),
-            buf.get_mut(..s.len),
-        ) else {
+        let (Some(zs), Some(cs)) = (zrow.get_mut(s.first..end), crow.get_mut(s.first..end)) else {
             continue;
         };
-        let [mut u, mut v, du, dv] =
-            [s.uv.0, s.uv.1, s.step.0, s.step.1].map(|x| (x as u32) << TOP);
-        for b in bs.iter_mut() {
-            let at = ((v >> sv).wrapping_mul(w).wrapping_add(u >> su)) as usize & mask;
-            if let Some(&t) = texels.get(at) {
-                *b = colour(t, at);
-            }
-            u = u.wrapping_add(du);
-            v = v.wrapping_add(dv);
-        }
+        let uv = [s.uv.0, s.uv.1, s.step.0, s.step.1].map(|x| (x as u32) << TOP);
         // The depth at the segment's first pixel: `first` steps on.
-        let mut acc = acc.wrapping_add(dz.wrapping_mul(s.first as u32));
-        for ((d, c), b) in zs.iter_mut().zip(cs.iter_mut()).zip(bs.iter()) {
-            let z = (acc >> 16) as u16;
-            acc = acc.wrapping_add(dz);
-            if z < *d {
-                if WRITE {
-                    *d = z;
+        let acc = acc.wrapping_add(dz.wrapping_mul(s.first as u32));
+        // Whole segments with their length known to the compiler (no counts, no
+        // remainders), the others as they come.
+        let whole: (Result<&mut [u16; SEG], _>, Result<&mut [C; SEG], _>) =
+            (zs.try_into(), cs.try_into());
+        match whole {
+            (Ok(zs), Ok(cs)) => {
+                // Depths first: where all pass (mostly), the colours go straight in.
+                let fails = depth_mask::<WRITE>(zs, acc, dz);
+                if fails == 0 {
+                    texel_pass(cs, uv, look, &mut colour);
+                } else {
+                    failed += fails.count_ones();
+                    texel_pass(&mut buf, uv, look, &mut colour);
+                    for (k, (c, b)) in cs.iter_mut().zip(buf).enumerate() {
+                        if fails >> k & 1 == 0 {
+                            *c = b;
+                        }
+                    }
                 }
-                *c = *b;
-            } else {
-                crate::fill::span::one_failed(&mut failed);
             }
+            (Err(_), _) | (_, Err(_)) => {
+                let (Some(zs), Some(cs), Some(bs)) = (
+                    zrow.get_mut(s.first..end),
+                    crow.get_mut(s.first..end),
+                    buf.get_mut(..s.len),
+                ) else {
+                    continue;
+                };
+                texel_pass(bs, uv, look, &mut colour);
+                failed += depth_pass::<C, WRITE>(zs, cs, bs, acc, dz);
+            }
+        }
+    }
+    failed
+}
+
+/// Pixels a whole segment has.
+const SEG: usize = SEGMENT as usize;
+
+/// The first pass of [`pow2_span`]: the colours of a segment's pixels from u, v and their
+/// steps (`[u, v, du, dv]`, fractions of a texture in 32 bits) into `bs`.
+#[inline(always)]
+fn texel_pass<C, X: Copy>(
+    bs: &mut [C],
+    [mut u, mut v, du, dv]: [u32; 4],
+    (texels, su, sv, w, mask): (&[X], u32, u32, u32, usize),
+    colour: &mut impl FnMut(X, usize) -> C,
+) {
+    for b in bs.iter_mut() {
+        let at = ((v >> sv).wrapping_mul(w).wrapping_add(u >> su)) as usize & mask;
+        if let Some(&t) = texels.get(at) {
+            *b = colour(t, at);
+        }
+        u = u.wrapping_add(du);
+        v = v.wrapping_add(dv);
+    }
+}
+
+/// The depth test of a whole segment in [`pow2_span`]: each pixel's depth from `acc`
+/// stepped by `dz`, tested (`Less`) and written (`WRITE`). Returns the pixels that
+/// failed, bit k for the k-th.
+#[inline(always)]
+fn depth_mask<const WRITE: bool>(zs: &mut [u16; SEG], mut acc: u32, dz: u32) -> u32 {
+    let mut fails = 0;
+    for (k, d) in zs.iter_mut().enumerate() {
+        let z = (acc >> 16) as u16;
+        acc = acc.wrapping_add(dz);
+        if z < *d {
+            if WRITE {
+                *d = z;
+            }
+        } else {
+            failed_at(&mut fails, k);
+        }
+    }
+    fails
+}
+
+/// Pixel `k` (below 32) failed: out of line and cold, so that the passing path is
+/// straight code.
+#[cold]
+#[inline(never)]
+fn failed_at(fails: &mut u32, k: usize) {
+    *fails |= 1 << (k & 31);
+}
+
+/// The second pass of [`pow2_span`]: each pixel's depth from `acc` stepped by `dz`,
+/// tested (`Less`) and written (`WRITE`), and its colour from `bs` where it passes.
+/// Returns the number of pixels that failed.
+#[inline(always)]
+fn depth_pass<C: Copy, const WRITE: bool>(
+    zs: &mut [u16],
+    cs: &mut [C],
+    bs: &[C],
+    mut acc: u32,
+    dz: u32,
+) -> u32 {
+    let mut failed = 0;
+    for ((d, c), b) in zs.iter_mut().zip(cs.iter_mut()).zip(bs.iter()) {
+        let z = (acc >> 16) as u16;
+        acc = acc.wrapping_add(dz);
+        if z < *d {
+            if WRITE {
+                *d = z;
+            }
+            *c = *b;
+        } else {
+            crate::fill::span::one_failed(&mut failed);
         }
     }
     failed
