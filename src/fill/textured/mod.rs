@@ -225,7 +225,7 @@ impl UvPlanes {
             n,
         };
         if n > 0 {
-            s.uv = s.exact();
+            s.uv = SegmentSteps::of(&s).exact(s.h);
         }
         s
     }
@@ -259,35 +259,73 @@ pub(crate) struct Segments {
 }
 
 impl Segments {
+    /// The next segment.
+    #[inline(always)]
+    pub(crate) fn next_segment(&mut self) -> Option<Segment> {
+        let fixed = SegmentSteps::of(self);
+        fixed.next(&mut self.h, &mut self.uv, &mut self.i)
+    }
+}
+
+/// What does not change along a span's [`Segments`]: the steps, the range of q, the
+/// mode and the length. Split from the changing values so that a loop can keep those
+/// in locals ([`SegmentSteps::next`]).
+#[derive(Clone, Copy)]
+pub(crate) struct SegmentSteps {
+    step: [i64; 3],
+    whole: [i64; 3],
+    q_range: (i64, i64),
+    perspective: bool,
+    n: i32,
+}
+
+impl SegmentSteps {
+    #[inline(always)]
+    pub(crate) fn of(s: &Segments) -> Self {
+        SegmentSteps {
+            step: s.step,
+            whole: s.whole,
+            q_range: s.range[2],
+            perspective: s.perspective,
+            n: s.n,
+        }
+    }
+
     /// The exact coordinates where the values are `h`.
     #[inline(always)]
-    fn exact(&self) -> (i32, i32) {
+    fn exact(&self, h: [i64; 3]) -> (i32, i32) {
         if self.perspective {
-            divide(self.h)
+            divide(h)
         } else {
             // Q32 within ±2⁴⁰ (clamped to the corners'): Q16 within ±2²⁴.
             let lim = i64::from(UV_LIMIT);
             (
-                (self.h[0] >> F).clamp(-lim, lim) as i32,
-                (self.h[1] >> F).clamp(-lim, lim) as i32,
+                (h[0] >> F).clamp(-lim, lim) as i32,
+                (h[1] >> F).clamp(-lim, lim) as i32,
             )
         }
     }
 
-    /// The next segment.
+    /// The segment from pixel `*i`, where the planes' values are `h` and the exact
+    /// coordinates `uv`; all three moved on to the next segment's first pixel.
     #[inline(always)]
-    pub(crate) fn next_segment(&mut self) -> Option<Segment> {
-        let i = self.i;
-        if i >= self.n {
+    pub(crate) fn next(
+        &self,
+        h: &mut [i64; 3],
+        uv: &mut (i32, i32),
+        i: &mut i32,
+    ) -> Option<Segment> {
+        let first = *i;
+        if first >= self.n {
             return None;
         }
-        let (ua, va) = self.uv;
-        let m = (self.n - 1 - i).min(SEGMENT);
+        let (ua, va) = *uv;
+        let m = (self.n - 1 - first).min(SEGMENT);
         if m == 0 {
             // The last pixel: exact.
-            self.i = self.n;
+            *i = self.n;
             return Some(Segment {
-                first: i as usize,
+                first: first as usize,
                 len: 1,
                 uv: (ua << SHIFT, va << SHIFT),
                 step: (0, 0),
@@ -297,17 +335,17 @@ impl Segments {
         // module docs), to the steps' rounding; q is clamped to its plane's range (so
         // that it stays a divisor of the cheap divisions), the quotients to ±2²⁴.
         if m == SEGMENT {
-            for (h, step) in self.h.iter_mut().zip(self.whole) {
+            for (h, step) in h.iter_mut().zip(self.whole) {
                 *h = h.wrapping_add(step);
             }
         } else {
-            for (h, step) in self.h.iter_mut().zip(self.step) {
+            for (h, step) in h.iter_mut().zip(self.step) {
                 *h = h.wrapping_add(step.wrapping_mul(i64::from(m)));
             }
         }
-        let (lo, hi) = self.range[2];
-        self.h[2] = self.h[2].clamp(lo, hi);
-        let (ub, vb) = self.exact();
+        let (lo, hi) = self.q_range;
+        h[2] = h[2].clamp(lo, hi);
+        let (ub, vb) = self.exact(*h);
         // u and v times SEGMENT step by Δu·SEGMENT/m a pixel: Δu itself over a whole
         // segment, a floored quotient over the last, shorter one. |Δu| ≤ 2²⁵: below 2²⁹.
         let step = if m == SEGMENT {
@@ -318,10 +356,10 @@ impl Segments {
                 floor_div32((vb - va) << SHIFT, m),
             )
         };
-        self.uv = (ub, vb);
-        self.i = i + m;
+        *uv = (ub, vb);
+        *i = first + m;
         Some(Segment {
-            first: i as usize,
+            first: first as usize,
             len: m as usize,
             uv: (ua << SHIFT, va << SHIFT),
             step,

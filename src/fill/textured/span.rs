@@ -1,6 +1,6 @@
 //! The fast pixel loop of textured spans: the default depth test, one light a face.
 
-use super::{Segments, TexSetup, SEGMENT, SHIFT};
+use super::{SegmentSteps, Segments, TexSetup, SEGMENT, SHIFT};
 use crate::raster::{Clip, SpanStats};
 use crate::texture::{Texel, Texture};
 
@@ -96,7 +96,7 @@ fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
     crow: &mut [C],
     acc: u32,
     dz: u32,
-    mut segments: Segments,
+    segments: Segments,
     tex: Pow2<'_, X>,
     mut colour: impl FnMut(X, usize) -> C,
 ) -> u32 {
@@ -112,7 +112,10 @@ fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
     let mut buf = [colour(t0, 0); SEG];
     let mut failed = 0;
     let look = (texels, su, sv, w, mask);
-    while let Some(s) = segments.next_segment() {
+    // The changing values in locals, the rest apart (see `SegmentSteps`).
+    let fixed = SegmentSteps::of(&segments);
+    let (mut h, mut at_uv, mut i) = (segments.h, segments.uv, segments.i);
+    while let Some(s) = fixed.next(&mut h, &mut at_uv, &mut i) {
         let end = s.first + s.len;
         let (Some(zs), Some(cs)) = (zrow.get_mut(s.first..end), crow.get_mut(s.first..end)) else {
             continue;
