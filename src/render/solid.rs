@@ -270,6 +270,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut walk = CachedWalk::new(indices, faces, cache, self.options.cull);
         let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
         let mut clipped = FrameStats::default();
+        // The drawn faces' pixels in u32 registers, into `px` once at the end.
+        let mut counts = FillCounts::default();
         for next in walk.by_ref() {
             match next? {
                 (f, Some([a, b, c])) => {
@@ -282,7 +284,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                             continue;
                         }
                     }
-                    px.add_fill(target.fill(tri.each_ref(), shade(f)?));
+                    counts.add(target.fill(tri.each_ref(), shade(f)?), &mut px);
                 }
                 // Across a clip plane or far outside the screen: the general path (rare).
                 (f, None) => {
@@ -292,9 +294,54 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 }
             }
         }
+        counts.flush(&mut px);
         let mut st = walk.stats();
         st.add_geometry(&clipped);
         Ok((st, px))
+    }
+}
+
+/// Pixel counts summed in `u32` (two adds a face instead of two 64-bit adds through
+/// memory), handed to the 64-bit [`FrameStats`] when a sum would wrap and at the end.
+#[derive(Default)]
+pub(crate) struct FillCounts {
+    tested: u32,
+    written: u32,
+}
+
+impl FillCounts {
+    /// Add one fill's counts; when the sum of tested pixels would pass `u32::MAX`, first
+    /// move the sums into `spill` (a fill writes at most the pixels it tests, so the
+    /// written sum, never above the tested one, cannot wrap first).
+    #[inline(always)]
+    pub(crate) fn add(&mut self, s: SpanStats, spill: &mut FrameStats) {
+        let tested = self.tested.wrapping_add(s.pixels_tested);
+        if tested < self.tested {
+            self.spill(s, spill);
+            return;
+        }
+        self.tested = tested;
+        self.written = self.written.wrapping_add(s.pixels_written);
+    }
+
+    /// The rare case of [`add`](FillCounts::add): the sums into `px`, then `s` alone.
+    #[cold]
+    #[inline(never)]
+    fn spill(&mut self, s: SpanStats, px: &mut FrameStats) {
+        self.flush(px);
+        self.tested = s.pixels_tested;
+        self.written = s.pixels_written;
+    }
+
+    /// Move the sums into `px`.
+    #[inline(always)]
+    pub(crate) fn flush(&mut self, px: &mut FrameStats) {
+        px.add_fill(SpanStats {
+            pixels_tested: self.tested,
+            pixels_written: self.written,
+            runs: 0,
+        });
+        *self = FillCounts::default();
     }
 }
 
