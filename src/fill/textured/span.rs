@@ -22,6 +22,8 @@ pub(crate) struct Pow2<'a, X> {
     texels: &'a [X],
     lw: u32,
     lh: u32,
+    /// W, as a value (multiplied, not shifted: one multiply-add makes the index).
+    w: u32,
 }
 
 impl<'a, X: Texel> Fetch<'a, X> {
@@ -36,6 +38,7 @@ impl<'a, X: Texel> Fetch<'a, X> {
                     texels: t.texels(),
                     lw,
                     lh,
+                    w,
                 })
             }
             _ => Fetch::Any(*t),
@@ -107,7 +110,7 @@ fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
     let Some(&t0) = texels.first() else {
         return 0;
     };
-    let (su, sv, w) = (32 - tex.lw, 32 - tex.lh, 1u32 << tex.lw);
+    let (su, sv, w) = (32 - tex.lw, 32 - tex.lh, tex.w);
     let mask = texels.len() - 1;
     let mut buf = [colour(t0, 0); SEG];
     let mut failed = 0;
