@@ -576,20 +576,21 @@ where
                 pow2_rows(frame, zbuf, clip, &ts, tex, colour)
             }
             (Fetch::Pow2(tex), false) if !C::DITHERED => {
-                // Lit: the colour of the last texel is kept, as neighbouring pixels
-                // mostly show the same texel and lighting one costs some 60
+                // Lit: the lit colour of the last texel value is kept, as neighbouring
+                // pixels mostly show the same value and lighting one costs some 60
                 // instructions. (Undithered: the colour does not depend on the pixel.)
                 let Some(&t0) = texture.texels().first() else {
                     return stats;
                 };
-                let last = core::cell::Cell::new((0, texel_color::<X, C>(t0, i, 0, 0)));
-                let colour = |t: X, at: usize| {
-                    let (k, c) = last.get();
-                    if k == at {
+                let last = core::cell::Cell::new((t0.color(), texel_color::<X, C>(t0, i, 0, 0)));
+                let colour = |t: X, _: usize| {
+                    let (was, c) = last.get();
+                    let now = t.color();
+                    if now == was {
                         return c;
                     }
                     let c = texel_color::<X, C>(t, i, 0, 0);
-                    last.set((at, c));
+                    last.set((now, c));
                     c
                 };
                 pow2_rows(frame, zbuf, clip, &ts, tex, colour)
