@@ -16,6 +16,9 @@ use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
 use crate::render::{cached_triangle, outside_rows, per_colouring, CachedWalk, RenderState};
 use crate::shade::{Material, Shading};
+mod carry;
+use carry::ColorCarry;
+
 use crate::{
     AfterBand, BandBuffers, Bands, CachedVertex, ColorBuffer, DepthTarget, DrawError, Error,
     FrameStats, Renderer, ZBuffer,
@@ -70,6 +73,22 @@ pub enum Unbinned {
     BinsTooShort,
     /// More than 250 bands, or more than 65,534 triangles with the bands' chains.
     TooLarge,
+}
+
+impl Unbinned {
+    /// The error a banded draw returns for this reason under a state that bins or
+    /// fails ([`RenderState::BINNED_BANDS`], [`Binned`](crate::state::Binned)): an
+    /// [`Error::InvalidParameter`] naming it.
+    pub const fn error(self) -> Error {
+        Error::InvalidParameter(match self {
+            Unbinned::NoCache => "binned bands only: the renderer has no vertex cache",
+            Unbinned::Polygons => "binned bands only: the mesh has polygon faces",
+            Unbinned::Gouraud => "binned bands only: Gouraud shading does not bin",
+            Unbinned::Dithered => "binned bands only: a dithered colour type does not bin",
+            Unbinned::BinsTooShort => "binned bands only: the bins are shorter than bins_needed",
+            Unbinned::TooLarge => "binned bands only: more than 250 bands or 65,534 triangles",
+        })
+    }
 }
 
 impl core::fmt::Display for Unbinned {
@@ -159,6 +178,12 @@ where
     for r in objects.iter_mut() {
         let run = runs.next(r);
         r.bin(bins.get_mut(run).unwrap_or(&mut []), height, rows)?;
+        // A state that bins or fails: this object cannot bin, so nothing is drawn.
+        if S::BINNED_BANDS {
+            if let Binning::Off(why) = r.binning {
+                return Err(DrawError::Input(why.error()));
+            }
+        }
     }
     let mut carry = ColorCarry::new(background);
     // Whether the band buffers are still as cleared: no triangle was drawn into the
@@ -184,7 +209,9 @@ where
         let mut runs = BinRuns::new(height, rows);
         for r in objects.iter_mut() {
             let run = runs.next(r);
-            if r.binning == Binning::Binned {
+            // Under a binned-only state every object binned (checked above), and the
+            // unbinned path below is not built.
+            if S::BINNED_BANDS || r.binning == Binning::Binned {
                 let faces = BandFaces::new(bins.get(run).unwrap_or(&[]), r, nb, k);
                 touched |= !faces.is_empty();
                 r.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
@@ -345,8 +372,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         C: PixelColor,
         M: Material<C>,
     {
+        // Only triangle lists bin (see `bin`), so nothing else comes here; the general
+        // path stands in all the same, but not where binned-only leaves it out.
         let Faces::Triangles { indices, materials } = self.mesh.faces else {
-            return self.draw_fused(frame, zbuf);
+            return match S::BINNED_BANDS {
+                true => Ok(()),
+                false => self.draw_fused(frame, zbuf),
+            };
         };
         let lambert = self.shading() == Shading::Lambert;
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
@@ -491,103 +523,4 @@ pub(crate) enum Carry {
     Keep,
     /// The face came from the band above: take the colour kept there.
     Take,
-}
-
-/// How many colours [`ColorCarry`] holds; faces beyond it are lit again.
-const CARRY: usize = 64;
-
-/// The colours of the faces that reach into the band below, kept for it. That band
-/// walks them in the same order (the chain of the band above, in face order), so a
-/// queue read from its start serves. Its own faces are merged in among them, so what
-/// it keeps goes into the other half of the store, not over colours not yet taken.
-/// Lighting such a face again would cost some 70 instructions on a Cortex-M4.
-pub(crate) struct ColorCarry<C> {
-    colors: [[C; CARRY]; 2],
-    /// The half this band reads (what the band above kept); it keeps into the other.
-    read: usize,
-    /// Colours the band above kept; how many this band has taken; how many it keeps.
-    filled: usize,
-    taken: usize,
-    kept: usize,
-}
-
-impl<C: Copy> ColorCarry<C> {
-    pub(crate) fn new(fill: C) -> Self {
-        ColorCarry {
-            colors: [[fill; CARRY]; 2],
-            read: 0,
-            filled: 0,
-            taken: 0,
-            kept: 0,
-        }
-    }
-
-    /// A new band: what the band before kept is what this one takes.
-    pub(crate) fn start_band(&mut self) {
-        self.read ^= 1;
-        self.filled = self.kept;
-        self.taken = 0;
-        self.kept = 0;
-    }
-
-    /// The next carried colour, `None` past what was kept.
-    #[inline]
-    pub(crate) fn take(&mut self) -> Option<C> {
-        let i = self.taken;
-        self.taken += 1;
-        if i < self.filled {
-            self.colors.get(self.read)?.get(i).copied()
-        } else {
-            None
-        }
-    }
-
-    /// Keep `c` for the band below (dropped when full: that face is lit again there).
-    #[inline]
-    pub(crate) fn keep(&mut self, c: C) {
-        let half = self.colors.get_mut(self.read ^ 1);
-        if let Some(slot) = half.and_then(|h| h.get_mut(self.kept)) {
-            *slot = c;
-            self.kept += 1;
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The band below takes the kept colours in order; past the capacity it gets
-    /// `None` (and lights those faces again), never another face's colour.
-    #[test]
-    fn carried_colours_come_back_in_order_up_to_the_capacity() {
-        let mut carry = ColorCarry::new(0u16);
-        for kept in [0, 1, CARRY - 1, CARRY, CARRY + 5] {
-            carry.start_band();
-            // This band takes what the one before kept (checked below), then keeps its own.
-            for i in 0..kept {
-                carry.keep(i as u16 + 100);
-            }
-            carry.start_band();
-            for i in 0..kept + 3 {
-                let want = (i < kept.min(CARRY)).then_some(i as u16 + 100);
-                assert_eq!(carry.take(), want, "kept {kept}, take {i}");
-            }
-            // What this band keeps goes to the band below, whatever it took.
-            carry.keep(7);
-            carry.start_band();
-            assert_eq!((carry.take(), carry.take()), (Some(7), None));
-        }
-        // Keeping does not overwrite colours this band has still to take.
-        carry.start_band();
-        carry.keep(1);
-        carry.keep(2);
-        carry.start_band();
-        assert_eq!(carry.take(), Some(1));
-        carry.keep(30);
-        carry.keep(40);
-        assert_eq!(carry.take(), Some(2));
-        carry.start_band();
-        assert_eq!((carry.take(), carry.take()), (Some(30), Some(40)));
-    }
 }

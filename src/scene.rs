@@ -31,7 +31,8 @@ use crate::{BandBuffers, Bands};
 /// [`Scene::bins_needed`] bins: each object's triangles are then sorted by band once a
 /// frame, and each band visits only those that reach it. An object without a cache or
 /// bins (see [`Renderer::binning`]) walks its whole mesh in every band instead: slower,
-/// the same picture.
+/// the same picture; under a binned-only state
+/// ([`Binned`](crate::state::Binned)) the draw fails instead, before any band.
 ///
 /// ```
 /// use embedded_graphics::{pixelcolor::{Rgb565, Rgb888}, prelude::*};

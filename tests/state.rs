@@ -1,7 +1,8 @@
 //! Render state fixed at compile time draws exactly what the run-time choice draws:
 //! colours, depths and stats, into a frame, a display with a Z-buffer and bands; a
 //! fixed depth test replaces the Z-buffer's; a state that contradicts the options is
-//! an error.
+//! an error; a binned-only state draws the binned picture, and fails a banded draw
+//! that cannot bin.
 
 use embedded_graphics::{
     pixelcolor::{Rgb565, Rgb888},
@@ -11,9 +12,9 @@ use zraster::{
     math::{radians, Mat4, Vec3},
     mesh::{self, Mesh},
     shade::Shading,
-    state::{Dynamic, FlatLess, GouraudLess, LambertLess, RenderState},
-    BandBuffers, Bands, CachedVertex, Camera, ColorBuffer, DepthTest, Error, Frame, FrameStats,
-    RenderOptions, Renderer, Viewport, WithDepth, ZBuffer,
+    state::{Binned, Dynamic, FlatLess, GouraudLess, LambertLess, RenderState},
+    BandBuffers, Bands, Binning, CachedVertex, Camera, ColorBuffer, DepthTest, DrawError, Error,
+    Frame, FrameStats, RenderOptions, Renderer, Unbinned, Viewport, WithDepth, ZBuffer,
 };
 use zraster_bench_scene::bunny::{BUNNY_FIT, BUNNY_MESH};
 
@@ -155,4 +156,101 @@ fn a_state_that_contradicts_the_options_is_an_error() {
         let r = Renderer::new(&mesh::CUBE, &cam, options(s)).unwrap();
         assert!(r.with_state::<OnlyLessEqual>().is_ok());
     }
+}
+
+/// The bunny in bands of 16 rows with `bins` bin entries and a vertex cache or not,
+/// under state `S`: the draw's result, what the renderer says of binning, the colours.
+fn draw_banded<S: RenderState>(
+    mesh: &Mesh<'_, Rgb888>,
+    shading: Shading,
+    bins: usize,
+    cached: bool,
+) -> (
+    Result<(), DrawError<core::convert::Infallible>>,
+    Binning,
+    Vec<Rgb565>,
+) {
+    let cam = camera(40.0);
+    let mut c = vec![Rgb565::BLACK; (W * H) as usize];
+    let (mut cb, mut zb) = (
+        vec![Rgb565::BLACK; (W * 16) as usize],
+        vec![0u16; (W * 16) as usize],
+    );
+    let mut bins = vec![0u16; bins];
+    let mut cache = vec![CachedVertex::EMPTY; mesh.positions.len()];
+    let mut display = ColorBuffer::new(&mut c, W, H).unwrap();
+    let mut bands = BandBuffers::new(&mut cb, &mut zb, W, 16, H, &mut bins).unwrap();
+    let r = if cached {
+        Renderer::with_cache(mesh, &cam, options(shading), &mut cache)
+    } else {
+        Renderer::new(mesh, &cam, options(shading))
+    };
+    let mut r = r.unwrap().with_state::<S>().unwrap();
+    let result = r.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK));
+    let binning = r.binning();
+    (result, binning, c)
+}
+
+#[test]
+fn a_binned_only_state_draws_the_binned_picture() {
+    let mesh = BUNNY_MESH;
+    let n = BandBuffers::<Rgb565>::bins_needed(mesh.face_count(), H, 16);
+    let (result, binning, picture) =
+        draw_banded::<Binned<LambertLess>>(&mesh, Shading::Lambert, n, true);
+    assert_eq!((result, binning), (Ok(()), Binning::Binned));
+    let (_, _, want) = draw_banded::<LambertLess>(&mesh, Shading::Lambert, n, true);
+    assert_eq!(picture, want);
+    assert!(
+        picture.iter().any(|&p| p != Rgb565::BLACK),
+        "the bunny is in view"
+    );
+    // Flat colours too, and over the run-time state.
+    let (result, _, picture) = draw_banded::<Binned<Dynamic>>(&mesh, Shading::Flat, n, true);
+    let (_, _, want) = draw_banded::<Dynamic>(&mesh, Shading::Flat, n, true);
+    assert_eq!((result, picture), (Ok(()), want));
+}
+
+#[test]
+fn a_binned_only_state_fails_a_banded_draw_that_cannot_bin() {
+    let mesh = BUNNY_MESH;
+    let n = BandBuffers::<Rgb565>::bins_needed(mesh.face_count(), H, 16);
+    let cases = [
+        (mesh, Shading::Lambert, n, false, Unbinned::NoCache),
+        (mesh, Shading::Lambert, n - 1, true, Unbinned::BinsTooShort),
+        (mesh, Shading::Lambert, 0, true, Unbinned::BinsTooShort),
+        (mesh::CUBE, Shading::Lambert, 1000, true, Unbinned::Polygons),
+        (mesh, Shading::Gouraud, n, true, Unbinned::Gouraud),
+    ];
+    for (m, shading, bins, cached, why) in cases {
+        if shading == Shading::Gouraud && m.vertex_normals.is_none() {
+            continue;
+        }
+        let (result, binning, picture) = draw_banded::<Binned<Dynamic>>(&m, shading, bins, cached);
+        assert_eq!(result, Err(DrawError::Input(why.error())), "{why:?}");
+        assert_eq!(binning, Binning::Off(why));
+        assert!(
+            picture.iter().all(|&p| p == Rgb565::BLACK),
+            "{why:?}: nothing drawn"
+        );
+        // The run-time state draws the same picture unbinned instead.
+        let (result, binning, _) = draw_banded::<Dynamic>(&m, shading, bins, cached);
+        assert_eq!((result, binning), (Ok(()), Binning::Off(why)));
+    }
+    // The error names the reason.
+    assert_eq!(
+        Unbinned::NoCache.error(),
+        Error::InvalidParameter("binned bands only: the renderer has no vertex cache")
+    );
+    // Whole frames need no bins: a binned-only state draws them as ever.
+    let cam = camera(40.0);
+    let n = (W * H) as usize;
+    let (mut c, mut z) = (vec![Rgb565::BLACK; n], vec![0u16; n]);
+    let mut frame = Frame::new(&mut c, &mut z, W, H).unwrap();
+    frame.clear(Rgb565::BLACK);
+    let mut r = Renderer::new(&mesh, &cam, options(Shading::Lambert))
+        .unwrap()
+        .with_state::<Binned<LambertLess>>()
+        .unwrap();
+    assert_eq!(r.draw(&mut frame), Ok(()));
+    assert!(r.stats().pixels_written > 500);
 }

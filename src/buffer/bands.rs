@@ -76,7 +76,8 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
 /// With a vertex cache ([`Renderer::with_cache`]), a triangle mesh, flat or Lambert
 /// shading and enough bins ([`BandBuffers::bins_needed`]), the visible triangles are
 /// sorted by band first, so each band only visits the triangles that reach it; without
-/// them every band walks the whole mesh.
+/// them every band walks the whole mesh (or, under a binned-only state,
+/// [`Binned`](crate::state::Binned), the draw fails with the reason).
 ///
 /// ```
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::Rgb565, prelude::*};

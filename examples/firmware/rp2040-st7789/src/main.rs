@@ -6,8 +6,11 @@
 //! GP13. Build: `cargo build --release` in this folder; flash the ELF with a probe
 //! (`probe-rs run --chip RP2040 …`) or convert it to UF2 (`elf2uf2-rs`).
 //!
-//! RAM: band colour and depth 240 × 8 × (2 + 2) = 7,680 B, vertex cache 1839 × 8 =
-//! 14,712 B, bins 3,796 × 2 = 7,592 B; the bunny's tables stay in flash. With zraster's
+//! RAM: band colour and depth 240 × 8 × (2 + 2) = 7,680 B, vertex caches (1839 + 8) ×
+//! 8 = 14,776 B, bins 3,796 × 2 = 7,592 B (the cube uses the front of the bunny's);
+//! the bunny's tables stay in flash. Both meshes are triangle lists with a vertex cache,
+//! so every band draw bins its triangles: the state `Binned<LambertLess>` leaves the
+//! unbinned path out of the firmware. With zraster's
 //! `ram-code` feature its innermost pixel loops (about 1.2 KB) run from RAM, out of the
 //! way of the 16 KiB flash cache. 8-row bands rather than 16 save 7.7 KB of RAM for
 //! about 8 % more instructions a frame (bunny-320 on the M0+ under QEMU: 5,824,920
@@ -27,9 +30,9 @@ use rp2040_hal::{self as hal, clocks::{init_clocks_and_plls, Clock}, gpio::Funct
 use zraster::{
     camera::{Camera, Viewport},
     math::{radians, Mat4, Vec3},
-    mesh::{Faces, Materials, Mesh, CUBE},
+    mesh::{Faces, Materials, Mesh, CUBE_POSITIONS},
     shade::Shading,
-    state::LambertLess, BandBuffers, Bands, CachedVertex, RenderOptions, Renderer,
+    state::{Binned, LambertLess}, BandBuffers, Bands, CachedVertex, RenderOptions, Renderer,
 };
 use zraster_bench_scene::bunny;
 
@@ -48,6 +51,31 @@ static mut BAND_COLOR: [Rgb565; BAND] = [Rgb565::BLACK; BAND];
 static mut BAND_DEPTH: [u16; BAND] = [0; BAND];
 static mut BINS_BUF: [u16; BINS] = [0; BINS];
 static mut CACHE: [CachedVertex; bunny::BUNNY_POSITIONS.len()] = [CachedVertex::EMPTY; bunny::BUNNY_POSITIONS.len()];
+static mut CUBE_CACHE: [CachedVertex; 8] = [CachedVertex::EMPTY; 8];
+
+/// zraster's unit cube (`mesh::CUBE`) as triangles, each face fanned from its first
+/// vertex as polygons are drawn, so that it bins: bottom, right, front, left, back, top.
+const CUBE_TRIANGLES: [[u16; 3]; 12] = [
+    [0, 1, 2], [0, 2, 3], [1, 5, 6], [1, 6, 2], [2, 6, 7], [2, 7, 3],
+    [3, 7, 4], [3, 4, 0], [0, 4, 5], [0, 5, 1], [7, 6, 5], [7, 5, 4],
+];
+/// Its colours, one a triangle: `mesh::CUBE_FACES`' (red, green, blue, yellow, purple,
+/// light blue), twice each.
+const CUBE_COLORS: [Rgb888; 12] = {
+    let faces = [(255, 0, 0), (0, 255, 0), (0, 0, 255), (255, 255, 0), (128, 0, 128), (0, 255, 255)];
+    let mut c = [Rgb888::BLACK; 12];
+    let mut i = 0;
+    while i < 12 {
+        let (r, g, b) = faces[i / 2];
+        c[i] = Rgb888::new(r, g, b);
+        i += 1;
+    }
+    c
+};
+const CUBE: Mesh<'static, Rgb888> = Mesh {
+    faces: Faces::Triangles { indices: &CUBE_TRIANGLES, materials: Materials::PerFace(&CUBE_COLORS) },
+    ..Mesh::triangles(&CUBE_POSITIONS, 1.0 / 16384.0, &CUBE_TRIANGLES, Rgb888::BLACK)
+};
 
 #[hal::entry]
 fn main() -> ! {
@@ -92,12 +120,13 @@ fn main() -> ! {
     backlight.set_high().unwrap();
 
     // SAFETY: main never returns and these statics are borrowed only here, once.
-    let (band_color, band_depth, bins, cache) = unsafe {
+    let (band_color, band_depth, bins, cache, cube_cache) = unsafe {
         (
             &mut *addr_of_mut!(BAND_COLOR),
             &mut *addr_of_mut!(BAND_DEPTH),
             &mut *addr_of_mut!(BINS_BUF),
             &mut *addr_of_mut!(CACHE),
+            &mut *addr_of_mut!(CUBE_CACHE),
         )
     };
     let mut bunny: Mesh<'static, Rgb888> = bunny::BUNNY_MESH;
@@ -116,13 +145,14 @@ fn main() -> ! {
         // The first half of each turn shows the cube, the second the bunny.
         if (frame / 60) % 2 == 0 {
             let xf = camera.with_model(spin * Mat4::scaling(Vec3::new(1.2, 1.2, 1.2)) * Mat4::translation(Vec3::new(-0.5, -0.5, -0.5)));
-            // Lambert and `Less` fixed at compile time: only their code is linked.
-            let mut renderer = Renderer::new(&CUBE, &xf, options).unwrap().with_state::<LambertLess>().unwrap();
+            // Lambert, `Less` and binned bands fixed at compile time: only their code is
+            // linked (a draw that cannot bin is an error, not a slower path).
+            let mut renderer = Renderer::with_cache(&CUBE, &xf, options, cube_cache).unwrap().with_state::<Binned<LambertLess>>().unwrap();
             renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK)).ok();
         } else {
             let fit = bunny::BUNNY_FIT * 1.4;
             let xf = camera.with_model(spin * Mat4::scaling(Vec3::new(fit, fit, fit)));
-            let mut renderer = Renderer::with_cache(&bunny, &xf, options, cache).unwrap().with_state::<LambertLess>().unwrap();
+            let mut renderer = Renderer::with_cache(&bunny, &xf, options, cache).unwrap().with_state::<Binned<LambertLess>>().unwrap();
             renderer.draw(&mut Bands::new(&mut display, &mut bands, Rgb565::BLACK)).ok();
         }
         frame = frame.wrapping_add(1);

@@ -1,0 +1,101 @@
+//! The colours of faces that reach into the band below, carried to it ([`ColorCarry`])
+//! so that they are not lit again.
+
+/// How many colours [`ColorCarry`] holds; faces beyond it are lit again.
+const CARRY: usize = 64;
+
+/// The colours of the faces that reach into the band below, kept for it. That band
+/// walks them in the same order (the chain of the band above, in face order), so a
+/// queue read from its start serves. Its own faces are merged in among them, so what
+/// it keeps goes into the other half of the store, not over colours not yet taken.
+/// Lighting such a face again would cost some 70 instructions on a Cortex-M4.
+pub(crate) struct ColorCarry<C> {
+    colors: [[C; CARRY]; 2],
+    /// The half this band reads (what the band above kept); it keeps into the other.
+    read: usize,
+    /// Colours the band above kept; how many this band has taken; how many it keeps.
+    filled: usize,
+    taken: usize,
+    kept: usize,
+}
+
+impl<C: Copy> ColorCarry<C> {
+    pub(crate) fn new(fill: C) -> Self {
+        ColorCarry {
+            colors: [[fill; CARRY]; 2],
+            read: 0,
+            filled: 0,
+            taken: 0,
+            kept: 0,
+        }
+    }
+
+    /// A new band: what the band before kept is what this one takes.
+    pub(crate) fn start_band(&mut self) {
+        self.read ^= 1;
+        self.filled = self.kept;
+        self.taken = 0;
+        self.kept = 0;
+    }
+
+    /// The next carried colour, `None` past what was kept.
+    #[inline]
+    pub(crate) fn take(&mut self) -> Option<C> {
+        let i = self.taken;
+        self.taken += 1;
+        if i < self.filled {
+            self.colors.get(self.read)?.get(i).copied()
+        } else {
+            None
+        }
+    }
+
+    /// Keep `c` for the band below (dropped when full: that face is lit again there).
+    #[inline]
+    pub(crate) fn keep(&mut self, c: C) {
+        let half = self.colors.get_mut(self.read ^ 1);
+        if let Some(slot) = half.and_then(|h| h.get_mut(self.kept)) {
+            *slot = c;
+            self.kept += 1;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The band below takes the kept colours in order; past the capacity it gets
+    /// `None` (and lights those faces again), never another face's colour.
+    #[test]
+    fn carried_colours_come_back_in_order_up_to_the_capacity() {
+        let mut carry = ColorCarry::new(0u16);
+        for kept in [0, 1, CARRY - 1, CARRY, CARRY + 5] {
+            carry.start_band();
+            // This band takes what the one before kept (checked below), then keeps its own.
+            for i in 0..kept {
+                carry.keep(i as u16 + 100);
+            }
+            carry.start_band();
+            for i in 0..kept + 3 {
+                let want = (i < kept.min(CARRY)).then_some(i as u16 + 100);
+                assert_eq!(carry.take(), want, "kept {kept}, take {i}");
+            }
+            // What this band keeps goes to the band below, whatever it took.
+            carry.keep(7);
+            carry.start_band();
+            assert_eq!((carry.take(), carry.take()), (Some(7), None));
+        }
+        // Keeping does not overwrite colours this band has still to take.
+        carry.start_band();
+        carry.keep(1);
+        carry.keep(2);
+        carry.start_band();
+        assert_eq!(carry.take(), Some(1));
+        carry.keep(30);
+        carry.keep(40);
+        assert_eq!(carry.take(), Some(2));
+        carry.start_band();
+        assert_eq!((carry.take(), carry.take()), (Some(30), Some(40)));
+    }
+}
