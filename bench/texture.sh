@@ -4,7 +4,9 @@
 # shift=0 (exact and repeatable): bench/mcu-texture draws bench/mcu's fill-bound cube
 # (320×240 pixels of the cube's front face) untextured (the reference, bench/mcu's
 # "fill-bound cube" figure), then with a 64×64 RGB565 checker from flash,
-# perspective-correct, affine, and perspective-correct under Lambert light.
+# perspective-correct, affine, and perspective-correct under Lambert light; then through
+# the pixel-shader hook (Renderer::draw_with_shader): the texel shader, which must give
+# the perspective-correct picture, and fog over it.
 # Needs qemu-system-arm and the two rustup targets (see ../shared/QEMU-CORTEX-M.md).
 # Fails when a firmware fails, or when a textured picture differs between the two
 # targets or from the host's (tests/texture.rs pins its checksum).
@@ -28,6 +30,8 @@ for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   grep -E 'per pixel' "$out" || true
   grep -q "textured fill-bound cube, perspective-correct: .* (checksum $want)" "$out" ||
     { echo "the perspective-correct picture on $target is not the host's (checksum $want)"; status=1; }
+  grep -q "textured fill-bound cube, shader Textured: .* (checksum $want)" "$out" ||
+    { echo "the texel shader's picture on $target is not draw_textured's (checksum $want)"; status=1; }
   sums+=("$(sed -n 's/^textured.*(checksum \([0-9a-f]*\))$/\1/p' "$out" | tr '\n' ' ')")
 done
 if [ ${#sums[@]} = 2 ] && [ "${sums[0]}" != "${sums[1]}" ]; then

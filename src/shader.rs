@@ -178,9 +178,9 @@ impl<'a, T: Texel> Textured<'a, T> {
 
 impl<C, M, T> PixelShader<C, M> for Textured<'_, T>
 where
-    C: DisplayColor,
+    C: DisplayColor + 'static,
     T: Texel,
-    T::Color: Into<Rgb888>,
+    T::Color: Into<Rgb888> + 'static,
 {
     #[inline]
     fn uvs(&self) -> Option<(&[MeshUv], UvMode)> {
@@ -189,7 +189,16 @@ where
 
     #[inline(always)]
     fn shade(&self, f: &Fragment<M>) -> C {
-        self.texture.lit(f.uv, f.light, f.x, f.y)
+        let c = self.texture.sample(f.uv);
+        // At full light on an undithered display of the texel's own colour type, the
+        // texel itself (the same colour, without the way through Rgb888; the type test
+        // is decided at compile time).
+        if f.light == ONE && !C::DITHERED {
+            if let Some(&same) = (&c as &dyn core::any::Any).downcast_ref::<C>() {
+                return same;
+            }
+        }
+        C::lit(c.into(), f.light, f.x, f.y)
     }
 }
 
@@ -197,8 +206,10 @@ where
 /// none at depth `near` and nearer, all of it at `far` and beyond. Towards black it is
 /// the classic depth cueing.
 ///
-/// At depth z the fog's share is `t = ⌊256·(z − near)/(far − near)⌋` (clamped to
-/// 0..=256) and each channel of the inner shader's `Rgb888` colour `c` becomes
+/// At depth z the fog's share t (in 1/256) is 0 up to `near`, 256 from `far` on, and
+/// between `⌊(z − near)·R / 2¹⁶⌋` with `R = ⌊2²⁴ / (far − near)⌋`: 256·(z − near)/(far −
+/// near) by a multiply (no division per pixel; at most one below the exact quotient's
+/// floor). Each channel of the inner shader's `Rgb888` colour `c` becomes
 /// `(c·(256 − t) + fog·t + 128) / 256` (floored), then the display's colour type (as
 /// an `Rgb888` material at full light: dithered on dithered types).
 ///
@@ -215,7 +226,7 @@ where
 ///     PixelShader::<Rgb888>::shade(&fog, &f)
 /// };
 /// assert_eq!(at(500), Rgb888::RED);
-/// assert_eq!(at(2000), Rgb888::new(255, 128, 128)); // half way: t = 128
+/// assert_eq!(at(2000), Rgb888::new(255, 127, 127)); // half way: t = ⌊1000·8388 / 2¹⁶⌋ = 127
 /// assert_eq!(at(9000), Rgb888::WHITE);
 /// assert!(Fog::new(red, f32::NAN, 0.9, Rgb888::WHITE).is_err());
 /// # Ok::<(), zraster::Error>(())
@@ -226,6 +237,8 @@ pub struct Fog<S> {
     near: u16,
     /// far − near, at least 1.
     range: u16,
+    /// ⌊2²⁴ / range⌋.
+    recip: u32,
     color: Rgb888,
 }
 
@@ -254,21 +267,26 @@ impl<S> Fog<S> {
         if near >= far {
             return Err(Error::InvalidParameter("fog needs near < far"));
         }
+        let range = far - near;
         Ok(Fog {
             inner,
             near,
-            range: far - near,
+            range,
+            recip: (1 << 24) / u32::from(range),
             color,
         })
     }
 
     /// The fog's share at Z-buffer depth `depth`, in 1/256: 0 at `near` and nearer, 256
-    /// at `far` and beyond.
+    /// at `far` and beyond, `⌊(depth − near)·⌊2²⁴ / (far − near)⌋ / 2¹⁶⌋` between.
     #[inline]
     pub fn amount(&self, depth: u16) -> u32 {
-        let d = u32::from(depth.saturating_sub(self.near)).min(u32::from(self.range));
-        // d ≤ range < 2¹⁶: the product is below 2²⁴.
-        (d << 8) / u32::from(self.range)
+        let d = depth.saturating_sub(self.near);
+        if d >= self.range {
+            return 256;
+        }
+        // d < range: d·R < 2²⁴, and the share below 256.
+        (u32::from(d) * self.recip) >> 16
     }
 
     /// `c` with the fog's share `t` (in 1/256) of the fog colour.

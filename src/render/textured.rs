@@ -1,5 +1,5 @@
 //! Textured drawing: [`Renderer::draw_textured`] draws a mesh with texture coordinates
-//! and a [`Texture`] with the Z-buffer, into the same three targets as
+//! and a [`Texture`](crate::texture::Texture) with the Z-buffer, into the same three targets as
 //! [`Renderer::draw`]: a [`Frame`], a [`WithDepth`] and [`Bands`]
 //! ([`TexturedTarget`]).
 //!
@@ -19,9 +19,9 @@ use embedded_graphics::pixelcolor::Rgb888;
 use super::walk::Corner;
 use super::*;
 use crate::buffer::{AfterBand, Bands, Frame};
-use crate::fill::{fill_textured_buffers, fill_textured_runs, TexCorners};
 #[cfg(doc)]
 use crate::fill::UvMode;
+use crate::fill::{fill_textured_buffers, fill_textured_runs, TexCorners};
 use crate::raster::SpanStats;
 use crate::shade::DisplayColor;
 use crate::shader::{Fragment, PixelShader};

@@ -4,7 +4,8 @@
 //! the CMSDK timer count exactly one tick per 40 executed instructions, so the figures
 //! are the same from run to run. The scene is `bench/mcu`'s fill-bound cube (the cube's
 //! front face close up, covering all 320×240 pixels), drawn untextured (the reference)
-//! and with a 64×64 RGB565 checker from flash, perspective-correct and affine.
+//! and with a 64×64 RGB565 checker from flash, perspective-correct and affine, and
+//! through the pixel-shader hook (the texel shader, and fog over it).
 #![no_std]
 #![no_main]
 
@@ -12,13 +13,17 @@ use core::ptr::{addr_of_mut, read_volatile, write_volatile};
 
 use cortex_m_rt::entry;
 use cortex_m_semihosting::{debug, hprintln};
-use embedded_graphics::{pixelcolor::Rgb565, prelude::*};
+use embedded_graphics::{
+    pixelcolor::{Rgb565, Rgb888},
+    prelude::*,
+};
 use panic_semihosting as _;
 use zraster::{
     camera::{Camera, Viewport},
     math::{radians, Vec3},
     mesh::{CUBE, CUBE_POSITIONS},
     shade::Shading,
+    shader::{Fog, Textured},
     texture::{MeshUv, Texture},
     Frame, RenderOptions, Renderer, Texturing, UvMode,
 };
@@ -182,6 +187,27 @@ fn main() -> ! {
         let mut r = Renderer::new(&CUBE, &camera, options).unwrap();
         let t = Texturing::new(&CUBE_UVS, texture).with_mode(mode);
         let (_, n) = measure(|| r.draw_textured(&mut frame, &t).unwrap());
+        let written = r.stats().pixels_written as u32;
+        report(what, n, written, checksum(frame.color().as_slice()));
+    }
+    // The same cube through the pixel-shader hook (the general loop, a shader inlined
+    // in it): the texel shader (the perspective-correct picture again) and fog over it.
+    let options = RenderOptions::default();
+    let textured = Textured::new(&CUBE_UVS, texture);
+    // The face is at window depth 0.673 (0.3 units away): 58 % fog.
+    let fog = Fog::new(textured, 0.5, 0.8, Rgb888::new(170, 180, 190)).unwrap();
+    for (what, fogged) in [
+        ("textured fill-bound cube, shader Textured", false),
+        ("textured fill-bound cube, shader Fog(Textured)", true),
+    ] {
+        let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
+        frame.clear(Rgb565::BLACK);
+        let mut r = Renderer::new(&CUBE, &camera, options).unwrap();
+        let (_, n) = if fogged {
+            measure(|| r.draw_with_shader(&mut frame, &fog).unwrap())
+        } else {
+            measure(|| r.draw_with_shader(&mut frame, &textured).unwrap())
+        };
         let written = r.stats().pixels_written as u32;
         report(what, n, written, checksum(frame.color().as_slice()));
     }

@@ -13,7 +13,7 @@ const RUN: usize = 32;
 
 /// Fill a textured triangle into any draw target through a Z-buffer: each row's passing
 /// pixels as runs of colours (`fill_contiguous`, at most [`RUN`] pixels each), the same
-/// colours as [`fill_textured_buffers`].
+/// colours as [`fill_textured_buffers`](super::fill_textured_buffers).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn fill_textured_runs<D, X>(
     target: &mut D,

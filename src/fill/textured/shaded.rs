@@ -1,6 +1,6 @@
 //! Triangles coloured pixel by pixel by a caller's function of the position, depth,
 //! texture coordinates and light: the machinery of
-//! [`Renderer::draw_shaded`](crate::Renderer::draw_shaded), and of textured drawing
+//! [`Renderer::draw_with_shader`](crate::Renderer::draw_with_shader), and of textured drawing
 //! wherever its fast loop does not apply.
 
 use embedded_graphics::pixelcolor::PixelColor;

@@ -5,7 +5,7 @@ use crate::raster::{Clip, SpanStats};
 use crate::texture::{Texel, Texture};
 
 /// How a span's pixels find their texel from the stepped u and v (Q16 times
-/// [`SEGMENT`](super::SEGMENT)): for a repeating texture of power-of-two sizes (at least
+/// [`SEGMENT`]): for a repeating texture of power-of-two sizes (at least
 /// 2×2) by shifts ([`Pow2`]), else through [`Texture::sample_raw`].
 #[derive(Clone, Copy)]
 pub(crate) enum Fetch<'a, X> {
@@ -47,7 +47,7 @@ impl<'a, X: Texel> Fetch<'a, X> {
 }
 
 /// How far the fast loops shift stepped coordinates (Q16 times
-/// [`SEGMENT`](super::SEGMENT)) up for [`Pow2`]: to the fraction of a texture in all 32
+/// [`SEGMENT`]) up for [`Pow2`]: to the fraction of a texture in all 32
 /// bits, so that wrapping arithmetic is the repeat. ⌊u·W⌋ mod W is then the top log₂ W
 /// bits of u, for negative u too (two's complement), and the same as ⌊(u ≫ 4)·W / 2¹⁶⌋
 /// mod W (floors of divisions by powers of two compose).
