@@ -93,8 +93,9 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     }
 
     /// Send the whole buffer to `display` at its screen position with one
-    /// `fill_contiguous` (clipped to the display's bounding box first, as some drivers
-    /// do not clip `fill_contiguous` themselves).
+    /// `fill_contiguous`. A buffer that overhangs the display's bounding box is clipped
+    /// to it first (some drivers do not clip `fill_contiguous` themselves) and sent with
+    /// one `fill_contiguous` a visible row.
     pub fn flush<D: DrawTarget<Color = C>>(
         &self,
         display: &mut D,
@@ -106,25 +107,30 @@ impl<'a, C: PixelColor> ColorBuffer<'a, C> {
     fn flush_raw<D: DrawTarget<Color = C>>(&self, display: &mut D) -> Result<(), D::Error> {
         let area = self.bounding_box();
         let visible = area.intersection(&display.bounding_box());
-        if visible == area {
-            return display.fill_contiguous(&area, self.buf.data.iter().copied());
-        }
         if visible.size.width == 0 || visible.size.height == 0 {
             return Ok(());
         }
+        // The whole buffer in one piece, or each visible row in one when it overhangs
+        // the display: one call site of the driver's pixel loop for both, so that it is
+        // built (and inlined) once.
+        let whole = visible == area;
+        let pieces = if whole { 1 } else { visible.size.height };
         let w = usize::from(self.buf.width);
         let (vx, vy) = (visible.top_left.x, visible.top_left.y - self.buf.first_row);
         let vw = visible.size.width as usize;
-        let rows = self
-            .buf
-            .data
-            .chunks_exact(w)
-            .skip(vy as usize)
-            .take(visible.size.height as usize);
-        display.fill_contiguous(
-            &visible,
-            rows.flat_map(move |row| row.iter().skip(vx as usize).take(vw).copied()),
-        )
+        for i in 0..pieces {
+            let (rect, part) = if whole {
+                (area, Some(&self.buf.data[..]))
+            } else {
+                let start = (vy as usize + i as usize) * w + vx as usize;
+                let line = Point::new(vx, visible.top_left.y + i as i32);
+                let line = Rectangle::new(line, Size::new(vw as u32, 1));
+                (line, self.buf.data.get(start..start + vw))
+            };
+            let Some(part) = part else { break };
+            display.fill_contiguous(&rect, part.iter().copied())?;
+        }
+        Ok(())
     }
 
     /// The part of screen row `y` from column `x0` to `x1` (exclusive); `None` when any
@@ -261,5 +267,35 @@ impl<C: PixelColor> DrawTarget for ColorBuffer<'_, C> {
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
         crate::num::fill(self.buf.data, color);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::Gray8;
+
+    /// A band flushed into a smaller display, overhanging it at the top, bottom or
+    /// right, lands row by row exactly where its pixels belong.
+    #[test]
+    fn a_clipped_flush_sends_the_visible_pixels() {
+        let value = |x: i32, y: i32| Gray8::new((16 * y + x) as u8);
+        for first_row in [-2, 0, 3, 6] {
+            let mut px = [Gray8::new(0); 8 * 4];
+            for (i, p) in px.iter_mut().enumerate() {
+                *p = value(i as i32 % 8, first_row + i as i32 / 8);
+            }
+            let band = ColorBuffer::new_band(&mut px, 8, 4, first_row).unwrap();
+            let mut shown = [Gray8::new(255); 6 * 5];
+            let mut display = ColorBuffer::new(&mut shown, 6, 5).unwrap();
+            band.flush(&mut display).unwrap();
+            for y in 0..5 {
+                for x in 0..6 {
+                    let inside = (first_row..first_row + 4).contains(&y);
+                    let want = if inside { value(x, y) } else { Gray8::new(255) };
+                    assert_eq!(display.pixel(x, y), Some(want), "{x}, {y} from {first_row}");
+                }
+            }
+        }
     }
 }
