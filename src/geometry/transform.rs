@@ -4,7 +4,7 @@
 #![allow(clippy::indexing_slicing)]
 
 use crate::math::Mat4;
-use crate::num::shl64;
+use crate::num::{dot2_add, pack_i16, shl64, DUAL_MAC};
 use crate::Error;
 
 /// Clip-space coordinates in fixed point. x and y come in one scale, z and w in
@@ -68,13 +68,48 @@ impl Clip4 {
 /// is split as `C = hi·2¹⁴ + lo` with `|hi| ≤ 2¹³` and `0 ≤ lo < 2¹⁴` (`T` likewise,
 /// `|T_hi| ≤ 2²⁹`), so both partial sums stay exact in `i32`:
 /// `Σ hi·p + T_hi ≤ 3·2¹³·2¹⁵ + 2²⁹ < 2³¹` and `Σ lo·p + T_lo < 3·2¹⁴·2¹⁵ + 2¹⁴ < 2³¹`.
-/// The M0+'s single-cycle `MULS` suffices for all of it.
+/// The M0+'s single-cycle `MULS` suffices for all of it; a core with the DSP extension
+/// takes `c₀·x + c₁·y` in one dual multiply-accumulate ([`Row`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FixedTransform {
-    xy: [[i32; 4]; 2],
-    hi: [[i32; 4]; 2],
-    lo: [[i32; 4]; 2],
+    xy: [Row; 2],
+    hi: [Row; 2],
+    lo: [Row; 2],
     s: f32,
+}
+
+/// One row of [`FixedTransform`], `c₀·x + c₁·y + c₂·z + t`. Every coefficient fits 16
+/// bits (|c| ≤ 16383): `c₀` and `c₁` are kept packed ([`pack_i16`]), for the dual
+/// multiply-accumulate of cores that have one ([`dot2_add`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Row {
+    c01: u32,
+    c2: i32,
+    t: i32,
+}
+
+impl Row {
+    /// The row of coefficients `c` (each within ±16383) and translation `t`.
+    fn new([c0, c1, c2]: [i32; 3], t: i32) -> Row {
+        let half = |v: i32| v.clamp(-16383, 16383) as i16;
+        Row {
+            c01: pack_i16(half(c0), half(c1)),
+            c2,
+            t,
+        }
+    }
+
+    /// The row at `(x, y, z)`, with `xy` the pair `(x, y)` packed ([`pack_i16`]).
+    #[inline(always)]
+    fn at(&self, xy: u32, [x, y, z]: [i32; 3]) -> i32 {
+        let zt = self.c2 * z + self.t;
+        if DUAL_MAC {
+            dot2_add(xy, self.c01, zt)
+        } else {
+            let (c0, c1) = (i32::from(self.c01 as i16), (self.c01 as i32) >> 16);
+            c0 * x + c1 * y + zt
+        }
+    }
 }
 
 impl FixedTransform {
@@ -113,39 +148,45 @@ impl FixedTransform {
         }
         let kxy = fit_exponent(mxy, txy, 16383, 1 << 29);
         let kzw = fit_exponent(mzw, tzw, (1 << 27) - (1 << 14), 1 << 43);
-        let mut out = FixedTransform {
-            xy: [[0; 4]; 2],
-            hi: [[0; 4]; 2],
-            lo: [[0; 4]; 2],
-            s: pow2_f32(kzw - kxy),
-        };
+        let (mut xy, mut hi, mut lo) = ([[0; 4]; 2], [[0; 4]; 2], [[0; 4]; 2]);
         for r in 0..4 {
             for c in 0..4 {
                 // Coefficients carry the mesh scale; the translation column does not.
                 let v = coef(r, c);
                 if r < 2 {
                     let max = if c < 3 { 16383 } else { 1 << 29 };
-                    out.xy[r][c] = v.round_scaled(kxy, max) as i32;
+                    xy[r][c] = v.round_scaled(kxy, max) as i32;
                 } else {
                     let v = v.round_scaled(kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
                     // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
-                    out.hi[r - 2][c] = (v >> 14) as i32;
-                    out.lo[r - 2][c] = (v & 0x3fff) as i32;
+                    hi[r - 2][c] = (v >> 14) as i32;
+                    lo[r - 2][c] = (v & 0x3fff) as i32;
                 }
             }
         }
-        Ok(out)
+        Ok(FixedTransform::from_rows(xy, hi, lo, pow2_f32(kzw - kxy)))
+    }
+
+    /// The transform of the rows `[c₀, c₁, c₂, t]` (coefficients within ±16383).
+    fn from_rows(xy: [[i32; 4]; 2], hi: [[i32; 4]; 2], lo: [[i32; 4]; 2], s: f32) -> Self {
+        let rows = |m: [[i32; 4]; 2]| m.map(|[c0, c1, c2, t]| Row::new([c0, c1, c2], t));
+        FixedTransform {
+            xy: rows(xy),
+            hi: rows(hi),
+            lo: rows(lo),
+            s,
+        }
     }
 
     /// Transform one position to clip space.
     #[inline]
     pub(crate) fn apply(&self, p: &[i16; 3]) -> Clip4 {
-        let (x, y, z) = (i32::from(p[0]), i32::from(p[1]), i32::from(p[2]));
-        let row = |m: &[i32; 4]| m[0] * x + m[1] * y + m[2] * z + m[3];
+        let xy = pack_i16(p[0], p[1]);
+        let p = p.map(i32::from);
         Clip4 {
-            xy: [row(&self.xy[0]), row(&self.xy[1])],
-            hi: [row(&self.hi[0]), row(&self.hi[1])],
-            lo: [row(&self.lo[0]), row(&self.lo[1])],
+            xy: [self.xy[0].at(xy, p), self.xy[1].at(xy, p)],
+            hi: [self.hi[0].at(xy, p), self.hi[1].at(xy, p)],
+            lo: [self.lo[0].at(xy, p), self.lo[1].at(xy, p)],
             s: self.s,
         }
     }
@@ -406,25 +447,25 @@ mod tests {
             let r = if r >= 0.0 { r + 0.5 } else { r - 0.5 };
             (r as i64).clamp(-max, max)
         };
-        let mut out = FixedTransform {
-            xy: [[0; 4]; 2],
-            hi: [[0; 4]; 2],
-            lo: [[0; 4]; 2],
-            s: pow2_f64(kzw - kxy) as f32,
-        };
+        let (mut xy, mut hi, mut lo) = ([[0; 4]; 2], [[0; 4]; 2], [[0; 4]; 2]);
         for r in 0..4 {
             for c in 0..4 {
                 let v = value(r, c);
                 if r < 2 {
-                    out.xy[r][c] = q(v, kxy, if c < 3 { 16383 } else { 1 << 29 }) as i32;
+                    xy[r][c] = q(v, kxy, if c < 3 { 16383 } else { 1 << 29 }) as i32;
                 } else {
                     let v = q(v, kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
-                    out.hi[r - 2][c] = (v >> 14) as i32;
-                    out.lo[r - 2][c] = (v & 0x3fff) as i32;
+                    hi[r - 2][c] = (v >> 14) as i32;
+                    lo[r - 2][c] = (v & 0x3fff) as i32;
                 }
             }
         }
-        Ok(out)
+        Ok(FixedTransform::from_rows(
+            xy,
+            hi,
+            lo,
+            pow2_f64(kzw - kxy) as f32,
+        ))
     }
 
     /// The integer set-up gives exactly the `f64` one's transform: for random matrices

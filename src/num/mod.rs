@@ -137,6 +137,9 @@ pub(crate) const THUMB2: bool = cfg!(zraster_thumb2);
 /// A divide instruction (everything but ARMv6-M): a division costs about as much as
 /// a multiply, so loops may divide where a DDA would step.
 pub(crate) const DIVIDE: bool = !ARMV6M;
+/// The DSP extension (ARMv7E-M: Cortex-M4, M7): two 16 × 16-bit products summed into
+/// an accumulator in one instruction ([`dot2_add`]).
+pub(crate) const DUAL_MAC: bool = cfg!(all(zraster_thumb, zraster_dsp));
 /// 32-bit Arm of either kind.
 pub(crate) const ARM: bool = ARMV6M || THUMB2;
 /// 64-bit registers and a 64-bit divide instruction (x86-64, AArch64).
@@ -177,6 +180,20 @@ pub(crate) fn mul_i64_i32(a: i64, b: i32) -> i64 {
         return a.wrapping_mul(i64::from(b));
     }
     mul_small_parts(a, b)
+}
+
+/// `acc + a₀·b₀ + a₁·b₁` (wrapping) for pairs of signed 16-bit values packed as the low
+/// and high halves of `a` and `b` ([`pack_i16`]): one `SMLAD` where [`DUAL_MAC`] (the
+/// assembly of [`kernel`]), else its portable twin.
+#[inline(always)]
+pub(crate) fn dot2_add(a: u32, b: u32, acc: i32) -> i32 {
+    kernel::smlad(a, b, acc)
+}
+
+/// `lo` and `hi` as the low and high halves of a word, for [`dot2_add`].
+#[inline(always)]
+pub(crate) fn pack_i16(lo: i16, hi: i16) -> u32 {
+    u32::from(lo as u16) | u32::from(hi as u16) << 16
 }
 
 /// `v << s` (wrapping) for `s < 32`. ARMv6-M shifts 64-bit values by a variable

@@ -2,15 +2,19 @@
 //! other target runs, and what the host tests and the QEMU bench check the assembly
 //! against (`bench/mcu` compares them on the Cortex-M4F and M0+ for every length and
 //! alignment it tries, and fails otherwise). Two loops: the frame clear
-//! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16)).
+//! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16));
+//! and one instruction, the vertex transform's dual multiply-accumulate
+//! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill` and `span`, each with `#![allow(unsafe_code)]`).
+//! (`fill`, `span` and `mac`, each with `#![allow(unsafe_code)]`).
 
 mod fill;
+mod mac;
 mod span;
 
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
+pub(crate) use mac::smlad;
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
