@@ -253,7 +253,7 @@ fn fog_fades_towards_its_colour_linearly_in_depth() {
         let t = if d1[i] == 65535 {
             256
         } else {
-            u32::from(d1[i]) * 256 >> 16
+            (u32::from(d1[i]) * 256) >> 16
         };
         let mix = |a: u8| ((u32::from(a) * (256 - t) + 90 * t + 128) >> 8) as u8;
         let c = lit[i];

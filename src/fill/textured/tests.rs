@@ -1,5 +1,6 @@
 //! The textured fill's arithmetic against plain references.
 
+use super::segments::{div_clamped, divide_wide};
 use super::*;
 
 /// `div_clamped` (the divide-instruction path of `divide`) gives ⌊(h ≫ 16) / q⌋ clamped
