@@ -397,3 +397,51 @@ fn rounding_and_saturation() {
     assert_eq!(sat_i32(1 << 40), i32::MAX);
     assert_eq!(sat_i32(-(1 << 40)), i32::MIN);
 }
+
+#[test]
+fn abs_below_is_the_magnitude_test() {
+    let mut rnd = crate::testing::xorshift32(0x5eed_1234);
+    for lim in [
+        1u32,
+        2,
+        3,
+        1 << 14,
+        (1 << 14) + 1,
+        1 << 29,
+        (1 << 30) - 1,
+        1 << 30,
+    ] {
+        let l = lim as i64;
+        let edges = [
+            0,
+            1,
+            -1,
+            l - 1,
+            l,
+            l + 1,
+            -l + 1,
+            -l,
+            -l - 1,
+            i32::MAX as i64,
+            i32::MIN as i64,
+        ];
+        for c in edges.into_iter().filter_map(|c| i32::try_from(c).ok()) {
+            assert_eq!(abs_below(c, lim), c.unsigned_abs() < lim, "{c} {lim}");
+            let m = lim - 1;
+            assert_eq!(
+                c.wrapping_add(m as i32) as u32 <= 2 * m,
+                c.unsigned_abs() < lim,
+                "{c} {lim}"
+            );
+        }
+        for _ in 0..100_000 {
+            let c = rnd() as i32 >> (rnd() % 32);
+            let m = lim - 1;
+            assert_eq!(
+                c.wrapping_add(m as i32) as u32 <= 2 * m,
+                c.unsigned_abs() < lim,
+                "{c} {lim}"
+            );
+        }
+    }
+}

@@ -132,7 +132,7 @@ impl CachedVertex {
     /// The entry for a vertex with outcode `code` and screen position `v`.
     #[inline]
     pub(crate) fn new(code: u8, v: ScreenVertex) -> CachedVertex {
-        let fits = |c: i32| c.unsigned_abs() < 1 << 14;
+        let fits = |c: i32| crate::num::abs_below(c, 1 << 14);
         if code == 0 && fits(v.x()) && fits(v.y()) {
             CachedVertex {
                 x: v.x() as i16,
