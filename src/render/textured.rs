@@ -289,6 +289,12 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     ///
     /// The shader is a type parameter: its `shade` is inlined into its own pixel loop.
     ///
+    /// Every face is drawn opaque, writing depth, whatever its material's
+    /// [`alpha`](crate::shade::Material::alpha): see-through faces
+    /// ([`Translucent`](crate::shade::Translucent)) are blended by
+    /// [`draw`](Renderer::draw) and [`Scene`](crate::Scene) only (as textured faces are
+    /// drawn opaque by [`draw_textured`](Renderer::draw_textured)).
+    ///
     /// Errors: [`Error::InvalidParameter`] when the shader's UV table is shorter than
     /// the vertex table, and those of [`draw`](Renderer::draw).
     pub fn draw_with_shader<T, P>(
