@@ -294,11 +294,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         if bins.len() < needed {
             return off(self, Unbinned::BinsTooShort);
         }
-        self.binning = Binning::Binned;
         // Tails, then the links (one a triangle) and the heads as one array of slots:
         // a chain's tail starts at its head's slot, so that appending never asks whether
-        // the chain is empty.
-        let (tails, slots) = bins.split_at_mut(chains);
+        // the chain is empty. (`needed` is more than `chains`: the split does not fail.)
+        let Some((tails, slots)) = bins.split_at_mut_checked(chains) else {
+            return off(self, Unbinned::BinsTooShort);
+        };
+        self.binning = Binning::Binned;
         for (c, t) in tails.iter_mut().enumerate() {
             *t = (nt + c) as u16;
         }
