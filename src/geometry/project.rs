@@ -7,8 +7,8 @@ use super::transform::Clip4;
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::num::{
-    bits_beyond_31, mul_i64_i32, mul_wide, mul_wide_narrow, recip62, round_f32, shr64,
-    INTEGER_PROJECTION,
+    bits_beyond_31, mul_i64_i32, mul_wide, mul_wide_narrow, recip62, round_f32, scaled_ratio_parts,
+    shr64, ARMV6M, INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
 
@@ -129,6 +129,11 @@ impl ScreenMap {
             code |= outcode::FAR;
         }
         if INTEGER_PROJECTION {
+            if ARMV6M && code == 0 {
+                if let Some(v) = self.project_inside(c, z, w) {
+                    return (0, v);
+                }
+            }
             if let Some(v) = self.project_integer(c, z, w, code) {
                 return v;
             }
@@ -265,6 +270,58 @@ impl ScreenMap {
         Some((0, ScreenVertex::from_raw(sx as i32, sy as i32, sz as u32)))
     }
 
+    /// [`project_integer`](ScreenMap::project_integer)'s screen vertex for its usual
+    /// case, in 32-bit arithmetic (for ARMv6-M, whose 64-bit products and shifts are
+    /// long): the same vertex, or `None` where this cannot tell it (then
+    /// `project_integer` runs). For a point inside the near, far and w planes
+    /// (1 ≤ w, |z| ≤ w) with w normalised above 2³⁰ and |x|, |y| normalised below 2³¹,
+    /// which puts the point inside the guard band: `project_integer` adds no outcode.
+    #[inline(always)]
+    pub(crate) fn project_inside(&self, c: &Clip4, z: i64, w: i64) -> Option<ScreenVertex> {
+        let ([x, y], e) = c.xy_scaled()?; // x·2^e, y·2^e in the z/w scale; e ≤ 20
+        let sh = bits_beyond_31(w); // ≤ 14
+                                    // wn = ⌊w/2^sh⌋ < 2³¹; un = ⌊(z + w)/2^sh⌋ ≤ 2·wn + 1 < 2³².
+        let wn = shr64(w, sh) as u32;
+        if wn <= 1 << 30 {
+            return None;
+        }
+        let un = shr64(z + w, sh) as u32;
+        // ⌊x·2^e / 2^sh⌋ in i32: a right shift by sh − e ≤ 14, or a left shift by
+        // e − sh ≤ 20 that loses no bit. i32::MIN is left out (its magnitude is 2³¹).
+        let k = sh as i32 - e as i32;
+        let norm = |v: i32| -> Option<i32> {
+            let n = if k >= 0 {
+                v >> k
+            } else {
+                let m = k.unsigned_abs();
+                let n = v << m;
+                if n >> m != v {
+                    return None;
+                }
+                n
+            };
+            (n != i32::MIN).then_some(n)
+        };
+        let (xn, yn) = (norm(x)?, norm(y)?);
+        // |xn|, |yn| < 2³¹ ≤ 2·wn: |x|, |y| < 2.0000001·w, well inside ±64·w.
+        // r = ⌊2⁶²/wn⌋ < 2³² (wn > 2³⁰).
+        let r = recip62(wn) as u32;
+        let ratio = |n: i32, h: i64| -> Option<i64> {
+            // h = half_w or half_h ≤ 2¹⁶.
+            let q = i64::from(scaled_ratio_parts(n.unsigned_abs(), r, h as u32)?);
+            Some(if n < 0 { -q } else { q })
+        };
+        let sx = self.ox_i + ratio(xn, self.half_w)?;
+        let sy = self.oy_i - ratio(yn, self.half_h)?;
+        // Depth: q30 = ⌊(un·r + 2³¹)/2³²⌋ ≤ 2³¹ + 1 (un/wn ≤ 2 + 1/wn), and
+        // ⌊(q30·65535 + 2¹⁴)/2¹⁵⌋ = 2·q30 − ⌈(q30 − 2¹⁴)/2¹⁵⌉ = 2·q30 − d with
+        // d = ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋ ≤ q30: below 2³² − 2¹⁵.
+        let q30 = ((mul_wide(un, r) + (1 << 31)) >> 32) as u32;
+        let d = (q30 + (1 << 14) - 1) >> 15;
+        let sz = (q30 + (q30 - d)).min(MAX_DEPTH);
+        Some(ScreenVertex::from_raw(sx as i32, sy as i32, sz))
+    }
+
     /// Project a clip-space point inside the guard band and depth range (outcode 0).
     #[inline]
     pub(crate) fn project(&self, c: &[f32; 4]) -> Option<ScreenVertex> {
@@ -379,6 +436,65 @@ mod tests {
             }
             assert!(seen > 100);
         }
+    }
+
+    /// [`ScreenMap::project_inside`] (ARMv6-M's 32-bit form) gives `project_integer`'s
+    /// vertex wherever it gives one, and gives one for nearly every point it is meant
+    /// for: w of every magnitude, z across [−w, w], x and y out to ±2.5·w and beyond,
+    /// every scale exponent, viewports from 1 to 8192 pixels at corners up to ±8192.
+    #[test]
+    fn fast_projection_is_the_exact_one() {
+        let cases = crate::num::tests::fast_cases() / 4;
+        let mut rnd = crate::testing::xorshift64(0x2545_f491_4f6c_dd1d);
+        let maps = [
+            ScreenMap::new(&Viewport::new(320, 240).unwrap()),
+            ScreenMap::new(&Viewport::new(1, 1).unwrap()),
+            ScreenMap::new(&Viewport::new(8192, 8192).unwrap()),
+            ScreenMap::new(&Viewport::at(-8192, 8000, 4096, 192).unwrap()),
+        ];
+        let mut fast = 0u64;
+        for i in 0..cases {
+            let (v, u) = (rnd(), rnd());
+            // w = hi·2¹⁴ + lo below 2⁴⁵, lo a partial sum of either sign.
+            let w = ((v & ((1 << 45) - 1)) >> ((v >> 58) % 20)).max(1) as i64;
+            let lo = (u as i32) >> (u >> 59);
+            let hi = ((w - i64::from(lo)) >> 14) as i32;
+            let w = (i64::from(hi) << 14) + i64::from(lo);
+            if w < 1 {
+                continue;
+            }
+            // z in [−w, w], its parts likewise.
+            let z = ((i128::from((u >> 8) & 0xffff_ffff) * 2 * i128::from(w)) >> 32) as i64 - w;
+            let zlo = (v as i32) >> 3;
+            let zhi = ((z - i64::from(zlo)) >> 14) as i32;
+            let z = (i64::from(zhi) << 14) + i64::from(zlo);
+            if z < -w || z > w {
+                continue;
+            }
+            // x, y: a ratio to w up to ±4 (mostly within ±1), in the scale 2^e.
+            let e = (v >> 40) as u32 % 21;
+            let ratio = |bits: u64| {
+                let t = (bits & 0xffff) as i64 - 0x8000; // ±2¹⁵ is ±1
+                let t = if bits & 0x30000 == 0 { t * 4 } else { t };
+                let n = (i128::from(w) * i128::from(t)) >> (15 + e);
+                i32::try_from(n).unwrap_or(if n < 0 { i32::MIN } else { i32::MAX })
+            };
+            let (x, y) = if i % 64 == 0 {
+                // Edges: the extremes of i32, and zero.
+                let pick = [0, 1, -1, i32::MAX, i32::MIN, i32::MIN + 1];
+                (pick[(u % 6) as usize], pick[((u >> 3) % 6) as usize])
+            } else {
+                (ratio(u >> 16), ratio(u >> 36))
+            };
+            let c = Clip4::from_parts([x, y], [zhi, hi], [zlo, lo], (1u32 << e) as f32);
+            let map = &maps[(i % 4) as usize];
+            let want = map.project_integer(&c, z, w, 0);
+            if let Some(got) = map.project_inside(&c, z, w) {
+                assert_eq!(Some((0, got)), want, "x {x} y {y} z {z} w {w} e {e}");
+                fast += 1;
+            }
+        }
+        assert!(fast > cases / 2, "{fast} fast of {cases}");
     }
 
     #[test]

@@ -43,6 +43,24 @@ impl Clip4 {
         ))
     }
 
+    /// x and y in their own scale, and the exponent `e` of `s = 2^e` (x and y in the
+    /// z/w scale are `x·2^e`, `y·2^e`), when `0 ≤ e ≤ 20` ([`xy_wide`](Clip4::xy_wide)'s
+    /// range; `None` otherwise).
+    #[inline]
+    pub(crate) fn xy_scaled(self) -> Option<([i32; 2], u32)> {
+        let e = (self.s.to_bits() as i32 >> 23) - 127;
+        if !(0..=20).contains(&e) {
+            return None;
+        }
+        Some((self.xy, e as u32))
+    }
+
+    /// The clip coordinates of these parts (tests build them directly).
+    #[cfg(test)]
+    pub(crate) fn from_parts(xy: [i32; 2], hi: [i32; 2], lo: [i32; 2], s: f32) -> Clip4 {
+        Clip4 { xy, hi, lo, s }
+    }
+
     /// The four coordinates as `f32` in one scale, each rounded once: no 64-bit
     /// conversion.
     #[inline]

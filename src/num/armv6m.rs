@@ -274,3 +274,27 @@ const RECIP_TABLE: [u16; 256] = {
     }
     t
 };
+
+/// `⌊(a·h·r + 2⁶¹) / 2⁶²⌋` (the projection's rounded `a·h/d` through `r = ⌊2⁶²/d⌋`) in
+/// five 16 × 16-bit products, or `None` when that cannot be told from them without the
+/// exact 64-bit form. For `a < 2³¹`, `r < 2³²` and `1 ≤ h ≤ 2¹⁶`; the result is
+/// then below 2¹⁸.
+///
+/// With `a = a₁·2¹⁶ + a₀` and `r = r₁·2¹⁶ + r₀`, `V = a·r/2³²` lies in `[P, P + 3)` for
+/// `P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋` (three dropped fractions, each below 1; and
+/// `P ≤ V < 2³¹`). With `P = p₁·2¹⁶ + p₀`, `S = p₁h + ⌊p₀h/2¹⁶⌋ = ⌊P·h/2¹⁶⌋`
+/// (`p₁h < 2³¹`, `p₀h < 2³²`), so `Z = V·h/2¹⁶` lies in `[S, S + 1 + 3h/2¹⁶) ⊆ [S, S + 4)`.
+/// The result is `⌊(Z + 2¹³)/2¹⁴⌋`: with `F = S + 2¹³` (below 2³²) it is `⌊F/2¹⁴⌋`
+/// unless a multiple of 2¹⁴ lies in `(F, F + 4)`, that is unless `F mod 2¹⁴ > 2¹⁴ − 4`
+/// (then `None`: 3 values in 16,384).
+#[inline(always)]
+pub(crate) fn scaled_ratio_parts(a: u32, r: u32, h: u32) -> Option<u32> {
+    let (a1, a0) = (a >> 16, a & 0xffff);
+    let (r1, r0) = (r >> 16, r & 0xffff);
+    let p = a1 * r1 + ((a1 * r0) >> 16) + ((a0 * r1) >> 16);
+    let f = (p >> 16) * h + (((p & 0xffff) * h) >> 16) + (1 << 13);
+    if f & 0x3fff > (1 << 14) - 4 {
+        return None;
+    }
+    Some(f >> 14)
+}

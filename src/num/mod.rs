@@ -15,7 +15,8 @@ pub(crate) mod kernel;
 
 pub(crate) use armv6m::{
     bits_beyond_31_parts, div_floor_pair_recip, floor_div32_soft, mul_narrow_parts,
-    mul_small_parts, mul_wide_parts, recip62, shl64_parts, shr64_parts, udivrem,
+    mul_small_parts, mul_wide_parts, recip62, scaled_ratio_parts, shl64_parts, shr64_parts,
+    udivrem,
 };
 use armv7m::floor_div32_flip;
 
@@ -308,4 +309,4 @@ pub(crate) fn fill<T: Copy>(data: &mut [T], value: T) {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -445,3 +445,84 @@ fn abs_below_is_the_magnitude_test() {
         }
     }
 }
+
+/// The random cases of the fast-against-exact tests: `ZRASTER_FAST_CASES`, else ten
+/// million (under half a second in a debug build).
+pub(crate) fn fast_cases() -> u64 {
+    std::env::var("ZRASTER_FAST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(10_000_000)
+}
+
+#[test]
+fn scaled_ratio_parts_is_the_exact_rounded_ratio_or_none() {
+    use super::armv6m::scaled_ratio_parts;
+    let exact = |a: u32, r: u32, h: u32| {
+        ((u128::from(a) * u128::from(h) * u128::from(r) + (1 << 61)) >> 62) as u32
+    };
+    // Cases not aimed at a boundary, and how many of them were told fast.
+    let (mut fast, mut all) = (0u64, 0u64);
+    let mut check = |a: u32, r: u32, h: u32, aimed: bool| {
+        let want = exact(a, r, h);
+        all += u64::from(!aimed);
+        if let Some(q) = scaled_ratio_parts(a, r, h) {
+            assert_eq!(q, want, "a {a} r {r} h {h}");
+            fast += u64::from(!aimed);
+        }
+    };
+    // The edges of each range.
+    let edge_a = [
+        0,
+        1,
+        2,
+        0xffff,
+        0x1_0000,
+        0x1_0001,
+        0x7fff_0000,
+        (1 << 31) - 1,
+    ];
+    let edge_r = [
+        0,
+        1,
+        0xffff,
+        1 << 31,
+        (1 << 31) + 1,
+        0xaaaa_aaab,
+        u32::MAX - 1,
+        u32::MAX,
+    ];
+    let edge_h = [1, 2, 8, 1280, 0xffff, 1 << 16];
+    for &a in &edge_a {
+        for &r in &edge_r {
+            for &h in &edge_h {
+                check(a, r, h, true);
+            }
+        }
+    }
+    // Random: a of every magnitude, r of the projection's range (2³¹, 2³²) and below,
+    // h any viewport's half size; every tenth case aimed at a rounding boundary (a·h/d
+    // close to an odd multiple of ½).
+    let mut rnd = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
+    for i in 0..fast_cases() {
+        let v = rnd();
+        let a = (v as u32 & 0x7fff_ffff) >> ((v >> 32) % 31);
+        let r = if i % 7 == 0 {
+            (v >> 32) as u32
+        } else {
+            (v >> 32) as u32 | 1 << 31
+        };
+        let h = ((v >> 40) as u32 % (1 << 16)) + 1;
+        let aimed = i % 10 == 0;
+        let a = if aimed {
+            // a ≈ (k + ½)·2⁶²/(h·r): the exact value lands next to a boundary.
+            let k = u128::from(a >> 13);
+            let t = ((2 * k + 1) << 61) / (u128::from(h) * u128::from(r.max(1)));
+            u32::try_from(t).unwrap_or(a).min((1 << 31) - 1)
+        } else {
+            a
+        };
+        check(a, r, h, aimed);
+    }
+    assert!(fast * 1000 > all * 998, "{fast} of {all} cases fast");
+}
