@@ -14,6 +14,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
+use crate::raster::Clip;
 use crate::render::{cached_triangle, outside_rows, per_colouring, CachedWalk, RenderState};
 use crate::shade::{Material, Shading};
 mod carry;
@@ -36,6 +37,14 @@ use crate::{
 /// (2 · bands + 1), the links (one a triangle), then the chains' heads
 /// (2 · bands + 1), so that a head is the link "before" the chain's first triangle.
 const END: u16 = u16::MAX;
+
+/// An empty clip: binning counts faces through the drawing path with it, drawing none.
+const NOWHERE: Clip = Clip {
+    x0: 0,
+    y0: 0,
+    x1: 0,
+    y1: 0,
+};
 
 /// Bin entries for a mesh of `triangles` triangles drawn in bands of `rows` of a
 /// `height`-row screen: one a triangle, and a head and a tail for each of the
@@ -174,10 +183,21 @@ where
     } = bands;
     let (w, rows, height) = (*w, *rows, *height);
     let nb = height.div_ceil(rows);
+    // Binning counts the clipped faces through the general path the bands draw them
+    // with (one copy of it), into the first band's buffers with nothing to draw in.
+    let n0 = rows.min(height);
+    let mut cb = ColorBuffer::new_band(color, w, n0, 0)?;
+    let mut zb = ZBuffer::new_band(depth, w, n0, 0)?;
+    let mut counter = FlatTarget::<D::Color, S, false>::new(&mut cb, &mut zb, &NOWHERE);
     let mut runs = BinRuns::new(height, rows);
     for r in objects.iter_mut() {
         let run = runs.next(r);
-        r.bin(bins.get_mut(run).unwrap_or(&mut []), height, rows)?;
+        r.bin(
+            bins.get_mut(run).unwrap_or(&mut []),
+            height,
+            rows,
+            &mut counter,
+        )?;
         // A state that bins or fails: this object cannot bin, so nothing is drawn.
         if S::BINNED_BANDS {
             if let Binning::Off(why) = r.binning {
@@ -261,7 +281,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// binned.
     /// `bins` is this renderer's own run of them, for a screen of `height` rows drawn
     /// `rows` at a time.
-    fn bin<C>(&mut self, bins: &mut [u16], height: u32, rows: u32) -> Result<Option<usize>, Error>
+    /// `counter` counts the faces near a clip plane, drawing nothing (an empty clip).
+    fn bin<C>(
+        &mut self,
+        bins: &mut [u16],
+        height: u32,
+        rows: u32,
+        counter: &mut FlatTarget<'_, '_, '_, C, S, false>,
+    ) -> Result<Option<usize>, Error>
     where
         C: PixelColor,
         M: Material<C>,
@@ -323,11 +350,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             let (f, tri) = next?;
             let Some([p, q, r]) = tri.map(|t| t.map(CachedVertex::placed)) else {
                 // Near a clip plane: drawn by the general path in every band; counted
-                // now as that path counts it.
-                let g = self.count_one(f).map_err(|e| match e {
-                    DrawError::Input(e) => e,
-                    DrawError::Target(never) => match never {},
-                })?;
+                // now by that path, as the whole frame counts it.
+                let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
                 clipped.add_geometry(&g);
                 append(chains - 1, f);
                 continue;
@@ -413,7 +437,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         };
         let clip = clip_of(frame, zbuf);
         let (row0, row1) = clip.subpixel_rows();
-        let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+        let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
             if self.see_through_face::<C>(f) {

@@ -192,7 +192,7 @@ pub(crate) fn fill_flat_buffered<S: RenderState, C: PixelColor>(
 /// A colour buffer and a Z-buffer borrowed for a run of flat triangles: what
 /// [`fill_flat_buffered`] works out about them (geometry, depth test, clip) is worked
 /// out once, not per triangle.
-pub(crate) enum FlatTarget<'a, 'z, 'c, C, S> {
+pub(crate) enum FlatTarget<'a, 'z, 'c, C, S, const SPLIT: bool = true> {
     /// Same geometry: one index serves both buffers.
     Fused {
         b: Buffers<'a, 'a, C>,
@@ -209,7 +209,9 @@ pub(crate) enum FlatTarget<'a, 'z, 'c, C, S> {
     },
 }
 
-impl<'a, 'z, 'c, C: PixelColor, S: RenderState> FlatTarget<'a, 'z, 'c, C, S> {
+impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
+    FlatTarget<'a, 'z, 'c, C, S, SPLIT>
+{
     pub(crate) fn new(
         frame: &'a mut ColorBuffer<'c, C>,
         zbuf: &'a mut ZBuffer<'z>,
@@ -245,10 +247,13 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState> FlatTarget<'a, 'z, 'c, C, S> {
             FlatTarget::Fused { b, test, write, .. } => {
                 fill_fused::<S, C>(b, *test, *write, tri, color)
             }
-            FlatTarget::Split { frame, zbuf, clip } => {
+            // Without SPLIT (bands: both buffers cut from one band) only an empty clip
+            // comes here, and the loop for two geometries is not built.
+            FlatTarget::Split { frame, zbuf, clip } if SPLIT => {
                 let [p, q, r] = tri;
                 fill_split::<S, C>(frame, zbuf, clip, &[*p, *q, *r], color)
             }
+            FlatTarget::Split { .. } => SpanStats::default(),
         }
     }
 }

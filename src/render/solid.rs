@@ -186,9 +186,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// [`draw_buffer_triangles`](Renderer::draw_buffer_triangles): clipped, culled and
     /// drawn by the general path. Out of line, as it is rare.
     #[inline(never)]
-    pub(crate) fn draw_clipped_face<C>(
+    pub(crate) fn draw_clipped_face<C, const SPLIT: bool>(
         &self,
-        target: &mut FlatTarget<'_, '_, '_, C, S>,
+        target: &mut FlatTarget<'_, '_, '_, C, S, SPLIT>,
         clip: &Clip,
         first: bool,
         f: usize,

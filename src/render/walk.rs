@@ -329,19 +329,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
         Ok(st)
     }
-    /// The geometry counts of face `f` alone, drawing nothing.
-    pub(crate) fn count_one(
-        &self,
-        f: usize,
-    ) -> Result<FrameStats, DrawError<core::convert::Infallible>> {
-        let clip = Clip {
-            x0: 0,
-            y0: 0,
-            x1: 0,
-            y1: 0,
-        };
-        self.for_each_triangle(&clip, true, core::iter::once(f), |_, _, _, _| Ok(()))
-    }
 }
 
 #[cfg(test)]
