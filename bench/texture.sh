@@ -8,8 +8,9 @@
 # the pixel-shader hook (Renderer::draw_with_shader): the texel shader, which must give
 # the perspective-correct picture, and fog over it.
 # Needs qemu-system-arm and the two rustup targets (see ../shared/QEMU-CORTEX-M.md).
-# Fails when a firmware fails, or when a textured picture differs between the two
-# targets or from the host's (tests/texture.rs pins its checksum).
+# Fails when a firmware fails, when the textured segment's assembly differs from its
+# portable twin on the target (src/num/kernel/texel.rs), or when a textured picture
+# differs between the two targets or from the host's (tests/texture.rs pins its checksum).
 set -euo pipefail
 cd "$(dirname "$0")/mcu-texture"
 # The host's checksum of the perspective-correct picture (tests/texture.rs).
@@ -27,7 +28,9 @@ for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
     status=1
     continue
   fi
-  grep -E 'per pixel' "$out" || true
+  grep -E 'per pixel|differing' "$out" || true
+  grep -q "texel kernel cases differing from the portable twin: 0$" "$out" ||
+    { echo "the texel kernel differs from its portable twin on $target"; status=1; }
   grep -q "textured fill-bound cube, perspective-correct: .* (checksum $want)" "$out" ||
     { echo "the perspective-correct picture on $target is not the host's (checksum $want)"; status=1; }
   grep -q "textured fill-bound cube, shader Textured: .* (checksum $want)" "$out" ||

@@ -28,6 +28,12 @@ use zraster::{
     Frame, RenderOptions, Renderer, Texturing, UvMode,
 };
 
+/// The textured segment's assembly and its portable twin, built from the crate's source
+/// with the crate's capability cfgs (build.rs): `check_texel_kernel` compares them here.
+#[path = "../../../src/num/kernel/texel.rs"]
+#[allow(dead_code)]
+mod texel;
+
 const W: u32 = 320;
 const H: u32 = 240;
 const N: usize = (W * H) as usize;
@@ -145,6 +151,11 @@ fn main() -> ! {
         .perspective(radians(60.0), 0.1, 10.0, Viewport::new(W, H).unwrap())
         .unwrap();
     let texture = Texture::new(&CHECKER, 64, 64).unwrap();
+
+    // The textured segment's assembly against its portable twin (bench/texture.sh fails
+    // unless none differ).
+    let bad = texel::check_texel_kernel(&mut depth[..], 4000);
+    hprintln!("texel kernel cases differing from the portable twin: {}", bad);
 
     // The reference: bench/mcu's flat fill-bound cube.
     {

@@ -397,7 +397,13 @@ where
             (Fetch::Pow2(tex), true) => {
                 // Full light, undithered: no position, a constant intensity.
                 let colour = move |t: X, _: usize| texel_color::<X, C>(t, ONE, 0, 0);
-                pow2_rows(frame, zbuf, clip, &ts, tex, colour)
+                // Where the colours are the texels' bits, the assembly segment.
+                match tex.grid() {
+                    Some(g) => {
+                        pow2_rows::<C, X, true>(frame, zbuf, clip, &ts, tex, Some(g), colour)
+                    }
+                    None => pow2_rows::<C, X, false>(frame, zbuf, clip, &ts, tex, None, colour),
+                }
             }
             (Fetch::Pow2(tex), false) if !C::DITHERED => {
                 // Lit: the lit colour of the last texel value is kept, as neighbouring
@@ -417,7 +423,7 @@ where
                     last.set((now, c));
                     c
                 };
-                pow2_rows(frame, zbuf, clip, &ts, tex, colour)
+                pow2_rows::<C, X, false>(frame, zbuf, clip, &ts, tex, None, colour)
             }
             (Fetch::Pow2(_), false) | (Fetch::Any(_), _) => {
                 let colour = move |x: i32, y: i32, _: u16, uv: TexCoord, i: Intensity| {

@@ -1,6 +1,7 @@
 //! The fast pixel loop of textured spans: the default depth test, one light a face.
 
 use super::{SegmentSteps, Segments, TexSetup, SEGMENT, SHIFT};
+use crate::num::kernel::{TexelGrid, TEXEL_KERNEL};
 use crate::raster::{Clip, SpanStats};
 use crate::texture::{Texel, Texture};
 
@@ -46,6 +47,19 @@ impl<'a, X: Texel> Fetch<'a, X> {
     }
 }
 
+impl<'a, X: Copy> Pow2<'a, X> {
+    /// The texture for the assembly segment of `num::kernel`, where this target has it
+    /// and a pixel's colour in `C` is its texel's bits (the caller's colours must be the
+    /// texels themselves: full light, undithered).
+    #[inline(always)]
+    pub(crate) fn grid<C: 'static>(&self) -> Option<TexelGrid<'a, C>> {
+        if !TEXEL_KERNEL {
+            return None;
+        }
+        TexelGrid::of(self.texels, self.lw, self.lh)
+    }
+}
+
 /// How far the fast loops shift stepped coordinates (Q16 times
 /// [`SEGMENT`]) up for [`Pow2`]: to the fraction of a texture in all 32
 /// bits, so that wrapping arithmetic is the repeat. ⌊u·W⌋ mod W is then the top log₂ W
@@ -56,14 +70,17 @@ pub(super) const TOP: u32 = 32 - 16 - SHIFT;
 /// The rows of [`fill_textured_buffers`](super::fill_textured_buffers) for
 /// [`DepthTest::Less`](crate::DepthTest::Less), one light for the face and a [`Pow2`]
 /// texture: each span by [`pow2_span`], the same pixels as the general loop;
-/// `colour(texel, index)` is the pixel's colour for a texel at an index.
+/// `colour(texel, index)` is the pixel's colour for a texel at an index, and `grid`, if
+/// any, the same colours by the assembly segment ([`Pow2::grid`]; `GRID` says whether
+/// there is one, so that the loops without it are built without its code).
 #[inline(always)]
-pub(super) fn pow2_rows<C: embedded_graphics::pixelcolor::PixelColor, X: Copy>(
+pub(super) fn pow2_rows<C: embedded_graphics::pixelcolor::PixelColor, X: Copy, const GRID: bool>(
     frame: &mut crate::ColorBuffer<'_, C>,
     zbuf: &mut crate::ZBuffer<'_>,
     clip: &Clip,
     ts: &TexSetup,
     tex: Pow2<'_, X>,
+    grid: Option<TexelGrid<'_, C>>,
     colour: impl FnMut(X, usize) -> C + Copy,
 ) -> SpanStats {
     let mut stats = SpanStats::default();
@@ -76,9 +93,9 @@ pub(super) fn pow2_rows<C: embedded_graphics::pixelcolor::PixelColor, X: Copy>(
         let acc = ts.rows.at(x0, y);
         let segments = ts.uv.segments(x0, y, x1 - x0);
         let failed = if write {
-            pow2_span::<C, X, true>(zrow, crow, acc, ts.dz, segments, tex, colour)
+            pow2_span::<C, X, true, GRID>(zrow, crow, acc, ts.dz, segments, tex, grid, colour)
         } else {
-            pow2_span::<C, X, false>(zrow, crow, acc, ts.dz, segments, tex, colour)
+            pow2_span::<C, X, false, false>(zrow, crow, acc, ts.dz, segments, tex, None, colour)
         };
         stats.pixels_tested += (x1 - x0) as u32;
         stats.pixels_written += (x1 - x0) as u32 - failed;
@@ -90,17 +107,19 @@ pub(super) fn pow2_rows<C: embedded_graphics::pixelcolor::PixelColor, X: Copy>(
 /// values to keep them all in registers: the segment's colours `colour(texel, index)`
 /// into a buffer, the texel index `(v ≫ sv)·W + (u ≫ su)` (below W·H, masked by
 /// W·H − 1, a no-op, so that the compiler sees it in bounds); then each pixel's depth
-/// tested (`Less`) and written (`WRITE`), and the colour copied where it passes. Out of
+/// tested (`Less`) and written (`WRITE`), and the colour copied where it passes; with a
+/// `grid` (and `WRITE`), a whole segment in one pass by the assembly segment. Out of
 /// line. Returns the number of pixels that failed the test.
 #[allow(clippy::too_many_arguments)]
 #[inline(never)]
-fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
+fn pow2_span<C: Copy, X: Copy, const WRITE: bool, const GRID: bool>(
     zrow: &mut [u16],
     crow: &mut [C],
     acc: u32,
     dz: u32,
     segments: Segments,
     tex: Pow2<'_, X>,
+    grid: Option<TexelGrid<'_, C>>,
     mut colour: impl FnMut(X, usize) -> C,
 ) -> u32 {
     // A length the compiler knows to be a power of two (W·H ≤ 2²⁶).
@@ -131,6 +150,11 @@ fn pow2_span<C: Copy, X: Copy, const WRITE: bool>(
         let whole: (Result<&mut [u16; SEG], _>, Result<&mut [C; SEG], _>) =
             (zs.try_into(), cs.try_into());
         match whole {
+            (Ok(zs), Ok(cs)) if WRITE && GRID && grid.is_some() => {
+                if let Some(g) = &grid {
+                    failed += g.segment(zs, cs, acc, dz, uv);
+                }
+            }
             (Ok(zs), Ok(cs)) => {
                 // Depths first: where all pass (mostly), the colours go straight in.
                 let fails = depth_mask::<WRITE>(zs, acc, dz);

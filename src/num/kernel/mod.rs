@@ -12,9 +12,11 @@
 mod fill;
 mod mac;
 mod span;
+mod texel;
 
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
+pub(crate) use texel::{TexelGrid, TEXEL_KERNEL};
