@@ -5,7 +5,7 @@
 // Indexing into fixed tables by values masked below their length: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use super::{by_digits, mul_wide};
+use super::{by_digits, mul_wide, mul_wide_narrow};
 
 /// The reciprocal form of [`div_floor_pair`]; `None` outside its range.
 #[inline]
@@ -249,9 +249,18 @@ pub(crate) fn recip62(d: u32) -> u64 {
     let mut x = if e >= 0 { x + m } else { x - m };
     let e = (1i64 << 62) - mul_wide(d, x) as i64;
     let m = (mul_wide(x, (e.unsigned_abs() >> 24) as u32) >> 38) as u32;
-    x = if e >= 0 { x + m } else { x - m };
+    // The new remainder 2⁶² − d·(x ± m) is e ∓ d·m: the correction m is about 2¹⁴
+    // (x is within about 2⁻¹⁸ of 2⁶²/d), so d·m is two 16 × 32-bit products
+    // ([`mul_wide_narrow`]) instead of a full d·x (four); |e ∓ d·m| < 2⁵⁶.
+    let dm = mul_wide_narrow(m, d) as i64; // m < 2²⁴, d < 2³¹: below 2⁵⁵
+    let mut e = if e >= 0 {
+        x += m;
+        e - dm
+    } else {
+        x -= m;
+        e + dm
+    };
     // Within a few units now: step to the quotient whose remainder lies in [0, d).
-    let mut e = (1i64 << 62) - mul_wide(d, x) as i64;
     while e < 0 {
         x -= 1;
         e += i64::from(d);
