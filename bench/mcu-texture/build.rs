@@ -1,6 +1,4 @@
-//! Put memory.x where the linker finds it; set zraster's capability cfgs for its
-//! kernel source built into the firmware (src/main.rs, `mod texel`), as zraster's own
-//! build.rs sets them.
+//! Put memory.x where the linker finds it.
 use std::{env, fs, path::PathBuf};
 
 fn main() {
@@ -8,12 +6,4 @@ fn main() {
     fs::copy("memory.x", out.join("memory.x")).unwrap();
     println!("cargo:rustc-link-search={}", out.display());
     println!("cargo:rerun-if-changed=memory.x");
-    println!("cargo::rustc-check-cfg=cfg(zraster_thumb, zraster_dsp)");
-    let target = env::var("TARGET").unwrap_or_default();
-    if target.starts_with("thumb") {
-        println!("cargo::rustc-cfg=zraster_thumb");
-    }
-    if target.starts_with("thumbv7em") {
-        println!("cargo::rustc-cfg=zraster_dsp");
-    }
 }

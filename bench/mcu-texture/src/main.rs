@@ -28,12 +28,6 @@ use zraster::{
     Frame, RenderOptions, Renderer, Texturing, UvMode,
 };
 
-/// The textured segment's assembly and its portable twin, built from the crate's source
-/// with the crate's capability cfgs (build.rs): `check_texel_kernel` compares them here.
-#[path = "../../../src/num/kernel/texel.rs"]
-#[allow(dead_code)]
-mod texel;
-
 const W: u32 = 320;
 const H: u32 = 240;
 const N: usize = (W * H) as usize;
@@ -154,7 +148,7 @@ fn main() -> ! {
 
     // The textured segment's assembly against its portable twin (bench/texture.sh fails
     // unless none differ).
-    let bad = texel::check_texel_kernel(&mut depth[..], 4000);
+    let bad = zraster::check_texel_kernel(&mut depth[..], 4000);
     hprintln!("texel kernel cases differing from the portable twin: {}", bad);
 
     // The reference: bench/mcu's flat fill-bound cube.

@@ -57,6 +57,7 @@ impl<'a, C: 'static> TexelGrid<'a, C> {
             || !raw
             || core::mem::size_of::<X>() != 2
             || core::mem::align_of::<X>() != 2
+            || !rgb565_is_its_bits()
         {
             return None;
         }
@@ -73,6 +74,19 @@ impl<'a, C: 'static> TexelGrid<'a, C> {
             colour: PhantomData,
         })
     }
+}
+
+/// Whether an `Rgb565` in memory is its raw RGB565 value (a newtype's layout is not
+/// guaranteed, so it is checked, not assumed; the compiler folds the check).
+#[inline(always)]
+fn rgb565_is_its_bits() -> bool {
+    use embedded_graphics::pixelcolor::raw::RawU16;
+    if core::mem::size_of::<Rgb565>() != 2 || core::mem::align_of::<Rgb565>() != 2 {
+        return false;
+    }
+    let probe = Rgb565::from(RawU16::new(0xA55A));
+    // SAFETY: Rgb565 is two bytes (checked above): its bytes read as one u16.
+    unsafe { core::mem::transmute_copy::<Rgb565, u16>(&probe) == 0xA55A }
 }
 
 impl<C> TexelGrid<'_, C> {
@@ -285,9 +299,8 @@ fn texel_segment_asm(
 /// mix (the accumulator wrapping included), compared with the portable twin (depths,
 /// colours and the failure count). `buf` holds the texels and four rows (at least
 /// 4096 + 64 halfwords; a shorter one is a failure). Returns the number of cases that
-/// differ. (bench/mcu-texture builds this file into its firmware and calls it there:
-/// the crate does not re-export it.)
-#[allow(dead_code)]
+/// differ. (bench/mcu-texture calls it on the target, through the crate's hidden
+/// re-export.)
 pub fn check_texel_kernel(buf: &mut [u16], cases: usize) -> usize {
     let Some(buf) = buf.get_mut(..4096 + 4 * TEXEL_SEG) else {
         return usize::MAX;
