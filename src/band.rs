@@ -485,8 +485,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
 /// `bin` writes every chain afresh each frame and ends it with [`END`].
 struct BandFaces<'a> {
     links: &'a [u16],
-    /// The next face of each chain, [`END`] (larger than any face) when done.
-    heads: [u16; 4],
+    /// The next face of each chain, [`END`] (larger than any face) when done, shifted
+    /// left by two above the chain's number: the least of them names both.
+    heads: [u32; 4],
 }
 
 impl<'a> BandFaces<'a> {
@@ -501,14 +502,20 @@ impl<'a> BandFaces<'a> {
         // The triangles of the band above that reach this one, this band's own (those
         // reaching the next band, the others), and the tall or clipped ones.
         let above = if k > 0 { head(2 * k - 2) } else { END };
+        let at = |f: u16, c: u32| u32::from(f) << 2 | c;
         BandFaces {
             links,
-            heads: [above, head(2 * k), head(2 * k + 1), head(chains - 1)],
+            heads: [
+                at(above, 0),
+                at(head(2 * k), 1),
+                at(head(2 * k + 1), 2),
+                at(head(chains - 1), 3),
+            ],
         }
     }
 
     fn is_empty(&self) -> bool {
-        self.heads == [END; 4]
+        self.heads.iter().all(|&h| h >> 2 == u32::from(END))
     }
 }
 
@@ -517,36 +524,46 @@ impl Iterator for BandFaces<'_> {
 
     #[inline]
     fn next(&mut self) -> Option<(usize, Carry)> {
-        // The chain with the lowest next face; no two chains hold the same face.
+        // The chain with the lowest next face (no two chains hold the same face).
         let [a, b, c, d] = self.heads;
-        let (ab, kab) = if b < a { (b, 1) } else { (a, 0) };
-        let (cd, kcd) = if d < c { (d, 3) } else { (c, 2) };
-        let (f, k) = if cd < ab { (cd, kcd) } else { (ab, kab) };
-        if f == END {
+        let least = a.min(b).min(c.min(d));
+        let (f, k) = (least >> 2, least & 3);
+        if f == u32::from(END) {
             return None;
         }
-        let link = self.links.get(usize::from(f)).copied().unwrap_or(END);
-        let (slot, how) = match k {
-            0 => (&mut self.heads[0], Carry::Take),
-            1 => (&mut self.heads[1], Carry::Keep),
-            2 => (&mut self.heads[2], Carry::No),
-            _ => (&mut self.heads[3], Carry::Tall),
-        };
-        *slot = link;
-        Some((usize::from(f), how))
+        let link = self.links.get(f as usize).copied().unwrap_or(END);
+        if let Some(head) = self.heads.get_mut(k as usize) {
+            *head = u32::from(link) << 2 | k;
+        }
+        Some((f as usize, Carry::of_chain(k)))
     }
 }
 
-/// What a band's listed face does with the [`ColorCarry`].
+/// What a band's listed face does with the [`ColorCarry`]; the values are the
+/// [`BandFaces`] chains' numbers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(u8)]
 pub(crate) enum Carry {
+    /// The face came from the band above: take the colour kept there.
+    Take = 0,
+    /// The face continues into the band below: keep its colour for it.
+    Keep = 1,
     /// Nothing: the face lies in this band alone.
-    No,
+    No = 2,
     /// Nothing either: a tall or clipped face, drawn in every band it meets (and tested
     /// against the band's rows and clip planes there).
-    Tall,
-    /// The face continues into the band below: keep its colour for it.
-    Keep,
-    /// The face came from the band above: take the colour kept there.
-    Take,
+    Tall = 3,
+}
+
+impl Carry {
+    /// The face's `Carry` from the number of the [`BandFaces`] chain it came from.
+    #[inline(always)]
+    fn of_chain(k: u32) -> Carry {
+        match k {
+            0 => Carry::Take,
+            1 => Carry::Keep,
+            2 => Carry::No,
+            _ => Carry::Tall,
+        }
+    }
 }
