@@ -21,8 +21,8 @@ mod carry;
 use carry::ColorCarry;
 
 use crate::{
-    AfterBand, BandBuffers, Bands, CachedVertex, ColorBuffer, DepthTarget, DrawError, Error,
-    FrameStats, Renderer, ZBuffer,
+    AfterBand, BandBuffers, Bands, ColorBuffer, DepthTarget, DrawError, Error, FrameStats,
+    Renderer, ZBuffer,
 };
 
 /// The end of a bin chain (no link to a triangle is this: triangles number at most
@@ -348,7 +348,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut clipped = FrameStats::default();
         for next in walk.by_ref() {
             let (f, tri) = next?;
-            let Some([p, q, r]) = tri.map(|t| t.map(CachedVertex::placed)) else {
+            let Some([p, q, r]) = tri else {
                 // Near a clip plane: drawn by the general path in every band; counted
                 // now by that path, as the whole frame counts it.
                 let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
@@ -356,13 +356,15 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 append(chains - 1, f);
                 continue;
             };
-            let ymin = p.y().min(q.y()).min(r.y());
-            let ymax = p.y().max(q.y()).max(r.y());
-            let (top, bottom) = ((ymin + 7) >> 4, (ymax + 7) >> 4); // rows top..bottom
-            if bottom <= 0 || top >= height || top >= bottom {
+            // The screen rows whose pixel centres the triangle may cover: top..=bottom,
+            // none when top > bottom.
+            let (ya, yb, yc) = (p.xy().1, q.xy().1, r.xy().1);
+            let top = ((ya.min(yb).min(yc) + 7) >> 4).max(0);
+            let bottom = (((ya.max(yb).max(yc) + 7) >> 4) - 1).min(height - 1);
+            if top > bottom {
                 continue;
             }
-            let (tb, bb) = (band_of(top.max(0)), band_of((bottom - 1).min(height - 1)));
+            let (tb, bb) = (band_of(top), band_of(bottom));
             match bb - tb {
                 0 => append(2 * tb as usize + 1, f),
                 1 => append(2 * tb as usize, f),
@@ -438,6 +440,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let clip = clip_of(frame, zbuf);
         let (row0, row1) = clip.subpixel_rows();
         let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+        // The pixels of the common faces in u32 registers, into `px` at the end.
+        let mut counts = FrameStats::fill_counts();
         for (f, how) in faces {
             let Some(t) = indices.get(f) else { continue };
             if self.see_through_face::<C>(f) {
@@ -471,8 +475,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            px.add_fill(target.fill(tri.each_ref(), color));
+            counts.add(target.fill(tri.each_ref(), color), &mut px);
         }
+        counts.flush(&mut px);
         Ok(px)
     }
 }

@@ -309,6 +309,14 @@ pub(crate) struct FillCounts {
     written: u32,
 }
 
+impl FrameStats {
+    /// Empty [`FillCounts`], for a loop of fills outside this module (the bands').
+    #[inline(always)]
+    pub(crate) fn fill_counts() -> FillCounts {
+        FillCounts::default()
+    }
+}
+
 impl FillCounts {
     /// Add one fill's counts; when the sum of tested pixels would pass `u32::MAX`, first
     /// move the sums into `spill` (a fill writes at most the pixels it tests, so the
