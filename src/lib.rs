@@ -390,11 +390,11 @@ pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use model::{Model, ModelStyle};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
-pub use scene::Scene;
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };
 pub use render::{TexturedTarget, Texturing, UvMode};
+pub use scene::Scene;
 
 /// For the bench firmware: check the assembly fill and span loops against their
 /// portable twins on the target (the number of differing cases; see

@@ -19,5 +19,5 @@ pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
-pub(crate) use texel::{TexelGrid, TEXEL_KERNEL};
 pub use texel::check_texel_kernel;
+pub(crate) use texel::{TexelGrid, TEXEL_KERNEL};
