@@ -236,6 +236,8 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
     pub(crate) stats: FrameStats,
     pub(crate) counted: bool,
+    /// Whether the mesh has see-through faces, once a see-through pass has looked.
+    pub(crate) see_through: Option<bool>,
     /// Whether the last banded draw binned its triangles (see [`Binning`]).
     pub(crate) binning: crate::band::Binning,
     /// What is fixed at compile time (see [`state`](crate::state)).
@@ -289,6 +291,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             cache: None,
             stats: FrameStats::default(),
             counted: false,
+            see_through: None,
             binning: crate::band::Binning::NotBanded,
             state: core::marker::PhantomData,
         })
@@ -358,6 +361,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             cache: self.cache,
             stats: self.stats,
             counted: self.counted,
+            see_through: self.see_through,
             binning: self.binning,
             state: core::marker::PhantomData,
         })

@@ -374,20 +374,28 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 .is_some_and(|(_, m)| see_through::<C, M>(&m))
     }
 
-    /// Whether the mesh may have see-through faces: its material type can be, and its
-    /// one material (if it has one) is.
-    fn may_see_through<C>(&self) -> bool
+    /// Whether the mesh has see-through faces: never for an opaque material type; else
+    /// its materials are looked at once (a read a face, no geometry) and the answer
+    /// kept, so that a mesh of opaque faces skips the see-through pass (in every band).
+    fn may_see_through<C>(&mut self) -> bool
     where
         M: Material<C>,
     {
-        match self.mesh.faces {
-            _ if !M::TRANSLUCENT => false,
+        if !M::TRANSLUCENT {
+            return false;
+        }
+        if let Some(known) = self.see_through {
+            return known;
+        }
+        let any = match self.mesh.faces {
             Faces::Triangles {
                 materials: crate::mesh::Materials::Uniform(m),
                 ..
             } => see_through::<C, M>(&m),
-            _ => true,
-        }
+            _ => (0..self.mesh.face_count()).any(|f| self.see_through_face::<C>(f)),
+        };
+        self.see_through = Some(any);
+        any
     }
 
     /// The see-through faces, after every opaque one (of this mesh, or of every mesh of
