@@ -43,7 +43,7 @@ use zraster::{
 use zraster_scenes::bus::SpiDisplay;
 
 mod model;
-use model::{Kd, Model};
+use model::{Colours, Kd, Model};
 
 const USAGE: &str = "\
 usage: render MODEL.obj [options]
@@ -309,7 +309,7 @@ fn parse_args(args: &[String]) -> Options {
 /// One drawing of `frame` (the whole frame, or one band of it) by one of the scene's
 /// renderers, in `mode`.
 fn draw_pass(
-    renderer: &mut Renderer<'_, '_, Kd>,
+    renderer: &mut Renderer<'_, '_, impl Colours>,
     mode: Mode,
     sort: Option<&mut DepthSort<65536>>,
     frame: &mut Frame<'_, Rgb565>,
@@ -392,6 +392,16 @@ fn main() {
             .unwrap_or_else(|e| input_error(&e));
         models.push((m, *at));
     }
+    // A see-through capable material type only where some face needs it.
+    if models.iter().any(|(m, _)| m.see_through()) {
+        draw_models::<Kd>(&o, &models);
+    } else {
+        draw_models::<Kd<false>>(&o, &models);
+    }
+}
+
+/// Draw `models` as `o` says and write the outputs, with faces of material type `K`.
+fn draw_models<K: Colours>(o: &Options, models: &[(Model, Vec3)]) {
     // What each renderer draws: the Z-buffer draws every part (untextured faces, then
     // each texture's), the other modes every face untextured; model by model.
     let parts: Vec<(&Model, &model::Part, Vec3)> = models
@@ -405,7 +415,7 @@ fn main() {
             parts.into_iter().map(move |p| (m, p, *at))
         })
         .collect();
-    let meshes: Vec<_> = parts.iter().map(|(m, p, _)| m.mesh(p)).collect();
+    let meshes: Vec<_> = parts.iter().map(|(m, p, _)| m.mesh::<K>(p)).collect();
     let texturings: Vec<_> = parts
         .iter()
         .map(|(m, p, _)| m.texturing(p).unwrap_or_else(|e| input_error(&e)))
@@ -438,7 +448,7 @@ fn main() {
         light: Light::default(),
     };
     let rows = o.band.unwrap_or(h);
-    let line_color = Kd(o.color, 255).shade(ONE, 0, 0);
+    let line_color = Kd::<false>(o.color, 255).shade(ONE, 0, 0);
     let mut frame_pixels = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth_full = vec![u16::MAX; (w * h) as usize];
     let band_len = if o.band.is_some() {

@@ -17,12 +17,13 @@ use zraster_obj::{fit_scale_f64, load_textures, parse_obj_with, quantize, MtlLoa
 
 /// A face colour as the contract states it: `Kd × I`, rounded to RGB565 exactly; and
 /// its opacity (MTL `d`, 255 opaque): see-through faces are drawn after the opaque
-/// ones, blended over them.
+/// ones, blended over them. `SEE_THROUGH` says whether the type may be see-through:
+/// `Kd<false>` for models without a `d` below 1 spares every face the alpha test.
 #[derive(Clone, Copy)]
-pub struct Kd(pub [f32; 3], pub u8);
+pub struct Kd<const SEE_THROUGH: bool = true>(pub [f32; 3], pub u8);
 
-impl Material<Rgb565> for Kd {
-    const TRANSLUCENT: bool = true;
+impl<const SEE_THROUGH: bool> Material<Rgb565> for Kd<SEE_THROUGH> {
+    const TRANSLUCENT: bool = SEE_THROUGH;
 
     fn shade(&self, i: Intensity, _x: i32, _y: i32) -> Rgb565 {
         let i = f32::from(i) / f32::from(ONE);
@@ -39,6 +40,25 @@ impl Material<Rgb565> for Kd {
     }
 }
 
+/// A material type `render` draws with: [`Kd`] see-through capable or not, each with
+/// its table in a [`Part`].
+pub trait Colours: Material<Rgb565> + Copy {
+    /// The colours of `part`'s faces.
+    fn of(part: &Part) -> &[Self];
+}
+
+impl Colours for Kd<true> {
+    fn of(part: &Part) -> &[Self] {
+        &part.materials
+    }
+}
+
+impl Colours for Kd<false> {
+    fn of(part: &Part) -> &[Self] {
+        &part.opaque
+    }
+}
+
 /// Faces drawn as one mesh: their vertex table (shared or split), corners, colours
 /// and normals, and the texture they are drawn with, if any.
 pub struct Part {
@@ -46,6 +66,8 @@ pub struct Part {
     split: bool,
     pub indices: Vec<[u16; 3]>,
     materials: Vec<Kd>,
+    /// The same colours as an opaque type (`d` ignored).
+    opaque: Vec<Kd<false>>,
     face_normals: Vec<[i16; 3]>,
     /// The texture (8-bit texels as the PNG has them, lit as a `Kd` of their value
     /// is), its size and wrap.
@@ -140,6 +162,7 @@ impl Model {
             materials: obj.triangles.iter().map(kd).collect(),
             face_normals: Vec::new(),
             texture: None,
+            opaque: Vec::new(),
         };
         let mut model = Model {
             positions: q.positions.clone(),
@@ -156,7 +179,7 @@ impl Model {
         // Vertex normals over every face, so that seams split for textures stay smooth.
         if gouraud {
             let mut scratch = vec![Vec3::default(); q.positions.len()];
-            let mesh = model.mesh(&model.all);
+            let mesh = model.mesh::<Kd>(&model.all);
             let mut normals = vec![[0; 3]; q.positions.len()];
             compute_vertex_normals(&mesh, &mut scratch, &mut normals).map_err(|e| e.to_string())?;
             model.vertex_normals = normals;
@@ -164,14 +187,19 @@ impl Model {
         model.parts = model.split_by_texture(obj, textures, &kd)?;
         for i in 0..model.parts.len() {
             let mut normals = vec![[0; 3]; model.parts[i].indices.len()];
-            compute_face_normals(&model.mesh(&model.parts[i]), &mut normals)
+            compute_face_normals(&model.mesh::<Kd>(&model.parts[i]), &mut normals)
                 .map_err(|e| e.to_string())?;
             model.parts[i].face_normals = normals;
         }
         let mut normals = vec![[0; 3]; model.all.indices.len()];
-        compute_face_normals(&model.mesh(&model.all), &mut normals).map_err(|e| e.to_string())?;
+        compute_face_normals(&model.mesh::<Kd>(&model.all), &mut normals)
+            .map_err(|e| e.to_string())?;
         model.all.face_normals = normals;
-        model.bounds = model.mesh(&model.all).bounds();
+        model.bounds = model.mesh::<Kd>(&model.all).bounds();
+        // Each part's colours as the opaque type too.
+        let opaque = |p: &mut Part| p.opaque = p.materials.iter().map(|k| Kd(k.0, k.1)).collect();
+        opaque(&mut model.all);
+        model.parts.iter_mut().for_each(opaque);
         // Model space → fitted: centre the bounding box, largest extent 1 (positions
         // are already stored around the bounding-box centre, q.offset).
         model.place = if fit {
@@ -204,6 +232,7 @@ impl Model {
                 materials: self.all.materials.clone(),
                 face_normals: Vec::new(),
                 texture: None,
+                opaque: Vec::new(),
             }]);
         }
         let split = obj.split_vertices(textured).map_err(|e| e.to_string())?;
@@ -225,6 +254,7 @@ impl Model {
             materials: Vec::new(),
             face_normals: Vec::new(),
             texture: None,
+            opaque: Vec::new(),
         };
         let mut parts: Vec<Part> = textures
             .textures
@@ -242,6 +272,7 @@ impl Model {
                     materials: Vec::new(),
                     face_normals: Vec::new(),
                     texture: Some((texels.collect(), t.image.width, t.image.height, wrap)),
+                    opaque: Vec::new(),
                 }
             })
             .collect();
@@ -259,7 +290,7 @@ impl Model {
     }
 
     /// The mesh of `part`, with its normals.
-    pub fn mesh<'a>(&'a self, part: &'a Part) -> Mesh<'a, Kd> {
+    pub fn mesh<'a, K: Colours>(&'a self, part: &'a Part) -> Mesh<'a, K> {
         let (positions, normals) = if part.split {
             (&self.split_positions, &self.split_normals)
         } else {
@@ -271,11 +302,16 @@ impl Model {
             scale: self.scale,
             faces: Faces::Triangles {
                 indices: &part.indices,
-                materials: Materials::PerFace(&part.materials),
+                materials: Materials::PerFace(K::of(part)),
             },
             face_normals,
             vertex_normals: Some(normals),
         }
+    }
+
+    /// Whether some face is see-through (an MTL `d` below 1).
+    pub fn see_through(&self) -> bool {
+        self.all.materials.iter().any(|k| k.1 < u8::MAX)
     }
 
     /// The vertex count of `part`'s table (the size of its vertex cache).
