@@ -415,7 +415,24 @@ fn channel(v: u8, i: Intensity, max: u32) -> u8 {
     // compiler would call a division routine for a 32-bit constant divisor (ARMv6-M).
     let num = u32::from(v) * u32::from(i) * max;
     const DEN: u32 = 255 * ONE as u32;
-    div255((num + DEN / 2) >> 15).min(max) as u8
+    let x = num + DEN / 2; // < 2³², checked by a test
+    let q = if crate::num::ARMV6M {
+        div255_shifts(x >> 15)
+    } else {
+        div_den(x)
+    };
+    q.min(max) as u8
+}
+
+/// ⌊x / (255 · 2¹⁵)⌋ for any `u32` in one multiply-high and a shift (UMULL, LSR on
+/// Thumb-2) instead of a shift, a multiply-high and a shift. With
+/// M = ⌈2³⁹ / 255⌉ = 2³⁹/255 + e/255 (e = 127), x·M / 2⁵⁴ exceeds x / (255 · 2¹⁵) by
+/// x·e / (255 · 2⁵⁴) < 1 / (255 · 2¹⁵) for x < 2³², too little to reach the next
+/// integer (a test checks it against the division).
+#[inline]
+fn div_den(x: u32) -> u32 {
+    const M: u64 = (1 << 39) / 255 + 1;
+    ((u64::from(x) * M) >> 54) as u32
 }
 
 /// ⌊x / 255⌋ for x < 2²⁰. Without a divide instruction (where the compiler would call a

@@ -13,6 +13,32 @@ fn div255_is_exact_over_its_range() {
     assert!((255 * 65535 * 255 + 255 * u32::from(ONE) / 2) >> 15 < 1 << 20);
 }
 
+/// `channel` (with `div_den` where there is a multiply-high) against the rounding it
+/// stands for, `round(v · i · max / (255 · ONE))` saturated to `max`, in `u64`: every
+/// channel value × every intensity (over-exposed ones included) × each depth used.
+#[test]
+fn channel_is_the_rounded_quotient_everywhere() {
+    const DEN: u64 = 255 * ONE as u64;
+    for max in [1u32, 3, 15, 31, 63, 255] {
+        for v in 0..=u8::MAX {
+            for i in 0..=u16::MAX {
+                let num = u64::from(v) * u64::from(i) * u64::from(max);
+                let want = ((num + DEN / 2) / DEN).min(u64::from(max));
+                assert_eq!(u64::from(channel(v, i, max)), want, "{v} {i} {max}");
+            }
+        }
+    }
+    // The largest numerator plus the rounding half stays below 2³².
+    const _: () = assert!(255 * 65535 * 255 + DEN / 2 < 1 << 32);
+    // div_den at the top of its range and around multiples of the divisor there.
+    for x in (u32::MAX - (1 << 20)..=u32::MAX).chain((1..514).flat_map(|q| {
+        let d = q * 255 * u32::from(ONE);
+        [d - 1, d, d + 1]
+    })) {
+        assert_eq!(div_den(x), x / (255 * u32::from(ONE)), "{x}");
+    }
+}
+
 #[test]
 fn full_intensity_keeps_the_colour() {
     let c = Rgb888::new(255, 128, 0);
