@@ -383,13 +383,13 @@ pub mod state;
 mod testing;
 pub mod texture;
 
-pub use band::{Binning, Unbinned};
 pub use buffer::{AfterBand, BandBuffers, Bands, ColorBuffer, DepthTest, Frame, ZBuffer};
 pub use camera::{Camera, Viewport};
 pub use error::{DrawError, Error};
 pub use fill::{fill_triangle, fill_triangle_shaded};
 pub use model::{Model, ModelStyle};
 pub use raster::{depth_at, signed_area, Facing, Plane, ScreenVertex, SpanStats};
+pub use render::{Binning, Unbinned};
 pub use render::{
     CachedVertex, Cull, DepthSort, DepthTarget, FrameStats, RenderOptions, Renderer, WithDepth,
 };

@@ -140,7 +140,7 @@ impl<'r, 'm, 'c, M: Copy, S: RenderState> Scene<'r, 'm, 'c, M, S> {
     /// ([`Unbinned::BinsTooShort`](crate::Unbinned::BinsTooShort)), to the same picture.
     pub fn bins_needed(objects: &[Renderer<'m, 'c, M, S>], height: u32, rows: u32) -> usize {
         objects.iter().fold(0usize, |sum, r| {
-            sum.saturating_add(crate::band::bins_for(r.mesh.face_count(), height, rows))
+            sum.saturating_add(crate::buffer::bins_for(r.mesh.face_count(), height, rows))
         })
     }
 }

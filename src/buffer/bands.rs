@@ -63,8 +63,17 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// per band and two more. (Meshes of more than 65,534 triangles are drawn without
     /// bins.)
     pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
-        crate::band::bins_for(triangles, height, rows)
+        bins_for(triangles, height, rows)
     }
+}
+
+/// Bin entries for a mesh of `triangles` triangles drawn in bands of `rows` of a
+/// `height`-row screen: one a triangle, and a head and a tail for each of the
+/// 2 · bands + 1 chains (see the band loop, `band.rs`). Saturates rather than overflow.
+pub(crate) const fn bins_for(triangles: usize, height: u32, rows: u32) -> usize {
+    let rows = if rows == 0 { 1 } else { rows };
+    let bands = height.div_ceil(rows) as usize; // < 2³²
+    triangles.saturating_add(2 * (2 * bands + 1))
 }
 
 /// A display drawn band by band: [`Renderer::draw`] (or [`Scene::draw`], for several

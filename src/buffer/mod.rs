@@ -8,6 +8,7 @@ mod frame;
 mod rows;
 mod zbuffer;
 
+pub(crate) use bands::bins_for;
 pub use bands::{AfterBand, BandBuffers, Bands};
 pub use color::ColorBuffer;
 pub use frame::Frame;

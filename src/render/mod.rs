@@ -10,6 +10,7 @@
 
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
+mod binning;
 mod lines;
 mod painter;
 mod solid;
@@ -20,6 +21,7 @@ mod walk;
 pub use crate::fill::UvMode;
 pub use crate::geometry::cull::Cull;
 pub use crate::state::{Dynamic, RenderState};
+pub use binning::{Binning, Unbinned};
 pub use painter::DepthSort;
 pub(crate) use solid::per_colouring;
 pub(crate) use target::sealed;
@@ -239,7 +241,7 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     /// Whether the mesh has see-through faces, once a see-through pass has looked.
     pub(crate) see_through: Option<bool>,
     /// Whether the last banded draw binned its triangles (see [`Binning`]).
-    pub(crate) binning: crate::band::Binning,
+    pub(crate) binning: Binning,
     /// What is fixed at compile time (see [`state`](crate::state)).
     pub(crate) state: core::marker::PhantomData<S>,
 }
@@ -292,7 +294,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             stats: FrameStats::default(),
             counted: false,
             see_through: None,
-            binning: crate::band::Binning::NotBanded,
+            binning: Binning::NotBanded,
             state: core::marker::PhantomData,
         })
     }
@@ -394,7 +396,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// Whether the last draw into [`Bands`](crate::Bands) sorted the triangles into
     /// bins, and if not, why: without bins every band walks the whole mesh, which is
     /// slower but draws the same picture. [`Binning::NotBanded`](crate::Binning::NotBanded) before any banded draw.
-    pub fn binning(&self) -> crate::band::Binning {
+    pub fn binning(&self) -> Binning {
         self.binning
     }
 
