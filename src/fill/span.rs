@@ -8,11 +8,7 @@ use crate::num::kernel;
 /// pixels that failed the test.
 // SAFETY: `link_section` only places the function: `.data.*` is copied to RAM by the
 // start-up code (cortex-m-rt) before `main`, so it is there whenever it is called.
-#[cfg_attr(
-    all(feature = "ram-code", target_os = "none"),
-    allow(unsafe_code),
-    link_section = ".data.zraster"
-)]
+#[cfg_attr(zraster_ram_code, allow(unsafe_code), link_section = ".data.zraster")]
 #[inline(never)]
 pub(crate) fn flat_span<C: Copy>(
     zrow: &mut [u16],
@@ -53,11 +49,7 @@ const LONG_SPAN: usize = 8;
 /// [`flat_span`] for long spans: two pixels a turn, the depth write decided once.
 // SAFETY: `link_section` only places the function: `.data.*` is copied to RAM by the
 // start-up code (cortex-m-rt) before `main`, so it is there whenever it is called.
-#[cfg_attr(
-    all(feature = "ram-code", target_os = "none"),
-    allow(unsafe_code),
-    link_section = ".data.zraster"
-)]
+#[cfg_attr(zraster_ram_code, allow(unsafe_code), link_section = ".data.zraster")]
 #[inline(never)]
 fn flat_span_long<C: Copy>(
     zrow: &mut [u16],
@@ -81,11 +73,7 @@ fn flat_span_long<C: Copy>(
 #[cold]
 #[inline(never)]
 // SAFETY: as for `flat_span` (called from it: kept in the same memory).
-#[cfg_attr(
-    all(feature = "ram-code", target_os = "none"),
-    allow(unsafe_code),
-    link_section = ".data.zraster"
-)]
+#[cfg_attr(zraster_ram_code, allow(unsafe_code), link_section = ".data.zraster")]
 pub(super) fn one_failed(n: &mut u32) {
     *n += 1;
 }

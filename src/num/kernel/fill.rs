@@ -23,10 +23,7 @@ pub(crate) fn fill_u16_portable(buf: &mut [u16], value: u16) {
 /// [`fill_u16`] for ARMv7-M: two STMs of 8 registers (32 halfwords) a turn, then the
 /// remainder by its bits.
 #[cfg(all(zraster_thumb, zraster_thumb2))]
-#[cfg_attr(
-    all(feature = "ram-code", target_os = "none"),
-    link_section = ".data.zraster"
-)]
+#[cfg_attr(zraster_ram_code, link_section = ".data.zraster")]
 #[inline(never)]
 fn fill_u16_thumb2(buf: &mut [u16], value: u16) {
     let n = buf.len();
@@ -90,10 +87,7 @@ fn fill_u16_thumb2(buf: &mut [u16], value: u16) {
 /// compiler) are kept in r8 and r9 meanwhile, leaving 6 value registers: four STMs (48
 /// halfwords) a turn, then by twelve, then the remainder by its bits.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-#[cfg_attr(
-    all(feature = "ram-code", target_os = "none"),
-    link_section = ".data.zraster"
-)]
+#[cfg_attr(zraster_ram_code, link_section = ".data.zraster")]
 #[inline(never)]
 fn fill_u16_armv6m(buf: &mut [u16], value: u16) {
     let n = buf.len();

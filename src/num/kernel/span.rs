@@ -33,10 +33,7 @@ pub(crate) fn span_kernel_pays(len: usize) -> bool {
 /// when both start 4-aligned; on ARMv6-M 16 pixels a turn (7.5 a pixel); elsewhere,
 /// and for rows not so aligned, [`span_less_u16_portable`]. Out of line, so that the
 /// callers' short loops keep their cheap prologues.
-#[cfg_attr(
-    all(feature = "ram-code", target_os = "none"),
-    link_section = ".data.zraster"
-)]
+#[cfg_attr(zraster_ram_code, link_section = ".data.zraster")]
 #[inline(never)]
 pub(crate) fn span_less_u16(z: &mut [u16], c: &mut [u16], acc: u32, dz: u32, color: u16) -> u32 {
     let n = z.len().min(c.len());
