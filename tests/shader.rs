@@ -2,6 +2,11 @@
 //! the covered pixels, fog at hand-computed depths, a texel shader against
 //! `draw_textured`, every target and band height against the whole frame, bad input.
 
+mod common;
+
+use common::textured_cube::{
+    CUBE_INDICES as INDICES, CUBE_POSITIONS as POSITIONS, CUBE_UVS as UVS,
+};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::*;
 use zraster::math::{radians, Mat4, Vec3};
@@ -14,40 +19,6 @@ use zraster::{
     Texturing, UvMode, Viewport, WithDepth, ZBuffer,
 };
 
-/// A cube spanning −1..1 (scale 1/16384), four vertices a face, the whole texture on
-/// each face (v down the image).
-const S: i16 = 16384;
-const T: i16 = 4096;
-#[rustfmt::skip]
-const POSITIONS: [[i16; 3]; 24] = [
-    [-S, -S, S], [S, -S, S], [S, S, S], [-S, S, S],
-    [S, -S, -S], [-S, -S, -S], [-S, S, -S], [S, S, -S],
-    [S, -S, S], [S, -S, -S], [S, S, -S], [S, S, S],
-    [-S, -S, -S], [-S, -S, S], [-S, S, S], [-S, S, -S],
-    [-S, S, S], [S, S, S], [S, S, -S], [-S, S, -S],
-    [-S, -S, -S], [S, -S, -S], [S, -S, S], [-S, -S, S],
-];
-const UVS: [MeshUv; 24] = {
-    let face = [[0, T], [T, T], [T, 0], [0, 0]];
-    let mut uvs = [[0i16; 2]; 24];
-    let mut i = 0;
-    while i < 24 {
-        uvs[i] = face[i % 4];
-        i += 1;
-    }
-    uvs
-};
-const INDICES: [[u16; 3]; 12] = {
-    let mut t = [[0u16; 3]; 12];
-    let mut f = 0;
-    while f < 6 {
-        let b = 4 * f as u16;
-        t[2 * f] = [b, b + 1, b + 2];
-        t[2 * f + 1] = [b, b + 2, b + 3];
-        f += 1;
-    }
-    t
-};
 /// An 8×8 texture of raw RGB565 values, each texel different.
 const TEXELS: [u16; 64] = {
     let mut t = [0u16; 64];

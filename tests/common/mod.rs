@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod cli;
+pub mod textured_cube;
 
 use zraster::{depth_at, ScreenVertex};
 
