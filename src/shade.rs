@@ -267,10 +267,21 @@ impl<C: DisplayColor> Material<C> for Rgb888 {
 /// An RGB colour lit: each channel of `m` times `i`, rounded to the depth of `C`.
 #[inline]
 fn lit_rgb<C: RgbColor>(m: Rgb888, i: Intensity, new: fn(u8, u8, u8) -> C) -> C {
+    let (r, g, b) = (
+        u32::from(C::MAX_R),
+        u32::from(C::MAX_G),
+        u32::from(C::MAX_B),
+    );
+    if i <= ONE && !crate::num::ARMV6M {
+        // At most full light no channel passes its depth: no clamps (on ARMv6-M the
+        // clamps cost less than the masks the packing then needs).
+        let lit = |v: u8, max: u32| rounded_channel(v, i, max) as u8;
+        return new(lit(m.r(), r), lit(m.g(), g), lit(m.b(), b));
+    }
     new(
-        channel(m.r(), i, u32::from(C::MAX_R)),
-        channel(m.g(), i, u32::from(C::MAX_G)),
-        channel(m.b(), i, u32::from(C::MAX_B)),
+        channel(m.r(), i, r),
+        channel(m.g(), i, g),
+        channel(m.b(), i, b),
     )
 }
 
@@ -410,18 +421,23 @@ impl DisplayColor for BinaryColor {
 /// requantised to `max` levels.
 #[inline]
 fn channel(v: u8, i: Intensity, max: u32) -> u8 {
+    rounded_channel(v, i, max).min(max) as u8
+}
+
+/// `v · i / ONE · max / 255`, rounded, not saturated: at most `max` for `i ≤ ONE`.
+#[inline]
+fn rounded_channel(v: u8, i: Intensity, max: u32) -> u32 {
     // ≤ 255 · 65535 · 255 < 2³². Dividing by 255 · 2¹⁵ is dividing by 2¹⁵, then by
     // 255 (nested floors compose); the second is a multiply, also on chips where the
     // compiler would call a division routine for a 32-bit constant divisor (ARMv6-M).
     let num = u32::from(v) * u32::from(i) * max;
     const DEN: u32 = 255 * ONE as u32;
     let x = num + DEN / 2; // < 2³², checked by a test
-    let q = if crate::num::ARMV6M {
+    if crate::num::ARMV6M {
         div255_shifts(x >> 15)
     } else {
         div_den(x)
-    };
-    q.min(max) as u8
+    }
 }
 
 /// ⌊x / (255 · 2¹⁵)⌋ for any `u32` in one multiply-high and a shift (UMULL, LSR on

@@ -25,6 +25,10 @@ fn channel_is_the_rounded_quotient_everywhere() {
                 let num = u64::from(v) * u64::from(i) * u64::from(max);
                 let want = ((num + DEN / 2) / DEN).min(u64::from(max));
                 assert_eq!(u64::from(channel(v, i, max)), want, "{v} {i} {max}");
+                if i <= ONE {
+                    // Unsaturated at most full light (`lit_rgb` leaves the clamps out).
+                    assert_eq!(u64::from(rounded_channel(v, i, max)), want, "{v} {i} {max}");
+                }
             }
         }
     }
