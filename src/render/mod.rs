@@ -233,7 +233,8 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) options: RenderOptions,
     /// Unit light direction in model space, for model-space normals.
     pub(crate) light_model: Vec3,
-    /// The light for Q14 normals: `L` in Q15, and the ambient and diffuse weights in Q15.
+    /// The light for Q14 normals: `L` in Q15, the ambient weight in Q15 and the diffuse
+    /// weight in Q15 shifted up by [`LAMBERT_SCALE`].
     pub(crate) light_q: ([i32; 3], i64, i64),
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
     pub(crate) stats: FrameStats,
@@ -244,6 +245,25 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) binning: Binning,
     /// What is fixed at compile time (see [`state`](crate::state)).
     pub(crate) state: core::marker::PhantomData<S>,
+}
+
+/// How far the diffuse weight of [`Renderer::light_q`] is shifted up for
+/// [`lambert_term`]: by 3 where it takes the high word of its product, by 0 on ARMv6-M.
+const LAMBERT_SCALE: u32 = if crate::num::ARMV6M { 0 } else { 3 };
+
+/// The diffuse term of [`Renderer::lambert_q14`]: `dot · w / 2²⁹` rounded, for `0 ≤ dot ≤
+/// 2²⁹` and the Q15 weight `w` (|w| ≤ 2¹⁶) stored as `diff = w << LAMBERT_SCALE`. On
+/// ARMv6-M three 32-bit multiplies instead of a library call; elsewhere the high word
+/// of `dot · 8w` rounded (the same quotient: numerator and divisor times 8), which with
+/// the ambient add is one SMMLAR on Thumb-2.
+#[inline(always)]
+fn lambert_term(dot: i32, diff: i32) -> i32 {
+    if crate::num::ARMV6M {
+        let product = crate::num::mul_i64_i32(i64::from(dot), diff);
+        ((product + (1 << 28)) >> 29) as i32
+    } else {
+        ((i64::from(dot) * i64::from(diff) + (1 << 31)) >> 32) as i32
+    }
 }
 
 /// A fetched vertex: screen position if inside (code 0), and its light.
@@ -288,7 +308,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 )),
                 i64::from(crate::num::round_f32(
                     options.light.diffuse.clamp(-2.0, 2.0) * 32768.0,
-                )),
+                )) << LAMBERT_SCALE,
             ),
             cache: None,
             stats: FrameStats::default(),
@@ -498,16 +518,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
 
     /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29
     /// and at most 2²⁹ in magnitude (two unit vectors), so it fits `i32`. Ambient and
-    /// diffuse are Q15 within ±2: the product is below 2⁴⁶ (in `i64`), the diffuse term
-    /// then within ±2¹⁶ and the sum within ±2¹⁷, so the sum and its clamp fit `i32`
-    /// (one saturating instruction on a Cortex-M3/M4).
+    /// diffuse are Q15 within ±2: the diffuse term (see [`lambert_term`]) is within
+    /// ±2¹⁶ and the sum within ±2¹⁷, so the sum and its clamp fit `i32` (one saturating
+    /// instruction on a Cortex-M3/M4).
     #[inline]
     pub(crate) fn lambert_q14(&self, n: &[i16; 3]) -> Intensity {
         let ([lx, ly, lz], amb, diff) = self.light_q;
         let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
-        // |diff| ≤ 2¹⁶: on ARMv6-M three 32-bit multiplies instead of a library call.
-        let product = crate::num::mul_i64_i32(i64::from(dot.max(0)), diff as i32);
-        let term = ((product + (1 << 28)) >> 29) as i32;
+        let term = lambert_term(dot.max(0), diff as i32);
         (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
     }
 
@@ -539,6 +557,32 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 ..geometry
             };
             self.counted = true;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The diffuse term in either form is the rounded quotient it stands for, over the
+    /// extremes and a spread of products.
+    #[test]
+    fn lambert_term_is_the_rounded_quotient() {
+        let weights = [
+            -65536, -40000, -32768, -1, 0, 1, 6554, 26214, 32768, 65535, 65536,
+        ];
+        let edges = [0, 1, 2, (1 << 28) - 1, 1 << 28, (1 << 29) - 1, 1 << 29];
+        let spread = (0..20_000u32).scan(12345u32, |x, _| {
+            *x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            Some((*x >> 3) as i32)
+        });
+        let dots = || edges.into_iter().chain(spread.clone());
+        for w in weights {
+            for dot in dots() {
+                let want = ((i64::from(dot) * i64::from(w) + (1 << 28)) >> 29) as i32;
+                assert_eq!(lambert_term(dot, w << LAMBERT_SCALE), want, "{dot} {w}");
+            }
         }
     }
 }
