@@ -253,17 +253,28 @@ const LAMBERT_SCALE: u32 = if crate::num::ARMV6M { 0 } else { 3 };
 
 /// The diffuse term of [`Renderer::lambert_q14`]: `dot · w / 2²⁹` rounded, for `0 ≤ dot ≤
 /// 2²⁹` and the Q15 weight `w` (|w| ≤ 2¹⁶) stored as `diff = w << LAMBERT_SCALE`. On
-/// ARMv6-M three 32-bit multiplies instead of a library call; elsewhere the high word
-/// of `dot · 8w` rounded (the same quotient: numerator and divisor times 8), which with
-/// the ambient add is one SMMLAR on Thumb-2.
+/// ARMv6-M in 32-bit products ([`lambert_term_narrow`]); elsewhere the high word of
+/// `dot · 8w` rounded (the same quotient: numerator and divisor times 8), which with the
+/// ambient add is one SMMLAR on Thumb-2.
 #[inline(always)]
 fn lambert_term(dot: i32, diff: i32) -> i32 {
     if crate::num::ARMV6M {
-        let product = crate::num::mul_i64_i32(i64::from(dot), diff);
-        ((product + (1 << 28)) >> 29) as i32
+        lambert_term_narrow(dot, diff)
     } else {
         ((i64::from(dot) * i64::from(diff) + (1 << 31)) >> 32) as i32
     }
+}
+
+/// [`lambert_term`] without a 64-bit product: with `dot = h·2¹⁶ + m·2⁸ + n` (h < 2¹⁴,
+/// m, n < 2⁸), `dot · w + 2²⁸ = 2¹⁶ · (h·w + q + 2¹²) + r` where `q = ⌊(m·w + ⌊n·w /
+/// 2⁸⌋) / 2⁸⌋` = ⌊(m·2⁸ + n)·w / 2¹⁶⌋ (nested floors compose) and `0 ≤ r < 2¹⁶`, so
+/// the term is `(h·w + q + 2¹²) >> 13` (r cannot carry past a multiple of 2¹³). Every
+/// product is below 2³⁰ in magnitude.
+#[inline(always)]
+fn lambert_term_narrow(dot: i32, w: i32) -> i32 {
+    let (h, m, n) = (dot >> 16, (dot >> 8) & 0xFF, dot & 0xFF);
+    let q = (m * w + ((n * w) >> 8)) >> 8;
+    (h * w + q + (1 << 12)) >> 13
 }
 
 /// A fetched vertex: screen position if inside (code 0), and its light.
@@ -578,11 +589,17 @@ mod tests {
             Some((*x >> 3) as i32)
         });
         let dots = || edges.into_iter().chain(spread.clone());
+        let check = |dot: i32, w: i32| {
+            let want = ((i64::from(dot) * i64::from(w) + (1 << 28)) >> 29) as i32;
+            assert_eq!(lambert_term(dot, w << LAMBERT_SCALE), want, "{dot} {w}");
+            assert_eq!(lambert_term_narrow(dot, w), want, "{dot} {w}");
+        };
         for w in weights {
-            for dot in dots() {
-                let want = ((i64::from(dot) * i64::from(w) + (1 << 28)) >> 29) as i32;
-                assert_eq!(lambert_term(dot, w << LAMBERT_SCALE), want, "{dot} {w}");
-            }
+            dots().for_each(|dot| check(dot, w));
+        }
+        // Every 7th weight against the edges and a few hundred products.
+        for w in (-65536..=65536).step_by(7) {
+            dots().take(300).for_each(|dot| check(dot, w));
         }
     }
 }
