@@ -433,11 +433,26 @@ fn rounded_channel(v: u8, i: Intensity, max: u32) -> u32 {
     let num = u32::from(v) * u32::from(i) * max;
     const DEN: u32 = 255 * ONE as u32;
     let x = num + DEN / 2; // < 2³², checked by a test
-    if crate::num::ARMV6M {
-        div255_shifts(x >> 15)
-    } else {
+    if !crate::num::ARMV6M {
         div_den(x)
+    } else if max <= 63 {
+        // (x >> 15) ≤ (255 · 65535 · 63 + DEN / 2) >> 15 < DIV255_MUL_BELOW.
+        div255_mul(x >> 15)
+    } else {
+        div255_shifts(x >> 15)
     }
+}
+
+/// The bound below which [`div255_mul`] is exact (a test checks every `x` below it).
+const DIV255_MUL_BELOW: u32 = 66_299;
+
+/// ⌊x / 255⌋ for x < [`DIV255_MUL_BELOW`] as one multiply by ⌈2²³ / 255⌉ and a shift
+/// (x · 32897 < 2³² there): on ARMv6-M, for channels of at most 6 bits, two
+/// instructions instead of the six of [`div255_shifts`].
+#[inline]
+fn div255_mul(x: u32) -> u32 {
+    debug_assert!(x < DIV255_MUL_BELOW);
+    (x * 32_897) >> 23
 }
 
 /// ⌊x / (255 · 2¹⁵)⌋ for any `u32` in one multiply-high and a shift (UMULL, LSR on

@@ -11,6 +11,12 @@ fn div255_is_exact_over_its_range() {
     }
     // The largest argument `channel` makes: 255 · 65535 · 255 plus the rounding half.
     assert!((255 * 65535 * 255 + 255 * u32::from(ONE) / 2) >> 15 < 1 << 20);
+    for x in 0..DIV255_MUL_BELOW {
+        assert_eq!(div255_mul(x), x / 255, "{x}");
+    }
+    // Where it stops: the first x it misses, and `channel`'s largest for 6-bit depths.
+    assert_ne!((DIV255_MUL_BELOW * 32_897) >> 23, DIV255_MUL_BELOW / 255);
+    assert!((255 * 65535 * 63 + 255 * u32::from(ONE) / 2) >> 15 < DIV255_MUL_BELOW);
 }
 
 /// `channel` (with `div_den` where there is a multiply-high) against the rounding it
