@@ -24,7 +24,10 @@ use armv7m::floor_div32_flip;
 /// divisions (one `UDIV` each on a Cortex-M3/M4, a short library call on an M0+)
 /// when both fit in 32 bits, or when `|d| < 2¹⁶` and `|n| < 2⁴⁸` (two 16-bit "digits"
 /// of long division). Small triangles, the common case, always take those paths.
-#[inline]
+/// Out of line on ARMv6-M, where every caller calls it anyway: `#[inline]` gave each
+/// crate that instantiates a caller its own copy (two of 900 bytes in a firmware).
+#[cfg_attr(zraster_armv6m, inline(never))]
+#[cfg_attr(not(zraster_armv6m), inline)]
 pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
     if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
@@ -58,14 +61,16 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
 /// divide instruction on 64-bit hosts; on ARMv6-M, which has no divide instruction,
 /// when `|d| < 2¹⁶` and both `|n| < 2⁴⁸` (the depth slopes of every small triangle),
 /// by a reciprocal of `d` and each 16-bit digit of the two long divisions by a multiply
-/// and at most three corrections, instead of four library divisions; elsewhere by
+/// and at most three corrections, instead of four library divisions (else two
+/// [`div_floor`]s, out of line there); elsewhere by
 /// [`div_floor_pair32`] when everything fits 32 bits, else two [`div_floor_signless`]s.
 #[inline]
 pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
     if ARMV6M {
-        if let Some(q) = div_floor_pair_recip(n1, n2, d) {
-            return q;
-        }
+        // Outside the reciprocal's range the digit method below would divide by library
+        // calls: the out-of-line general form instead (rare: very large triangles).
+        return div_floor_pair_recip(n1, n2, d)
+            .unwrap_or_else(|| (div_floor(n1, d), div_floor(n2, d)));
     }
     let (n1, n2, d) = if d < 0 { (-n1, -n2, -d) } else { (n1, n2, d) };
     if WIDE {
@@ -147,7 +152,9 @@ pub(crate) const ARM: bool = ARMV6M || THUMB2;
 pub(crate) const WIDE: bool = cfg!(zraster_wide);
 /// No hardware floating point: vertices are projected in integers (a soft-float divide
 /// and its conversions cost thousands of instructions a vertex on a Cortex-M0+).
-pub(crate) const INTEGER_PROJECTION: bool = cfg!(zraster_soft_float);
+pub(crate) const INTEGER_PROJECTION: bool = SOFT_FLOAT;
+/// No hardware floating point: each `f32` operation is a library call.
+pub(crate) const SOFT_FLOAT: bool = cfg!(zraster_soft_float);
 
 /// `a · b` in 64 bits. On ARMv6-M from four 16×16-bit products, carries added by hand;
 /// elsewhere the plain widening multiply (one `UMULL` on a Cortex-M3/M4).
