@@ -255,15 +255,34 @@ impl Mat4 {
 
 impl Mul for Mat4 {
     type Output = Mat4;
+    #[inline(never)]
     fn mul(self, o: Mat4) -> Mat4 {
         let mut r = [[0.0f32; 4]; 4];
-        for (i, row) in r.iter_mut().enumerate() {
+        for (row, a) in r.iter_mut().zip(&self.m) {
             for (j, v) in row.iter_mut().enumerate() {
-                *v = (0..4).map(|k| self.m[i][k] * o.m[k][j]).sum();
+                // Without an FPU, the 16 sums inlined are a kilobyte of library calls
+                // (run once a frame): one out-of-line sum called 16 times instead.
+                *v = if crate::num::SOFT_FLOAT {
+                    row_times_column_call(a, &o, j)
+                } else {
+                    row_times_column(a, &o, j)
+                };
             }
         }
         Mat4 { m: r }
     }
+}
+
+/// Row `a` times column `j` of `o`.
+#[inline(always)]
+fn row_times_column(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
+    (0..4).map(|k| a[k] * o.m[k][j]).sum()
+}
+
+/// [`row_times_column`] out of line.
+#[inline(never)]
+fn row_times_column_call(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
+    row_times_column(a, o, j)
 }
 
 /// Degrees to radians: zraster takes every angle in radians (rotations, fields of
