@@ -249,7 +249,11 @@ impl Mat4 {
 
     /// Are all elements finite?
     pub fn is_finite(&self) -> bool {
-        self.m.iter().flatten().all(|v| v.is_finite())
+        // An exponent field of all ones (infinite or NaN) carries into the top bit:
+        // one OR of the 16 sums, without a branch each (or a float compare, a library
+        // call without an FPU).
+        let exp = |v: &f32| (v.to_bits() & 0x7f80_0000).wrapping_add(0x0080_0000);
+        self.m.iter().flatten().fold(0, |acc, v| acc | exp(v)) >> 31 == 0
     }
 }
 
@@ -347,6 +351,32 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn mat4_is_finite_tests_every_element() {
+        assert!(Mat4::IDENTITY.is_finite());
+        let finite = [
+            0.0,
+            -0.0,
+            f32::MAX,
+            f32::MIN,
+            f32::MIN_POSITIVE,
+            1e-45,
+            -1.5,
+        ];
+        let bad = [f32::NAN, -f32::NAN, f32::INFINITY, f32::NEG_INFINITY];
+        for i in 0..16 {
+            for (v, want) in finite
+                .iter()
+                .map(|&v| (v, true))
+                .chain(bad.iter().map(|&v| (v, false)))
+            {
+                let mut m = Mat4::IDENTITY;
+                m.m[i / 4][i % 4] = v;
+                assert_eq!(m.is_finite(), want, "{v} at {i}");
+            }
+        }
+    }
 
     #[test]
     fn sin_cos_are_accurate() {
