@@ -54,6 +54,15 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
             -q - 1
         };
     }
+    div_floor_plain(n, d)
+}
+
+/// [`div_floor`]'s last resort (`d > 0`), the plain 64-bit division: out of line on
+/// ARMv6-M, where it is a library call and rare (inline, its fix-up deepened the
+/// drawing's deepest stack).
+#[cfg_attr(zraster_armv6m, inline(never))]
+#[cfg_attr(not(zraster_armv6m), inline(always))]
+fn div_floor_plain(n: i64, d: i64) -> i64 {
     n.div_euclid(d)
 }
 
@@ -64,7 +73,8 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
 /// and at most three corrections, instead of four library divisions (else two
 /// [`div_floor`]s, out of line there); elsewhere by
 /// [`div_floor_pair32`] when everything fits 32 bits, else two [`div_floor_signless`]s.
-#[inline]
+#[cfg_attr(zraster_armv6m, inline(never))]
+#[cfg_attr(not(zraster_armv6m), inline)]
 pub(crate) fn div_floor_pair(n1: i64, n2: i64, d: i64) -> (i64, i64) {
     if ARMV6M {
         // Outside the reciprocal's range the digit method below would divide by library
