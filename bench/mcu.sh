@@ -2,7 +2,7 @@
 # Instruction counts of zraster on the Cortex-M4F (thumbv7em) and Cortex-M0+ (thumbv6m)
 # instruction sets, under QEMU's mps2-an386 board with -icount shift=0 (exact and
 # repeatable). Needs qemu-system-arm (Debian) and the two rustup targets.
-# Fails when a firmware fails, when an assembly loop (the fill or the span) differs from
+# Fails when a firmware fails, when an assembly loop (the fill, the span or the rows) differs from
 # its portable twin, when banded and whole-frame pictures differ, when the frame is not
 # the host's (its checksum is tests/bench_scene.rs's BENCH_CHECKSUM), or when a
 # bunny-320 whole frame costs more than 2 % over bench/baseline.txt.
@@ -97,6 +97,7 @@ for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   grep -Ev '^warning|^ *\||^ *=|^$|^ +-->' "$out" || true
   grep -q "fill kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly fill loop differs from its portable twin on $target"; status=1; }
   grep -q "span kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly span loop differs from its portable twin on $target"; status=1; }
+  grep -q "rows kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly rows loop differs from its portable twin on $target"; status=1; }
   grep -q "same picture: true" "$out" || { echo "banded and whole-frame pictures differ on $target"; status=1; }
   grep -q "checksum $want " "$out" || { echo "the frame on $target is not the host's picture (checksum $want)"; status=1; }
 

@@ -400,7 +400,9 @@ pub use scene::Scene;
 /// portable twins on the target (the number of differing cases; see
 /// `src/num/kernel/`).
 #[doc(hidden)]
-pub use num::kernel::{check_fill_kernel, check_span_kernel, check_texel_kernel};
+pub use num::kernel::{
+    check_fill_kernel, check_rows_kernel, check_span_kernel, check_texel_kernel,
+};
 
 /// The largest width or height of a Z-buffer or colour buffer, in pixels (8192).
 ///

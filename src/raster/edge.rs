@@ -117,9 +117,9 @@ impl SmallEdge for EdgeWalk {
 /// `T > −16dy`, and `⌈T/16dy⌉ = ⌊(T + 16dy − 1)/16dy⌋` is an unsigned division (below
 /// 2²⁷ for extents below 2¹³); each row adds `16dx` to `T`.
 pub(crate) struct EdgeDivide {
-    t: u32,
-    dt: u32,
-    d: u32,
+    pub(crate) t: u32,
+    pub(crate) dt: u32,
+    pub(crate) d: u32,
 }
 
 impl SmallEdge for EdgeDivide {

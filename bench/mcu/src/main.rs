@@ -148,6 +148,9 @@ fn main() -> ! {
     // M0+ loop, every remainder of the M4 one) at every relative alignment.
     let bad = zraster::check_span_kernel(&mut depth[..512], 64);
     hprintln!("span kernel cases differing from the portable twin: {}", bad);
+    // The rows of small triangles likewise (random rows of every length, both halves).
+    let bad = zraster::check_rows_kernel(&mut depth[..4096]);
+    hprintln!("rows kernel cases differing from the portable twin: {}", bad);
 
     // ---- bunny-320, full frame.
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();

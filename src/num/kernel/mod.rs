@@ -3,20 +3,27 @@
 //! against (`bench/mcu` compares them on the Cortex-M4F and M0+ for every length and
 //! alignment it tries, and fails otherwise). Two loops: the frame clear
 //! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16));
+//! the rows of a small flat-coloured triangle ([`rows_less_as_u16`](rows::rows_less_as_u16),
+//! on ARMv7E-M, which runs the span loop's SIMD steps for rows of three pixels or more);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span` and `mac`, each with `#![allow(unsafe_code)]`).
+//! (`fill`, `span`, `rows`, `mac` and `texel`, each with `#![allow(unsafe_code)]`).
 
 mod fill;
 mod mac;
+// Before `rows`, which uses its SIMD pixel macros.
+#[macro_use]
 mod span;
+mod rows;
 mod texel;
 
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
+pub use rows::check_rows_kernel;
+pub(crate) use rows::{rows_less_as_u16, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;

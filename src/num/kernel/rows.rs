@@ -1,0 +1,661 @@
+//! The rows of a small flat-coloured triangle, both halves in one pass: edges by one
+//! division a row, the depth test `Less` with depth writes, a two-byte colour.
+//! Assembly on ARMv7E-M (everything in registers or one block read by `LDRD`), beside
+//! its portable twin.
+#![allow(unsafe_code)]
+
+/// Whether [`rows_less_as_u16`] runs the assembly (ARMv7E-M). Elsewhere it runs the
+/// portable twin, which the rasterizer does not call (its own row loop is the faster
+/// there): the twin is for the tests and the bench's check.
+pub(crate) const ROWS_KERNEL: bool = cfg!(all(zraster_thumb, zraster_dsp));
+
+/// One edge in the form of [`EdgeDivide`](crate::raster::EdgeDivide): on each row its
+/// first column is `t / d` (unsigned; 0 when `d` is 0, as `UDIV` gives it), then `t`
+/// steps by `dt` (wrapping).
+#[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
+pub(crate) struct DivEdge {
+    pub t: u32,
+    pub dt: u32,
+    pub d: u32,
+}
+
+/// The rows of a small triangle, in columns relative to the triangle's origin column
+/// `px0` (see [`rows_less_as_u16`]), laid out as the assembly reads them (byte offsets
+/// in the comments; its caller fills the fields the setters leave): `n[0]` rows between
+/// the long edge `(t, d, steps)[0]` and the short one `[1]`, the long one on the left
+/// when `side` is 0, then `n[1]` rows with the short edge replaced by `short1`, the
+/// long one carried on. Each row covers `max(left, cx0)..min(right, cx1)`, the depth at its column `x` is
+/// `clamp(z + x·sx, lo, hi)` then `+ sx` a pixel, `z` stepping by `sy` a row (all
+/// wrapping). Filled field by field as the triangle's set-up finds the values, so that
+/// they need not stay in registers meanwhile.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RowsLess {
+    sx: u32,          // 0
+    lo: u32,          // 4
+    hi: u32,          // 8
+    color: u32,       // 12
+    delta: u32,       // 16: colour address − depth address
+    dt: [u32; 2],     // 20: the left and right edges' steps (the assembly's)
+    cx: [i32; 2],     // 28
+    sy: u32,          // 36
+    pitch: u32,       // 40: bytes a row
+    failed: u32,      // 44
+    z: u32,           // 48
+    base: u32,        // 52: address of local column 0 of the first row (wrapping)
+    pair: [u32; 2],   // 56: the colour in both halves, and that ^ 0x0001_0001
+    t: [u32; 2],      // 64: the long and short edges' t
+    d: [u32; 2],      // 72: their divisors
+    n: [u32; 2],      // 80: rows in each half
+    side: u32,        // 88: 0 with the long edge on the left, else 1
+    short1: [u32; 3], // 92: t, d, dt of the second half's short edge
+    steps: [u32; 2],  // 104: the long and short edges' dt
+}
+
+impl RowsLess {
+    /// Rows clipped to the columns `cx0..cx1`, everything else 0 (field by field: each
+    /// is written again before the assembly reads it, and the compiler drops these).
+    #[inline(always)]
+    pub(crate) fn new(cx0: i32, cx1: i32) -> RowsLess {
+        RowsLess {
+            sx: 0,
+            lo: 0,
+            hi: 0,
+            color: 0,
+            delta: 0,
+            dt: [0; 2],
+            cx: [cx0, cx1],
+            sy: 0,
+            pitch: 0,
+            failed: 0,
+            z: 0,
+            base: 0,
+            pair: [0; 2],
+            t: [0; 2],
+            d: [0; 2],
+            n: [0; 2],
+            side: 0,
+            short1: [0; 3],
+            steps: [0; 2],
+        }
+    }
+
+    /// The depth plane: `z` at local column 0 of the first row, steps `sx` and `sy`, the
+    /// clamp `lo..=hi`.
+    #[inline(always)]
+    pub(crate) fn depth(&mut self, z: u32, sx: u32, sy: u32, lo: u32, hi: u32) {
+        (self.z, self.sx, self.sy, self.lo, self.hi) = (z, sx, sy, lo, hi);
+    }
+
+    /// `n[0]` rows between the long edge and `short[0]`, then `n[1]` between the long
+    /// edge carried on and `short[1]`; the long edge on the left when `mid_right`.
+    #[inline(always)]
+    pub(crate) fn edges(
+        &mut self,
+        long: DivEdge,
+        short: [DivEdge; 2],
+        n: [u32; 2],
+        mid_right: bool,
+    ) {
+        self.t = [long.t, short[0].t];
+        self.d = [long.d, short[0].d];
+        self.steps = [long.dt, short[0].dt];
+        self.short1 = [short[1].t, short[1].d, short[1].dt];
+        self.side = u32::from(!mid_right);
+        self.n = n;
+    }
+}
+
+/// Where the rows lie in the buffers: the first row's index and the buffers' width, and
+/// the column the triangle's local column 0 is.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RowsAt {
+    pub row0: usize,
+    pub width: usize,
+    pub px0: i32,
+}
+
+impl RowsAt {
+    /// Whether every pixel [`RowsLess`] may touch lies inside buffers of `len`
+    /// elements: columns `px0 + cx0 .. px0 + cx1` inside `0..width`, rows
+    /// `row0 .. row0 + n₀ + n₁` inside the length. `None` when they do not.
+    #[inline(always)]
+    fn check(&self, r: &RowsLess, len: usize) -> Option<()> {
+        let rows = (r.n[0] as usize).checked_add(r.n[1] as usize)?;
+        let end = self.row0.checked_add(rows)?.checked_mul(self.width)?;
+        let (x0, x1) = (
+            self.px0.checked_add(r.cx[0])?,
+            self.px0.checked_add(r.cx[1])?,
+        );
+        (end <= len && x0 >= 0 && x1 <= i32::try_from(self.width).ok()?).then_some(())
+    }
+}
+
+/// Draw `r` into the depth rows `z` and colour rows `c` in `color`: the depth test
+/// `Less` with depth writes. Returns (pixels tested, pixels failed), or `None` (nothing
+/// drawn) when `C` is not a two-byte type or when the rows do not lie inside the
+/// buffers ([`RowsAt::check`]).
+#[inline(always)]
+pub(crate) fn rows_less_as_u16<C: Copy>(
+    r: &mut RowsLess,
+    at: RowsAt,
+    z: &mut [u16],
+    c: &mut [C],
+    color: C,
+) -> Option<(u32, u32)> {
+    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() < 2 {
+        return None;
+    }
+    at.check(r, z.len().min(c.len()))?;
+    // SAFETY: C is two bytes with alignment two (checked above), so `color`'s bytes
+    // read as a u16 and `c` viewed as `c.len()` u16s covers exactly the same memory; each
+    // element then keeps its bytes or takes `color`'s: a valid C.
+    let (bits, words) = unsafe {
+        (
+            core::mem::transmute_copy::<C, u16>(&color),
+            core::slice::from_raw_parts_mut(c.as_mut_ptr().cast::<u16>(), c.len()),
+        )
+    };
+    rows_less_u16(r, at, z, words, bits)
+}
+
+/// [`rows_less_as_u16`] for `u16` colours, the rows already checked to lie inside
+/// both buffers.
+#[inline(always)]
+fn rows_less_u16(
+    r: &mut RowsLess,
+    at: RowsAt,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> Option<(u32, u32)> {
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    {
+        Some(rows_less_dsp(r, at, z, c, color))
+    }
+    #[cfg(not(all(zraster_thumb, zraster_dsp)))]
+    {
+        Some(rows_less_portable(r, at, z, c, color))
+    }
+}
+
+/// The portable twin of the assembly: the rasterizer's own row loop for this case
+/// (the same pixels, depths and counts). The rows must lie inside the buffers
+/// ([`RowsAt::check`]); pixels outside are skipped.
+pub(crate) fn rows_less_portable(
+    r: &RowsLess,
+    at: RowsAt,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> (u32, u32) {
+    let (mut tested, mut failed) = (0u32, 0u32);
+    let mut zrow = r.z;
+    let mut base = (at.row0.wrapping_mul(at.width)).wrapping_add_signed(at.px0 as isize);
+    // Left and right: the long edge first, or the short one when `side` is not 0.
+    let (mut t, mut d, mut dt) = (r.t, r.d, r.steps);
+    if r.side != 0 {
+        t.reverse();
+        d.reverse();
+        dt.reverse();
+    }
+    for (half, n) in r.n.into_iter().enumerate() {
+        if half == 1 {
+            let [st, sd, sdt] = r.short1;
+            if r.side == 0 {
+                (t[1], d[1], dt[1]) = (st, sd, sdt);
+            } else {
+                (t[0], d[0], dt[0]) = (st, sd, sdt);
+            }
+        }
+        for _ in 0..n {
+            let xl = t[0].checked_div(d[0]).unwrap_or(0) as i32;
+            let xr = t[1].checked_div(d[1]).unwrap_or(0) as i32;
+            t = [t[0].wrapping_add(dt[0]), t[1].wrapping_add(dt[1])];
+            let (xa, xb) = (xl.max(r.cx[0]), xr.min(r.cx[1]));
+            if xa < xb {
+                tested = tested.wrapping_add((xb - xa) as u32);
+                let mut acc = zrow
+                    .wrapping_add((xa as u32).wrapping_mul(r.sx))
+                    .max(r.lo)
+                    .min(r.hi);
+                for x in xa..xb {
+                    let i = base.wrapping_add_signed(x as isize);
+                    if let (Some(zp), Some(cp)) = (z.get_mut(i), c.get_mut(i)) {
+                        let d = (acc >> 16) as u16;
+                        if d < *zp {
+                            (*zp, *cp) = (d, color);
+                        } else {
+                            failed = failed.wrapping_add(1);
+                        }
+                    }
+                    acc = acc.wrapping_add(r.sx);
+                }
+            }
+            zrow = zrow.wrapping_add(r.sy);
+            base = base.wrapping_add(at.width);
+        }
+    }
+    (tested, failed)
+}
+
+/// One pixel of a short row: depth `$d`, address `$p`; a failure branches to `$fail`.
+/// Clobbers r9 and lr.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! rows_pixel {
+    ($d:literal, $fail:literal) => {
+        concat!(
+            "ldrh r9, [", "r10", "]\n",
+            "cmp ", $d, ", r9\n",
+            "bhs ", $fail, "\n",
+            "ldrd r9, lr, [r0, #12]\n",
+            "strh ", $d, ", [r10]\n",
+            "strh r9, [r10, lr]\n",
+        )
+    };
+}
+
+/// One more failed pixel in the block's count (r0), then on at `$next`.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+macro_rules! rows_failed {
+    ($next:literal) => {
+        concat!(
+            "ldr r9, [r0, #44]\n",
+            "adds r9, #1\n",
+            "str r9, [r0, #44]\n",
+            "b ",
+            $next,
+            "\n",
+        )
+    };
+}
+
+/// [`rows_less_u16`] for ARMv7E-M. Rows of one and two pixels inline; longer ones by
+/// the two-pixel SIMD steps of `span_less_dsp` when `z` and `c` lie at the same
+/// address modulo 4, else one pixel a turn. Registers: r0 the block, r1/r2 the left/right `t`, r3 the row's
+/// depth at local column 0, r4 its depth address, r5 rows left in the half, r6 pixels
+/// tested, r7/r8 the divisors; r9–r12 and lr scratch (a row: r10 its first column, then
+/// its depth address; r11 its length; r12 its depth). Failures are counted in the
+/// block (they are rare).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[inline(always)]
+fn rows_less_dsp(
+    r: &mut RowsLess,
+    at: RowsAt,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> (u32, u32) {
+    let zaddr = z.as_mut_ptr() as u32;
+    let index = (at.row0.wrapping_mul(at.width) as u32).wrapping_add(at.px0 as u32);
+    let pair = u32::from(color) * 0x1_0001;
+    r.color = u32::from(color);
+    r.delta = (c.as_mut_ptr() as u32).wrapping_sub(zaddr);
+    r.pitch = (at.width as u32).wrapping_mul(2);
+    r.failed = 0;
+    r.base = zaddr.wrapping_add(index.wrapping_mul(2));
+    r.pair = [pair, pair ^ 0x1_0001];
+    let tested: u32;
+    // SAFETY: the caller has checked (`RowsAt::check`) that rows row0 .. row0 + n₀ + n₁
+    // of width `width` lie inside both `z` and `c`, and columns px0 + cx0 .. px0 + cx1
+    // inside 0..width; `z` and `c` are u16 slices (2-aligned). The
+    // assembly walks exactly n₀ + n₁ rows (r5 counts each half down; a half of 0 rows
+    // is skipped), stepping the row address by the pitch, and writes only columns
+    // max(x, cx0) .. min(x', cx1) of a row (signed compares): inside both buffers
+    // (the colour at the depth address + delta). Rows of three or more pixels run the
+    // loop of `span_less_dsp` over exactly that range (its own SAFETY argument: the
+    // colour and depth addresses alike modulo 4, tested on `delta`), with r0–r8 pushed
+    // around it and popped after, or (not alike) a loop of exactly that many pixels
+    // with r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as
+    // the twin has it). The block is read and written through r0 (`failed`, `dt`,
+    // the second half's count). r6 and r7 (not allowed as
+    // operands) are pushed and popped; every other register written is declared; the
+    // flags (GE included) are scratch.
+    unsafe {
+        core::arch::asm!(
+            "push {{r6, r7}}",
+            "ldrd r3, r4, [r0, #48]",
+            "movs r6, #0",
+            // The long and short edges to the left and right.
+            "ldr r12, [r0, #88]",
+            "ldrd r9, r10, [r0, #104]",
+            "cmp r12, #0",
+            "bne 11f",
+            "ldrd r1, r2, [r0, #64]",
+            "ldrd r7, r8, [r0, #72]",
+            "strd r9, r10, [r0, #20]",
+            "b 12f",
+            "11:",
+            "ldrd r2, r1, [r0, #64]",
+            "ldrd r8, r7, [r0, #72]",
+            "strd r10, r9, [r0, #20]",
+            "12:",
+            "ldr r5, [r0, #80]",
+            "cmp r5, #0",
+            "beq 8f",
+            // A row: its columns, clamped to the clip.
+            "1:",
+            "udiv r10, r1, r7",
+            "udiv r11, r2, r8",
+            "ldrd r9, r12, [r0, #20]",
+            "add r1, r9",
+            "add r2, r12",
+            "ldrd r9, r12, [r0, #28]",
+            "cmp r10, r9",
+            "it lt",
+            "movlt r10, r9",
+            "cmp r11, r12",
+            "it gt",
+            "movgt r11, r12",
+            "subs r11, r11, r10",
+            "ble 5f",
+            // Its depth at the first column, clamped, and that column's address.
+            "add r6, r11",
+            "ldr r9, [r0]",
+            "mla r12, r10, r9, r3",
+            "add r10, r4, r10, lsl #1",
+            "ldrd r9, lr, [r0, #4]",
+            "cmp r12, r9",
+            "it lo",
+            "movlo r12, r9",
+            "cmp r12, lr",
+            "it hi",
+            "movhi r12, lr",
+            "cmp r11, #1",
+            "bne 3f",
+            "lsr r12, r12, #16",
+            rows_pixel!("r12", "6f"),
+            // The next row.
+            "5:",
+            "ldrd r9, r12, [r0, #36]",
+            "add r3, r9",
+            "add r4, r12",
+            "subs r5, #1",
+            "bne 1b",
+            // The second half, its count cleared so that it runs once: the short edge
+            // replaced, the long one carried on.
+            "8:",
+            "ldr r5, [r0, #84]",
+            "cmp r5, #0",
+            "beq 9f",
+            "movs r9, #0",
+            "str r9, [r0, #84]",
+            "add lr, r0, #92",
+            "ldm lr, {{r9, r10, r11}}",
+            "ldr r12, [r0, #88]",
+            "cmp r12, #0",
+            "bne 13f",
+            "mov r2, r9",
+            "mov r8, r10",
+            "str r11, [r0, #24]",
+            "b 1b",
+            "13:",
+            "mov r1, r9",
+            "mov r7, r10",
+            "str r11, [r0, #20]",
+            "b 1b",
+            // Two pixels.
+            "3:",
+            "cmp r11, #2",
+            "bne 4f",
+            "ldr r9, [r0]",
+            "add r11, r12, r9",
+            "lsr r12, r12, #16",
+            rows_pixel!("r12", "7f"),
+            "2:",
+            "lsr r12, r11, #16",
+            "add r10, r10, #2",
+            rows_pixel!("r12", "6f"),
+            "b 5b",
+            "6:",
+            rows_failed!("5b"),
+            "7:",
+            rows_failed!("2b"),
+            // Three pixels or more: span_less_dsp's loop, r0–r8 saved meanwhile, when
+            // the colour and depth rows are aligned alike; else one pixel a turn.
+            "4:",
+            "ldr r9, [r0, #16]",
+            "tst r9, #2",
+            "bne 40f",
+            "push {{r0-r8}}",
+            "ldr r4, [r0]",
+            "ldr r1, [r0, #16]",
+            "ldrd r5, r6, [r0, #56]",
+            "add r1, r10",
+            "mov r0, r10",
+            "mov r2, r11",
+            "mov r3, r12",
+            "movs r7, #0",
+            "tst r0, #2",
+            "beq 20f",
+            dsp_one!(),
+            "adds r0, #2",
+            "adds r1, #2",
+            "subs r2, #1",
+            "20:",
+            "subs r2, #8",
+            "blo 22f",
+            "21:",
+            "ldrd r8, r9, [r0]",
+            "ldrd r10, r11, [r1]",
+            dsp_pair!("r8", "r10"),
+            dsp_pair!("r9", "r11"),
+            "strd r8, r9, [r0], #8",
+            "strd r10, r11, [r1], #8",
+            "ldrd r8, r9, [r0]",
+            "ldrd r10, r11, [r1]",
+            dsp_pair!("r8", "r10"),
+            dsp_pair!("r9", "r11"),
+            "strd r8, r9, [r0], #8",
+            "strd r10, r11, [r1], #8",
+            "subs r2, #8",
+            "bhs 21b",
+            "22:",
+            "lsls r2, r2, #30",
+            "bcc 23f",
+            "ldrd r8, r9, [r0]",
+            "ldrd r10, r11, [r1]",
+            dsp_pair!("r8", "r10"),
+            dsp_pair!("r9", "r11"),
+            "strd r8, r9, [r0], #8",
+            "strd r10, r11, [r1], #8",
+            "23:",
+            "bpl 24f",
+            "ldr r8, [r0]",
+            "ldr r10, [r1]",
+            dsp_pair!("r8", "r10"),
+            "str r8, [r0], #4",
+            "str r10, [r1], #4",
+            "24:",
+            "lsls r2, r2, #2",
+            "bcc 25f",
+            dsp_one!(),
+            "25:",
+            "mov r12, r7",
+            "pop {{r0-r8}}",
+            "ldr r9, [r0, #44]",
+            "add r9, r12",
+            "str r9, [r0, #44]",
+            "b 5b",
+            "40:",
+            "push {{r1-r3}}",
+            "ldr r1, [r0]",
+            "ldrd r2, r3, [r0, #12]",
+            "41:",
+            "lsr lr, r12, #16",
+            "ldrh r9, [r10]",
+            "add r12, r1",
+            "cmp lr, r9",
+            "bhs 43f",
+            "strh lr, [r10]",
+            "strh r2, [r10, r3]",
+            "42:",
+            "add r10, r10, #2",
+            "subs r11, #1",
+            "bne 41b",
+            "pop {{r1-r3}}",
+            "b 5b",
+            "43:",
+            rows_failed!("42b"),
+            "9:",
+            "mov r1, r6",
+            "pop {{r6, r7}}",
+            in("r0") r as *mut RowsLess,
+            out("r1") tested,
+            out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+            out("r12") _, out("lr") _,
+        );
+    }
+    (tested, r.failed)
+}
+
+/// On-target check of the rows assembly against its twin, for the bench firmware:
+/// random triangles' rows (edges, depths, clip columns, both halves, rows of every
+/// length from empty to 40 pixels, failing and passing depths) at both alignments,
+/// through `rows_less_as_u16` and `rows_less_portable` into copies of the same
+/// buffers, compared (depths, colours, counts). `buf` holds four 48 × 16 buffers
+/// (3,072 halfwords; a shorter one is a failure). Returns the number of cases that
+/// differ (where there is no assembly, the twin against itself).
+pub fn check_rows_kernel(buf: &mut [u16]) -> usize {
+    const W: usize = 48;
+    const H: usize = 16;
+    let Some(buf) = buf.get_mut(..4 * W * H) else {
+        return usize::MAX;
+    };
+    let (mine, twin) = buf.split_at_mut(2 * W * H);
+    let (z1, c1) = mine.split_at_mut(W * H);
+    let (z2, c2) = twin.split_at_mut(W * H);
+    let mut seed = 0x2545_f491_u32;
+    let rnd = &mut move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 17;
+        seed ^= seed << 5;
+        seed
+    };
+    // An edge starting near column `x0`, stepping up to three columns a row.
+    let edge = |rnd: &mut dyn FnMut() -> u32, x0: u32| {
+        let d = 16 * (1 + rnd() % 24);
+        let dt = (rnd() % 96).wrapping_sub(48).wrapping_mul(16);
+        DivEdge {
+            t: (x0 * d).wrapping_add(rnd() % d),
+            dt,
+            d,
+        }
+    };
+    // Edges about `w` columns apart, mostly one or two at first.
+    let pair = |rnd: &mut dyn FnMut() -> u32| {
+        let xl = rnd() % 24;
+        let w = match rnd() % 4 {
+            0 => 1,
+            1 => 2,
+            _ => rnd() % 30,
+        };
+        (edge(rnd, xl), edge(rnd, xl + w))
+    };
+    let mut bad = 0;
+    for case in 0..600u32 {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let mid_right = rnd() % 2 == 0;
+        let (l, rt) = pair(rnd);
+        let (long, short0) = if mid_right { (l, rt) } else { (rt, l) };
+        let (l, rt) = pair(rnd);
+        let short1 = if mid_right { rt } else { l };
+        let px0 = (rnd() % 20) as i32 - 6;
+        let (cx0, cx1) = if case % 2 == 0 {
+            (-px0, W as i32 - px0)
+        } else {
+            let a = (rnd() % W as u32) as i32;
+            (
+                a - px0,
+                a + (rnd() % (W as u32 - a as u32 + 1)) as i32 - px0,
+            )
+        };
+        let sx = match case % 4 {
+            0 => rnd() >> 12,
+            1 => (rnd() >> 12).wrapping_neg(),
+            _ => rnd() >> (8 + rnd() % 16),
+        };
+        let lo = rnd() >> 2;
+        let mut r = RowsLess::new(cx0, cx1);
+        r.edges(long, [short0, short1], [rnd() % 7, rnd() % 7], mid_right);
+        let (z, sy, hi) = (rnd(), rnd(), lo.wrapping_add(rnd() >> 2).max(lo));
+        r.depth(z, sx, sy, lo, hi);
+        let at = RowsAt {
+            row0: (rnd() % 3) as usize,
+            width: W,
+            px0,
+        };
+        let color = rnd() as u16;
+        // Odd and even starting offsets: the colour rows at the depth rows' address
+        // modulo 4 (the SIMD steps), and (every other case) not.
+        let off = (case / 2 % 2) as usize;
+        let inside = at.check(&r, W * H - off).is_some();
+        // The assembly writes the block (the second half's edge and count): a copy.
+        let mine = &mut r.clone();
+        let Some(ca) = c1.get_mut(off..) else {
+            return usize::MAX;
+        };
+        match rows_less_as_u16(mine, at, &mut z1[..], ca, color) {
+            // Refused: only rows outside the buffers, and nothing written.
+            None => {
+                if inside || z1 != z2 || c1 != c2 {
+                    bad += 1;
+                }
+            }
+            Some(got) => {
+                let Some(cb) = c2.get_mut(off..) else {
+                    return usize::MAX;
+                };
+                let want = rows_less_portable(&r, at, &mut z2[..], cb, color);
+                if !inside || got != want || z1 != z2 || c1 != c2 {
+                    bad += 1;
+                }
+            }
+        }
+    }
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_kernel_matches_its_twin() {
+        let mut buf = [0u16; 4 * 48 * 16];
+        assert_eq!(check_rows_kernel(&mut buf), 0);
+        assert_eq!(check_rows_kernel(&mut buf[..100]), usize::MAX);
+    }
+
+    /// Rows outside the buffers are refused, not drawn.
+    #[test]
+    fn rows_outside_the_buffers_are_refused() {
+        let mut r = RowsLess::new(0, 8);
+        let (long, short) = (
+            DivEdge { t: 0, dt: 0, d: 16 },
+            DivEdge {
+                t: 64,
+                dt: 0,
+                d: 16,
+            },
+        );
+        r.edges(long, [short, DivEdge::default()], [4, 0], true);
+        let at = |row0, px0| RowsAt {
+            row0,
+            width: 8,
+            px0,
+        };
+        let len = 8 * 4;
+        assert!(at(0, 0).check(&r, len).is_some());
+        assert!(at(1, 0).check(&r, len).is_none());
+        assert!(at(0, 1).check(&r, len).is_none());
+        assert!(at(0, -1).check(&r, len).is_none());
+        assert!(at(usize::MAX, 0).check(&r, len).is_none());
+    }
+}
