@@ -124,9 +124,11 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     // The kernel's rows are written as their values are found (see RowsLess).
     let use_kernel = kernel && write && is_less(&pass);
     let mut block = RowsLess::new(cx0, cx1);
-    if use_kernel {
-        kernel_edges(&mut block, v, mid_right, (start, mid, end), py0);
-    }
+    let n0 = if use_kernel {
+        kernel_edges(&mut block, v, mid_right, (start, mid, end), py0)
+    } else {
+        0
+    };
 
     // Column 0 of row `start`: its depth and its index (wrapping: it may lie left of
     // the buffer; the indices of covered columns do not).
@@ -140,11 +142,13 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         failed: 0,
     };
     if use_kernel {
-        block.depth(row.z, depth.sx, depth.sy, depth.lo, depth.hi);
+        block.depth(depth.sx, depth.sy, depth.lo, depth.hi);
         let at = RowsAt {
             row0: (start - b.first_row) as usize,
             width: b.width,
             px0,
+            n0,
+            z: row.z,
         };
         if let Some((tested, failed)) = rows_less_as_u16(&mut block, at, b.zdata, b.cdata, color) {
             return Some((tested, tested.wrapping_sub(failed)));
@@ -223,7 +227,7 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
 
 /// The edges of [`fill_small_with`]'s rows for [`rows_less_as_u16`]: vertices `v`
 /// sorted top to bottom (local coordinates), rows `start..end` split at `mid`, in the
-/// [`EdgeDivide`] form.
+/// [`EdgeDivide`] form. Returns the upper half's row count.
 #[inline(always)]
 fn kernel_edges(
     rows: &mut RowsLess,
@@ -231,7 +235,7 @@ fn kernel_edges(
     mid_right: bool,
     (start, mid, end): (i32, i32, i32),
     py0: i32,
-) {
+) -> u32 {
     let edge = |a: (i32, i32), c: (i32, i32), py: i32| {
         let e = <EdgeDivide as SmallEdge>::new(a, c, py - py0);
         DivEdge {
@@ -244,12 +248,8 @@ fn kernel_edges(
     let (n0, n1) = ((mid.min(end) - start).max(0), (end - lower_start).max(0));
     // A half with no rows is skipped whatever its edge.
     let short = [edge(v0, v1, start), edge(v1, v2, lower_start)];
-    rows.edges(
-        edge(v0, v2, start),
-        short,
-        [n0 as u32, n1 as u32],
-        mid_right,
-    );
+    rows.edges(edge(v0, v2, start), short, n1 as u32, mid_right);
+    n0 as u32
 }
 
 /// `n` rows between the `left` and `right` edges, columns clipped to `cx0..cx1`.
