@@ -229,31 +229,31 @@ pub(crate) fn rows_less_portable(
     (tested, failed)
 }
 
-/// One pixel of a short row: depth `$d`, address `$p`; a failure branches to `$fail`.
-/// Clobbers r9 and lr.
+/// One pixel of a short row: depth in r9, address in r10 (`$at`: `[r10]`, or
+/// `[r10, #2]!` to step it first); a failure branches to `$fail`. Clobbers r12 and lr.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! rows_pixel {
-    ($d:literal, $fail:literal) => {
+    ($at:literal, $fail:literal) => {
         concat!(
-            "ldrh r9, [", "r10", "]\n",
-            "cmp ", $d, ", r9\n",
+            "ldrh r12, ", $at, "\n",
+            "cmp r9, r12\n",
             "bhs ", $fail, "\n",
-            "ldrd r9, lr, [r0, #12]\n",
-            "strh ", $d, ", [r10]\n",
-            "strh r9, [r10, lr]\n",
+            "ldrd r12, lr, [r0, #12]\n",
+            "strh r9, [r10]\n",
+            "strh r12, [r10, lr]\n",
         )
     };
 }
 
-/// One more failed pixel in the block's count (r0), then on at `$next`.
+/// One more failed pixel in the block's count (r0), then on at `$next`. Clobbers r12.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 macro_rules! rows_failed {
     ($next:literal) => {
         concat!(
-            "ldr r9, [r0, #44]\n",
-            "adds r9, #1\n",
-            "str r9, [r0, #44]\n",
+            "ldr r12, [r0, #44]\n",
+            "adds r12, #1\n",
+            "str r12, [r0, #44]\n",
             "b ",
             $next,
             "\n",
@@ -266,7 +266,7 @@ macro_rules! rows_failed {
 /// address modulo 4, else one pixel a turn. Registers: r0 the block, r1/r2 the left/right `t`, r3 the row's
 /// depth at local column 0, r4 its depth address, r5 rows left in the half, r6 pixels
 /// tested, r7/r8 the divisors; r9–r12 and lr scratch (a row: r10 its first column, then
-/// its depth address; r11 its length; r12 its depth). Failures are counted in the
+/// its depth address; r11 its length; r9 its depth). Failures are counted in the
 /// block (they are rare).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[inline(always)]
@@ -337,20 +337,19 @@ fn rows_less_dsp(
             "ble 5f",
             // Its depth at the first column, clamped, and that column's address.
             "add r6, r11",
-            "ldr r9, [r0]",
-            "mla r12, r10, r9, r3",
+            "ldm r0, {{r9, r12, lr}}",
+            "mla r9, r10, r9, r3",
             "add r10, r4, r10, lsl #1",
-            "ldrd r9, lr, [r0, #4]",
             // Inside lo..=hi (usually); else clamped at 16.
-            "cmp r12, r9",
+            "cmp r9, r12",
             "it hs",
-            "cmphs lr, r12",
+            "cmphs lr, r9",
             "blo 16f",
             "17:",
             "cmp r11, #1",
             "bne 3f",
-            "lsr r12, r12, #16",
-            rows_pixel!("r12", "6f"),
+            "lsr r9, r9, #16",
+            rows_pixel!("[r10]", "6f"),
             // The next row.
             "5:",
             "ldrd r9, r12, [r0, #36]",
@@ -384,14 +383,13 @@ fn rows_less_dsp(
             "3:",
             "cmp r11, #2",
             "bne 4f",
-            "ldr r9, [r0]",
-            "add r11, r12, r9",
-            "lsr r12, r12, #16",
-            rows_pixel!("r12", "7f"),
+            "ldr r12, [r0]",
+            "add r11, r9, r12",
+            "lsr r9, r9, #16",
+            rows_pixel!("[r10]", "7f"),
             "2:",
-            "lsr r12, r11, #16",
-            "add r10, r10, #2",
-            rows_pixel!("r12", "6f"),
+            "lsr r9, r11, #16",
+            rows_pixel!("[r10, #2]!", "6f"),
             "b 5b",
             // The row's columns clamped to the clip.
             "14:",
@@ -404,12 +402,12 @@ fn rows_less_dsp(
             "b 15b",
             // The row's first depth clamped to lo..=hi.
             "16:",
-            "cmp r12, r9",
+            "cmp r9, r12",
             "it lo",
-            "movlo r12, r9",
-            "cmp r12, lr",
+            "movlo r9, r12",
+            "cmp r9, lr",
             "it hi",
-            "movhi r12, lr",
+            "movhi r9, lr",
             "b 17b",
             "6:",
             rows_failed!("5b"),
@@ -418,8 +416,8 @@ fn rows_less_dsp(
             // Three pixels or more: span_less_dsp's loop, r0–r8 saved meanwhile, when
             // the colour and depth rows are aligned alike; else one pixel a turn.
             "4:",
-            "ldr r9, [r0, #16]",
-            "tst r9, #2",
+            "ldr r12, [r0, #16]",
+            "tst r12, #2",
             "bne 40f",
             "push {{r0-r8}}",
             "ldr r4, [r0]",
@@ -430,7 +428,7 @@ fn rows_less_dsp(
             "add r1, r10",
             "mov r0, r10",
             "mov r2, r11",
-            "mov r3, r12",
+            "mov r3, r9",
             "movs r7, #0",
             "tst r0, #2",
             "beq 20f",
@@ -488,10 +486,10 @@ fn rows_less_dsp(
             "ldr r1, [r0]",
             "ldrd r2, r3, [r0, #12]",
             "41:",
-            "lsr lr, r12, #16",
-            "ldrh r9, [r10]",
-            "add r12, r1",
-            "cmp lr, r9",
+            "lsr lr, r9, #16",
+            "ldrh r12, [r10]",
+            "add r9, r1",
+            "cmp lr, r12",
             "bhs 43f",
             "strh lr, [r10]",
             "strh r2, [r10, r3]",
