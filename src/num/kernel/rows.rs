@@ -1,7 +1,7 @@
 //! The rows of a small flat-coloured triangle, both halves in one pass: edges by one
 //! division a row, the depth test `Less` with depth writes, a two-byte colour.
-//! Assembly on ARMv7E-M (everything in registers or one block read by `LDRD`), beside
-//! its portable twin.
+//! Assembly on ARMv7E-M (the row's state in registers, its constants in one block read
+//! by `LDRD`/`LDM`), beside its portable twin.
 #![allow(unsafe_code)]
 
 /// Whether [`rows_less_as_u16`] runs the assembly (ARMv7E-M). Elsewhere it runs the
@@ -21,13 +21,14 @@ pub(crate) struct DivEdge {
 
 /// The rows of a small triangle, in columns relative to the triangle's origin column
 /// `px0` (see [`rows_less_as_u16`]), laid out as the assembly reads them (byte offsets
-/// in the comments; its caller fills the fields the setters leave): `n[0]` rows between
-/// the long edge `(t, d, dt)[0]` and the short one `[1]`, the long one on the left
-/// when `side` is 0, then `n[1]` rows with the short edge replaced by `short1`, the
-/// long one carried on. Each row covers `max(left, cx0)..min(right, cx1)`, the depth at its column `x` is
-/// `clamp(z + x·sx, lo, hi)` then `+ sx` a pixel, `z` stepping by `sy` a row (all
-/// wrapping). Filled field by field as the triangle's set-up finds the values, so that
-/// they need not stay in registers meanwhile.
+/// in the comments; the draw fills the fields the setters leave): [`RowsAt::n0`] rows
+/// between the long edge `(t, d, dt)[0]` and the short one `[1]`, the long one on the
+/// left when `side` is 0, then `n1` rows with the short edge replaced by `short1`, the
+/// long one carried on. Each row covers `max(left, cx0)..min(right, cx1)`; the depth at
+/// its column `x` is `clamp(z + x·sx, lo, hi)` then `+ sx` a pixel, `z`
+/// ([`RowsAt::z`]) stepping by `sy` a row (all wrapping). Filled field by field as the
+/// triangle's set-up finds the values, so that they need not stay in registers
+/// meanwhile.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RowsLess {
@@ -263,11 +264,13 @@ macro_rules! rows_failed {
 
 /// [`rows_less_u16`] for ARMv7E-M. Rows of one and two pixels inline; longer ones by
 /// the two-pixel SIMD steps of `span_less_dsp` when `z` and `c` lie at the same
-/// address modulo 4, else one pixel a turn. Registers: r0 the block, r1/r2 the left/right `t`, r3 the row's
-/// depth at local column 0, r4 its depth address, r5 rows left in the half, r6 pixels
-/// tested, r7/r8 the divisors; r9–r12 and lr scratch (a row: r10 its first column, then
-/// its depth address; r11 its length; r9 its depth). Failures are counted in the
-/// block (they are rare).
+/// address modulo 4, else one pixel a turn. Registers: r0 the block, r1/r2 the left and
+/// right `t`, r3 the row's depth at local column 0, r4 its depth address, r5 rows left
+/// in the half (r3–r5 come in from [`RowsAt`]), r6 pixels tested, r7/r8 the divisors;
+/// r9–r12 and lr scratch (a row: r10 its first column, then its depth address; r11 its
+/// length; r9 its depth). Failures are counted in the block (they are rare). The clip
+/// and depth clamps are compare chains, the clamping itself out of line (rows inside
+/// the clip and the depth range are the rule).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[inline(always)]
 fn rows_less_dsp(
@@ -287,19 +290,19 @@ fn rows_less_dsp(
     let tested: u32;
     // SAFETY: the caller has checked (`RowsAt::check`) that rows row0 .. row0 + n0 + n1
     // of width `width` lie inside both `z` and `c`, and columns px0 + cx0 .. px0 + cx1
-    // inside 0..width; `z` and `c` are u16 slices (2-aligned). The
-    // assembly walks exactly n0 + n1 rows (r5 counts each half down; a half of 0 rows
-    // is skipped), stepping the row address by the pitch, and writes only columns
-    // max(x, cx0) .. min(x', cx1) of a row (signed compares): inside both buffers
-    // (the colour at the depth address + delta). Rows of three or more pixels run the
-    // loop of `span_less_dsp` over exactly that range (its own SAFETY argument: the
-    // colour and depth addresses alike modulo 4, tested on `delta`), with r0–r8 pushed
-    // around it and popped after, or (not alike) a loop of exactly that many pixels
-    // with r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as
-    // the twin has it). The block is read and written through r0 (`failed`, `dt`,
-    // the second half's count). r6 and r7 (not allowed as
-    // operands) are pushed and popped; every other register written is declared; the
-    // flags (GE included) are scratch.
+    // inside 0..width; `z` and `c` are u16 slices (2-aligned). The assembly starts at
+    // the address of row row0, column px0 (r4), walks exactly n0 + n1 rows (r5 counts
+    // each half down; a half of 0 rows is skipped), stepping the row address by the
+    // pitch, and writes only columns max(x, cx0) .. min(x', cx1) of a row (signed
+    // compares, clamped whenever either bound is crossed): inside both buffers (the
+    // colour at the depth address + delta). Rows of three or more pixels run the loop
+    // of `span_less_dsp` over exactly that range (its own SAFETY argument: the colour
+    // and depth addresses alike modulo 4, tested on `delta`), with r0–r8 pushed around
+    // it and popped after, or (not alike) a loop of exactly that many pixels with
+    // r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as the twin has it).
+    // The block is read and written through r0 (`failed`, `dt` reordered, the second
+    // half's count). r6 and r7 (not allowed as operands) are pushed and popped; every
+    // other register written is declared; the flags (GE included) are scratch.
     unsafe {
         core::arch::asm!(
             "push {{r6, r7}}",
