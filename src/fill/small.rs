@@ -338,8 +338,8 @@ mod tests {
 
     /// The rows through `rows_less_as_u16` (on the host its portable twin, on ARMv7E-M
     /// the assembly) give the pixels, depths and counts of the row loop, for random
-    /// small triangles of every size up to 40 pixels, clipped by every side, in
-    /// buffers that start on row 3 (a band).
+    /// triangles from 3 to 700 pixels across (from 512 on, neither takes the small
+    /// path), clipped by every side, in buffers that start on row 3 (a band).
     #[test]
     fn kernel_rows_match_the_row_loop() {
         const W: usize = 40;
