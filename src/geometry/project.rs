@@ -86,6 +86,41 @@ fn signed_ratio(n: i32, r: u32, h: u32) -> Option<i32> {
     Some(if n < 0 { -q } else { q })
 }
 
+/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table: the value of
+/// [`recip62`] (for ARMv6-M, where its 64-bit products are long). Each step's error is
+/// read off the low word of a product, exact because the step keeps it in `[0, 2³²)`:
+///
+/// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v: a line through 1/x (error below 1/17),
+///    two Newton steps and a correction by the remainder (a test checks every v).
+///    Then y ≤ 2⁴⁶/d and e = 2⁴⁶ − d·y < 2⁴⁶/(v + 1) + v·2¹⁵ ≤ 2³².
+/// 2. With ε = e/2⁴⁶ < 2⁻¹⁴, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the
+///    last term below 2⁻⁹: y' = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋ lies within [2⁴⁹/d − 2, 2⁴⁹/d]
+///    (1 + 2⁻¹⁶ + 2⁻⁹ dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
+/// 3. Likewise 2⁶²/d = 2¹³y' + y'·e'/2³⁶ + t with t = 2¹³y'·ε'²/(1 − ε') < ¼
+///    (ε' < 2⁻¹⁷, y' < 2¹⁹); x = 2¹³y' + ⌊(y'/8)·e'/2³³⌋ (the product from 16-bit
+///    halves of e', y'/8 < 2¹⁶) drops below 0.5 + 2⁻¹⁷ + 1, so 2⁶²/d − x ∈ [0, 2).
+///    The remainder 2⁶² − d·x is then in [0, 2d) ⊂ [0, 2³²): x or x + 1.
+#[inline(always)]
+fn recip62_low(d: u32) -> u32 {
+    // 1. (|products| < 2³⁰ and w·y ≤ 2³¹ for every v: checked by the test.)
+    let v = d >> 15;
+    let w = v + 1;
+    let mut y = 92521 - ((v * 61681) >> 16);
+    for (down, up) in [(13, 18), (9, 22)] {
+        let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(y)) as i32;
+        y = y.wrapping_add_signed(((y as i32) * (e >> down)) >> up);
+    }
+    y += u32::from((1 << 31) - w * y >= w);
+    // 2.
+    let e = d.wrapping_mul(y).wrapping_neg();
+    let y = 8 * y + ((y * (e >> 16)) >> 27);
+    // 3.
+    let e = d.wrapping_mul(y).wrapping_neg();
+    let h = y >> 3;
+    let x = (y << 13) + ((h * (e >> 16) + ((h * (e & 0xffff)) >> 16)) >> 17);
+    x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
+}
+
 /// Screen mapping of a viewport, precomputed.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ScreenMap {
@@ -339,7 +374,7 @@ impl ScreenMap {
         let (xn, yn) = (norm(x)?, norm(y)?);
         // |xn|, |yn| < 2³¹ ≤ 2·wn: |x|, |y| < 2.0000001·w, well inside ±64·w.
         // r = ⌊2⁶²/wn⌋ < 2³² (wn > 2³⁰).
-        let r = recip62(wn) as u32;
+        let r = recip62_low(wn);
         // project_integer's i64 sums, truncated to i32 as it truncates them.
         let sx = (self.ox_i as i32).wrapping_add(signed_ratio(xn, r, self.half_w as u32)?);
         let sy = (self.oy_i as i32).wrapping_sub(signed_ratio(yn, r, self.half_h as u32)?);
@@ -561,6 +596,50 @@ mod tests {
             fast >= meant_for - meant_for / 100 && meant_for > cases / 4,
             "{fast} fast of {meant_for}"
         );
+    }
+
+    /// [`recip62_low`] is [`recip62`]: its first step exact for every one of d's top 16
+    /// bits (the steps' products within `i32`), then every bucket's ends and middle and
+    /// 10⁷ random divisors. `ZRASTER_EXHAUSTIVE=1` checks every divisor (2³⁰ of them;
+    /// in a release build, some seconds).
+    #[test]
+    fn low_word_reciprocal_is_exact() {
+        for v in 1u32 << 15..1 << 16 {
+            let w = v + 1;
+            let mut y = 92521 - ((v * 61681) >> 16);
+            for (down, up) in [(13, 18), (9, 22)] {
+                let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(y)) as i32;
+                let p = i64::from(y) * i64::from(e >> down);
+                assert!(p.unsigned_abs() < 1 << 30, "v {v}");
+                y = (i64::from(y) + (p >> up)) as u32;
+            }
+            assert!(u64::from(w) * u64::from(y) <= 1 << 31, "v {v}");
+            y += u32::from((1 << 31) - w * y >= w);
+            assert_eq!(y, (1 << 31) / w, "v {v}");
+            for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
+                if d > 1 << 30 && d < 1 << 31 {
+                    assert_eq!(u64::from(recip62_low(d)), recip62(d), "d {d}");
+                }
+            }
+        }
+        let mut rnd = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
+        for _ in 0..crate::num::tests::fast_cases() {
+            let d = (rnd() as u32 >> 1 | 1 << 30).max((1 << 30) + 1);
+            assert_eq!(
+                u64::from(recip62_low(d)),
+                (1u64 << 62) / u64::from(d),
+                "d {d}"
+            );
+        }
+        if std::env::var_os("ZRASTER_EXHAUSTIVE").is_some() {
+            for d in (1u32 << 30) + 1..1 << 31 {
+                assert_eq!(
+                    u64::from(recip62_low(d)),
+                    (1u64 << 62) / u64::from(d),
+                    "d {d}"
+                );
+            }
+        }
     }
 
     #[test]
