@@ -82,8 +82,9 @@ pub(crate) fn to_f32(c: &Clip4) -> [f32; 4] {
 /// for `|n| < 2³¹` and `h ≤ 2¹⁶`, as [`scaled_ratio_parts`] (`None` where it cannot tell).
 #[inline(always)]
 fn signed_ratio(n: i32, r: u32, h: u32) -> Option<i32> {
+    let s = n >> 31; // 0 or −1: the sign applied without a branch
     let q = scaled_ratio_parts(n.unsigned_abs(), r, h)? as i32; // below 2¹⁸
-    Some(if n < 0 { -q } else { q })
+    Some((q ^ s) - s)
 }
 
 /// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table: the value of
@@ -159,15 +160,29 @@ impl ScreenMap {
     /// Classify and project a fixed-point clip-space point: its outcode, and its screen
     /// vertex when the outcode is 0. The planes are tested in integers (64-bit where a
     /// sum could overflow); only points inside are divided by w.
-    #[inline]
+    #[inline(never)] // one copy for the drawing paths; the vertex cache inlines its own
     pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
-        // Near, far and w ≥ 1 exactly, in 64 bits; every plane is tested, also behind
-        // the eye, so that clipping cuts at the near plane first, well away from w = 0.
+        self.project_fixed_inline(c)
+    }
+
+    /// [`project_fixed`](ScreenMap::project_fixed) inlined: its fast path
+    /// ([`project_fast`](ScreenMap::project_fast), on ARMv6-M) in the caller, the rest
+    /// out of line.
+    #[inline(always)]
+    pub(crate) fn project_fixed_inline(&self, c: &Clip4) -> (u8, ScreenVertex) {
         if INTEGER_PROJECTION && ARMV6M {
             if let Some(v) = self.project_fast(c) {
                 return (0, v);
             }
         }
+        self.project_exact(c)
+    }
+
+    /// [`project_fixed`](ScreenMap::project_fixed) without its fast path.
+    #[inline(never)]
+    fn project_exact(&self, c: &Clip4) -> (u8, ScreenVertex) {
+        // Near, far and w ≥ 1 exactly, in 64 bits; every plane is tested, also behind
+        // the eye, so that clipping cuts at the near plane first, well away from w = 0.
         let (z, w) = c.zw();
         let mut code = if w < 1 { outcode::W } else { 0 };
         if z < -w {

@@ -344,7 +344,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
-            let (code, screen) = r.project_vertex(p);
+            // project_vertex, with the integer projection's fast path inlined here.
+            let (code, screen) = if crate::num::INTEGER_PROJECTION {
+                r.map.project_fixed_inline(&r.fixed.apply(p))
+            } else {
+                r.project_vertex(p)
+            };
             *slot = CachedVertex::new(code, screen);
         }
         r.cache = Some(cache);
