@@ -78,12 +78,34 @@ pub(crate) fn to_f32(c: &Clip4) -> [f32; 4] {
     c.to_f32()
 }
 
-/// `n·h/d` rounded to nearest (halves away from zero), given `r = ⌊2⁶²/d⌋` (d > 2³⁰),
-/// for `|n| < 2³¹` and `h ≤ 2¹⁶`, as [`scaled_ratio_parts`] (`None` where it cannot tell).
+/// `⌊v·2⁻ᵏ⌋` as its sign (0 or −1) and magnitude, when that is below 2³¹: a right
+/// shift by `k ≥ 0`, or a left shift by `−k ≤ 31` that loses no bit.
 #[inline(always)]
-fn signed_ratio(n: i32, r: u32, h: u32) -> Option<i32> {
-    let s = n >> 31; // 0 or −1: the sign applied without a branch
-    let q = scaled_ratio_parts(n.unsigned_abs(), r, h)? as i32; // below 2¹⁸
+fn normalised(v: i32, k: i32) -> Option<(i32, u32)> {
+    let s = v >> 31;
+    let a = if k >= 0 {
+        let a = ((v >> k) ^ s).wrapping_sub(s) as u32;
+        if a >> 31 != 0 {
+            return None; // i32::MIN, for k = 0
+        }
+        a
+    } else {
+        let (a, m) = (v.unsigned_abs(), k.unsigned_abs());
+        if a >> (31 - m) != 0 {
+            return None;
+        }
+        a << m
+    };
+    Some((s, a))
+}
+
+/// `n·h/d` rounded to nearest (halves away from zero) for `n` given as its sign (0 or
+/// −1) and magnitude (below 2³¹), given `r = ⌊2⁶²/d⌋` (d > 2³⁰) and `h ≤ 2¹⁶`, as
+/// [`scaled_ratio_parts`] (`None` where it cannot tell); the sign applied without a
+/// branch.
+#[inline(always)]
+fn signed_ratio((s, a): (i32, u32), r: u32, h: u32) -> Option<i32> {
+    let q = scaled_ratio_parts(a, r, h)? as i32; // below 2¹⁸
     Some((q ^ s) - s)
 }
 
@@ -370,29 +392,15 @@ impl ScreenMap {
             return None;
         }
         let un = ((zt as u32).wrapping_add(wt as u32) << up) + ((zl + wl) >> sh);
-        // ⌊x·2^e / 2^sh⌋ in i32: a right shift by sh − e ≤ 14, or a left shift by
-        // e − sh ≤ 19 that loses no bit. i32::MIN is left out (its magnitude is 2³¹).
+        // xn = ⌊x·2^e / 2^sh⌋ (likewise yn) as its sign and magnitude, below 2³¹
+        // (e ≤ 20 and sh ≥ 1: k ≥ −19).
         let k = sh as i32 - e as i32;
-        let norm = |v: i32| -> Option<i32> {
-            let n = if k >= 0 {
-                v >> k
-            } else {
-                let m = k.unsigned_abs();
-                let n = v << m;
-                if n >> m != v {
-                    return None;
-                }
-                n
-            };
-            (n != i32::MIN).then_some(n)
-        };
-        let (xn, yn) = (norm(x)?, norm(y)?);
+        let (x, y) = (normalised(x, k)?, normalised(y, k)?);
         // |xn|, |yn| < 2³¹ ≤ 2·wn: |x|, |y| < 2.0000001·w, well inside ±64·w.
-        // r = ⌊2⁶²/wn⌋ < 2³² (wn > 2³⁰).
         let r = recip62_low(wn);
         // project_integer's i64 sums, truncated to i32 as it truncates them.
-        let sx = (self.ox_i as i32).wrapping_add(signed_ratio(xn, r, self.half_w as u32)?);
-        let sy = (self.oy_i as i32).wrapping_sub(signed_ratio(yn, r, self.half_h as u32)?);
+        let sx = (self.ox_i as i32).wrapping_add(signed_ratio(x, r, self.half_w as u32)?);
+        let sy = (self.oy_i as i32).wrapping_sub(signed_ratio(y, r, self.half_h as u32)?);
         // Depth: q30 = ⌊(un·r + 2³¹)/2³²⌋ ≤ 2³¹ + 1 (un/wn ≤ 2 + 1/wn), and
         // ⌊(q30·65535 + 2¹⁴)/2¹⁵⌋ = 2·q30 − ⌈(q30 − 2¹⁴)/2¹⁵⌉ = 2·q30 − d with
         // d = ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋ ≤ q30: below 2³² − 2¹⁵.
