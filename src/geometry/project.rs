@@ -234,6 +234,29 @@ impl ScreenMap {
     /// answer clips correctly); a NaN `w` is outside.
     #[inline(always)]
     pub(crate) fn project_float(&self, c: [f32; 4]) -> (u8, ScreenVertex) {
+        match self.project_float_inside(c) {
+            Some(v) => (0, v),
+            None => self.classify_float(c),
+        }
+    }
+
+    /// [`project_float`](ScreenMap::project_float)'s screen vertex for a point inside
+    /// every plane (its outcode 0), `None` for any other: five tests that branch (NaN
+    /// fails each; given w ≥ 1, |z| ≤ w is neither near nor far).
+    #[inline(always)]
+    pub(crate) fn project_float_inside(&self, c: [f32; 4]) -> Option<ScreenVertex> {
+        let [x, y, z, w] = c;
+        let g = GUARD * w;
+        if w >= 1.0 && z.abs() <= w && x.abs() <= g && y.abs() <= g {
+            return Some(self.project_inside_float(c));
+        }
+        None
+    }
+
+    /// [`project_float`](ScreenMap::project_float) for any point: every plane tested
+    /// and its bit set.
+    #[inline(never)]
+    fn classify_float(&self, c: [f32; 4]) -> (u8, ScreenVertex) {
         let [_, _, z, w] = c;
         let mut code = if w >= 1.0 { 0 } else { outcode::W };
         if z < -w {
@@ -262,16 +285,19 @@ impl ScreenMap {
         if code != 0 {
             return (code, ScreenVertex::ORIGIN);
         }
+        (0, self.project_inside_float([x, y, zf, wf]))
+    }
+
+    /// The screen vertex of an `f32` clip-space point inside every plane.
+    #[inline(always)]
+    fn project_inside_float(&self, [x, y, zf, wf]: [f32; 4]) -> ScreenVertex {
         // Inside: |x|, |y| ≤ 64·w (to f32 rounding) and |z| ≤ w, so x and y land
         // within ±65·8192·8 < 2²³ (no clamp needed) and only z needs clamping.
         let inv = 1.0 / wf;
         let sx = x * inv * self.sx + self.ox;
         let sy = y * inv * self.sy + self.oy;
         let sz = (zf * inv + 1.0) * DEPTH_HALF + 0.5;
-        (
-            0,
-            ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH)),
-        )
+        ScreenVertex::from_raw(round_f32(sx), round_f32(sy), (sz as u32).min(MAX_DEPTH))
     }
 
     /// The rest of [`project_fixed`](ScreenMap::project_fixed) in integers: the guard
@@ -478,6 +504,49 @@ mod tests {
         let nan = map.project_float([f32::NAN, 0.0, 0.0, 2.0]);
         assert_ne!(nan.0, 0);
         assert_ne!(map.project_float([0.0, 0.0, 0.0, f32::NAN]).0, 0);
+    }
+
+    /// [`ScreenMap::project_float`]'s fast test for the usual vertex changes nothing:
+    /// it gives what classifying every plane gives, for points inside, next to each
+    /// plane, outside, infinite and NaN.
+    #[test]
+    fn float_fast_path_is_the_classification() {
+        let map = ScreenMap::new(&Viewport::at(-7, 3, 320, 240).unwrap());
+        let mut next = crate::testing::xorshift32(0x0bad_cafe);
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        let mut fast = 0;
+        for i in 0..200_000 {
+            let w = match i % 8 {
+                0 => special[(next() % 7) as usize],
+                1 => 1.0 - f32::EPSILON * (next() % 4) as f32,
+                _ => (next() % 100_000) as f32 / 64.0,
+            };
+            let ratio = |r: u32| match r % 16 {
+                0 => special[(r / 16 % 7) as usize],
+                1 => 1.0,
+                2 => -1.0,
+                _ => (r % 300_000) as f32 / 65_536.0 - 2.3,
+            };
+            let z = w * ratio(next());
+            let (x, y) = (
+                w * 64.0 * ratio(next()) / 2.0,
+                w * 64.0 * ratio(next()) / 2.0,
+            );
+            let z = if i % 5 == 0 { w.copysign(z) } else { z };
+            let c = [x, y, z, w];
+            let got = map.project_float(c);
+            assert_eq!(got, map.classify_float(c), "{c:?}");
+            fast += usize::from(map.project_float_inside(c).is_some());
+        }
+        assert!(fast > 10_000, "{fast}");
     }
 
     #[test]

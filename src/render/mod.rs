@@ -150,6 +150,18 @@ impl CachedVertex {
         }
     }
 
+    /// The entry placing `v`, a vertex inside the view volume, if it is within ±1024
+    /// pixels (`None`: its entry is marked).
+    #[inline(always)]
+    pub(crate) fn placing(v: ScreenVertex) -> Option<CachedVertex> {
+        let fits = |c: i32| crate::num::abs_below(c, 1 << 14);
+        (fits(v.x()) && fits(v.y())).then(|| CachedVertex {
+            x: v.x() as i16,
+            y: v.y() as i16,
+            z: v.z(),
+        })
+    }
+
     /// Whether the entry holds no screen position (outside, or beyond ±1024 pixels).
     #[inline(always)]
     pub(crate) fn marked(&self) -> bool {
@@ -344,13 +356,20 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
-            // project_vertex, with the integer projection's fast path inlined here.
-            let (code, screen) = if crate::num::INTEGER_PROJECTION {
-                r.map.project_fixed_inline(&r.fixed.apply(p))
+            // project_vertex, with the fast path of the integer projection inlined here,
+            // or the usual vertex of the f32 one and the rest out of line.
+            *slot = if crate::num::INTEGER_PROJECTION {
+                let (code, screen) = r.map.project_fixed_inline(&r.fixed.apply(p));
+                CachedVertex::new(code, screen)
+            } else if let Some(entry) = r
+                .map
+                .project_float_inside(r.fixed.apply(p).to_f32())
+                .and_then(CachedVertex::placing)
+            {
+                entry
             } else {
-                r.project_vertex(p)
+                r.cache_entry(p)
             };
-            *slot = CachedVertex::new(code, screen);
         }
         r.cache = Some(cache);
         Ok(r)
@@ -448,6 +467,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         } else {
             self.map.project_float(c.to_f32())
         }
+    }
+
+    /// The cache entry of position `p`, out of line (for vertices off the usual path).
+    #[inline(never)]
+    fn cache_entry(&self, p: &[i16; 3]) -> CachedVertex {
+        let (code, screen) = self.project_vertex(p);
+        CachedVertex::new(code, screen)
     }
 
     /// The clip coordinates of position `p` in `f32`, for clipping.
