@@ -182,16 +182,8 @@ impl ScreenMap {
     /// Classify and project a fixed-point clip-space point: its outcode, and its screen
     /// vertex when the outcode is 0. The planes are tested in integers (64-bit where a
     /// sum could overflow); only points inside are divided by w.
-    #[inline(never)] // one copy for the drawing paths; the vertex cache inlines its own
+    #[inline(never)] // one copy: the vertex cache inlines only the fast path
     pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
-        self.project_fixed_inline(c)
-    }
-
-    /// [`project_fixed`](ScreenMap::project_fixed) inlined: its fast path
-    /// ([`project_fast`](ScreenMap::project_fast), on ARMv6-M) in the caller, the rest
-    /// out of line.
-    #[inline(always)]
-    pub(crate) fn project_fixed_inline(&self, c: &Clip4) -> (u8, ScreenVertex) {
         if INTEGER_PROJECTION && ARMV6M {
             if let Some(v) = self.project_fast(c) {
                 return (0, v);
@@ -200,9 +192,10 @@ impl ScreenMap {
         self.project_exact(c)
     }
 
-    /// [`project_fixed`](ScreenMap::project_fixed) without its fast path.
+    /// [`project_fixed`](ScreenMap::project_fixed) without its fast path (which gives
+    /// the same vertex where it gives one).
     #[inline(never)]
-    fn project_exact(&self, c: &Clip4) -> (u8, ScreenVertex) {
+    pub(crate) fn project_exact(&self, c: &Clip4) -> (u8, ScreenVertex) {
         // Near, far and w ≥ 1 exactly, in 64 bits; every plane is tested, also behind
         // the eye, so that clipping cuts at the near plane first, well away from w = 0.
         let (z, w) = c.zw();
@@ -256,7 +249,7 @@ impl ScreenMap {
     /// [`project_float`](ScreenMap::project_float) for any point: every plane tested
     /// and its bit set.
     #[inline(never)]
-    fn classify_float(&self, c: [f32; 4]) -> (u8, ScreenVertex) {
+    pub(crate) fn classify_float(&self, c: [f32; 4]) -> (u8, ScreenVertex) {
         let [_, _, z, w] = c;
         let mut code = if w >= 1.0 { 0 } else { outcode::W };
         if z < -w {

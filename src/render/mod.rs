@@ -356,19 +356,18 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
-            // project_vertex, with the fast path of the integer projection inlined here,
-            // or the usual vertex of the f32 one and the rest out of line.
-            *slot = if crate::num::INTEGER_PROJECTION {
-                let (code, screen) = r.map.project_fixed_inline(&r.fixed.apply(p));
-                CachedVertex::new(code, screen)
-            } else if let Some(entry) = r
-                .map
-                .project_float_inside(r.fixed.apply(p).to_f32())
-                .and_then(CachedVertex::placing)
-            {
-                entry
+            // The usual vertex (project_vertex's fast path) here, any other out of line.
+            let c = r.fixed.apply(p);
+            let usual = if !crate::num::INTEGER_PROJECTION {
+                r.map.project_float_inside(c.to_f32())
+            } else if crate::num::ARMV6M {
+                r.map.project_fast(&c)
             } else {
-                r.cache_entry(p)
+                None
+            };
+            *slot = match usual.and_then(CachedVertex::placing) {
+                Some(entry) => entry,
+                None => r.cache_entry(p),
             };
         }
         r.cache = Some(cache);
@@ -469,10 +468,18 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
     }
 
-    /// The cache entry of position `p`, out of line (for vertices off the usual path).
+    /// The cache entry of position `p`, out of line: [`project_vertex`]'s without the
+    /// fast path (for the vertices it does not place).
+    ///
+    /// [`project_vertex`]: Renderer::project_vertex
     #[inline(never)]
     fn cache_entry(&self, p: &[i16; 3]) -> CachedVertex {
-        let (code, screen) = self.project_vertex(p);
+        let c = self.fixed.apply(p);
+        let (code, screen) = if crate::num::INTEGER_PROJECTION {
+            self.map.project_exact(&c)
+        } else {
+            self.map.classify_float(c.to_f32())
+        };
         CachedVertex::new(code, screen)
     }
 
