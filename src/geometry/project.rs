@@ -18,6 +18,12 @@ use crate::raster::ScreenVertex;
 /// range of ±2²⁰ pixels.
 pub(crate) const GUARD: f32 = 64.0;
 
+/// A first hint for [`ScreenMap::project_fast`] at w's bits beyond 31: w between 2⁴²
+/// and 2⁴³, where [`FixedTransform`](super::transform::FixedTransform) puts the w of a
+/// model a few times its size from the camera. (The cache passes each vertex the
+/// previous one's.)
+pub(crate) const W_SHIFT_HINT: u32 = 12;
+
 /// Outcode bits: which clip planes a vertex is outside of.
 pub(crate) mod outcode {
     pub const NEAR: u8 = 1;
@@ -185,7 +191,8 @@ impl ScreenMap {
     #[inline(never)] // one copy: the vertex cache inlines only the fast path
     pub(crate) fn project_fixed(&self, c: &Clip4) -> (u8, ScreenVertex) {
         if INTEGER_PROJECTION && ARMV6M {
-            if let Some(v) = self.project_fast(c) {
+            let mut hint = W_SHIFT_HINT;
+            if let Some(v) = self.project_fast(c, &mut hint) {
                 return (0, v);
             }
         }
@@ -248,7 +255,7 @@ impl ScreenMap {
 
     /// [`project_float`](ScreenMap::project_float) for any point: every plane tested
     /// and its bit set.
-    #[inline(never)]
+    #[inline]
     pub(crate) fn classify_float(&self, c: [f32; 4]) -> (u8, ScreenVertex) {
         let [_, _, z, w] = c;
         let mut code = if w >= 1.0 { 0 } else { outcode::W };
@@ -376,9 +383,11 @@ impl ScreenMap {
     /// inside the guard band: `project_integer` gives outcode 0), or `None` where it
     /// cannot tell (then the exact path runs). The planes are tested on z and w in units
     /// of 2¹⁴, with a unit of room, and z and w normalised from their partial sums
-    /// ([`Clip4::zw_parts`]) without forming them in 64 bits.
+    /// ([`Clip4::zw_parts`]) without forming them in 64 bits. `sh_hint` is a guess in
+    /// 1..=14 at w's bits beyond 31 ([`W_SHIFT_HINT`], or the previous point's), checked
+    /// and set to this point's.
     #[inline(always)]
-    pub(crate) fn project_fast(&self, c: &Clip4) -> Option<ScreenVertex> {
+    pub(crate) fn project_fast(&self, c: &Clip4, sh_hint: &mut u32) -> Option<ScreenVertex> {
         let ([x, y], e) = c.xy_scaled()?; // x·2^e, y·2^e in the z/w scale; e ≤ 20
         let ([zh, wh], [zl, wl]) = c.zw_parts();
         // zt = ⌊z/2¹⁴⌋, wt = ⌊w/2¹⁴⌋ (|z|, |w| < 2⁴⁵: both fit i32), and z's and w's low
@@ -390,8 +399,8 @@ impl ScreenMap {
         if wt < 1 << 17 || zt <= -wt || zt >= wt - 1 {
             return None;
         }
-        // sh = (bits of w) − 31 = (bits of wt) − 17, in 1..=14: usually the guess.
-        let mut sh = c.w_shift_guess();
+        // sh = (bits of w) − 31 = (bits of wt) − 17, in 1..=14: usually the hint's.
+        let mut sh = *sh_hint;
         if wt >> (16 + sh) != 1 {
             let mut t = (wt >> 17) as u32;
             sh = 1;
@@ -405,6 +414,7 @@ impl ScreenMap {
         // wn = ⌊w/2^sh⌋ in [2³⁰, 2³¹) and un = ⌊(z + w)/2^sh⌋ ≤ 2·wn + 1 < 2³², each a
         // top part shifted up by 14 − sh plus the low bits shifted down by sh (exact:
         // the top part is a multiple of 2^sh). 1 ≤ zt + wt < 2³² as u32.
+        *sh_hint = sh;
         let up = 14 - sh;
         let wn = ((wt as u32) << up) + (wl >> sh);
         if wn == 1 << 30 {
@@ -656,7 +666,7 @@ mod tests {
             } else {
                 1 + (u >> 21) as u32 % 14
             };
-            let c = Clip4::from_parts([x, y], [zhi, hi], [zlo, lo], (1u32 << e) as f32, guess);
+            let c = Clip4::from_parts([x, y], [zhi, hi], [zlo, lo], (1u32 << e) as f32);
             let map = &maps[(i % 4) as usize];
             // The exact planes, as project_fixed tests them.
             let code = if w < 1 { outcode::W } else { 0 }
@@ -672,7 +682,8 @@ mod tests {
                 && (z + w).min(w - z) >= 1 << 15
                 && [x, y].iter().all(|&v| (i64::from(v) << e).abs() < w);
             meant_for += u64::from(meant);
-            if let Some(got) = map.project_fast(&c) {
+            let mut hint = guess;
+            if let Some(got) = map.project_fast(&c, &mut hint) {
                 assert_eq!(Some((0, got)), want, "x {x} y {y} z {z} w {w} e {e}");
                 fast += u64::from(meant);
             }

@@ -16,8 +16,6 @@ pub(crate) struct Clip4 {
     hi: [i32; 2],
     lo: [i32; 2],
     s: f32,
-    /// A guess at w's bits beyond 31 ([`Clip4::w_shift_guess`]).
-    sh: u32,
 }
 
 impl Clip4 {
@@ -64,18 +62,10 @@ impl Clip4 {
         (self.hi, self.lo)
     }
 
-    /// A guess, in 1..=14, at how many bits w has beyond 31: those of the model
-    /// origin's w, which most vertices share (for a normaliser that checks it).
-    #[inline(always)]
-    pub(crate) fn w_shift_guess(self) -> u32 {
-        self.sh
-    }
-
-    /// The clip coordinates of these parts (tests build them directly), with the guess
-    /// `sh` at w's bits beyond 31.
+    /// The clip coordinates of these parts (tests build them directly).
     #[cfg(test)]
-    pub(crate) fn from_parts(xy: [i32; 2], hi: [i32; 2], lo: [i32; 2], s: f32, sh: u32) -> Clip4 {
-        Clip4 { xy, hi, lo, s, sh }
+    pub(crate) fn from_parts(xy: [i32; 2], hi: [i32; 2], lo: [i32; 2], s: f32) -> Clip4 {
+        Clip4 { xy, hi, lo, s }
     }
 
     /// The four coordinates as `f32` in one scale, each rounded once: no 64-bit
@@ -111,8 +101,6 @@ pub(crate) struct FixedTransform {
     hi: [Row; 2],
     lo: [Row; 2],
     s: f32,
-    /// The model origin's bits of w beyond 31, within 1..=14 ([`Clip4::w_shift_guess`]).
-    sh: u32,
 }
 
 /// One row of [`FixedTransform`], `c₀·x + c₁·y + c₂·z + t`. Every coefficient fits 16
@@ -207,14 +195,11 @@ impl FixedTransform {
     /// The transform of the rows `[c₀, c₁, c₂, t]` (coefficients within ±16383).
     fn from_rows(xy: [[i32; 4]; 2], hi: [[i32; 4]; 2], lo: [[i32; 4]; 2], s: f32) -> Self {
         let rows = |m: [[i32; 4]; 2]| m.map(|[c0, c1, c2, t]| Row::new([c0, c1, c2], t));
-        let w0 = (i64::from(hi[1][3]) << 14) + i64::from(lo[1][3]);
-        let bits = 64 - w0.unsigned_abs().leading_zeros();
         FixedTransform {
             xy: rows(xy),
             hi: rows(hi),
             lo: rows(lo),
             s,
-            sh: bits.saturating_sub(31).clamp(1, 14),
         }
     }
 
@@ -228,7 +213,6 @@ impl FixedTransform {
             hi: [self.hi[0].at(xy, p), self.hi[1].at(xy, p)],
             lo: [self.lo[0].at(xy, p), self.lo[1].at(xy, p)],
             s: self.s,
-            sh: self.sh,
         }
     }
 }

@@ -33,7 +33,7 @@ use walk::{decide, edges, fan, Seen};
 use crate::camera::Camera;
 use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatTarget};
 use crate::geometry::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
-use crate::geometry::project::{outcode_of, to_f32, ScreenMap};
+use crate::geometry::project::{outcode_of, to_f32, ScreenMap, W_SHIFT_HINT};
 use crate::geometry::transform::FixedTransform;
 use crate::math::Vec3;
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
@@ -356,13 +356,15 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut r = Self::new(mesh, xf, options)?;
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
+        // w's bits beyond 31 at the previous vertex, for the next (project_fast).
+        let mut sh_hint = W_SHIFT_HINT;
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
             // The usual vertex (project_vertex's fast path) here, any other out of line.
             let c = r.fixed.apply(p);
             let usual = if !crate::num::INTEGER_PROJECTION {
                 r.map.project_float_inside(c.to_f32())
             } else if crate::num::ARMV6M {
-                r.map.project_fast(&c)
+                r.map.project_fast(&c, &mut sh_hint)
             } else {
                 None
             };
