@@ -115,6 +115,20 @@ fn signed_ratio((s, a): (i32, u32), r: u32, h: u32) -> Option<i32> {
     Some((q ^ s) - s)
 }
 
+/// ⌊(a·b + 2³¹)/2³²⌋, the high word of `a·b` rounded, in four 16 × 16-bit products
+/// and 32-bit sums (ARMv6-M has no long multiply). With 16-bit halves, `a·b` is
+/// `h·2³² + (m₁ + m₂)·2¹⁶ + l` for `h = a₁b₁`, `m₁ = a₁b₀`, `m₂ = a₀b₁`, `l = a₀b₀`,
+/// so the result is `h + ⌊m₁/2¹⁶⌋ + ⌊m₂/2¹⁶⌋ + ⌊(m₁ mod 2¹⁶ + m₂ mod 2¹⁶ + ⌊l/2¹⁶⌋ +
+/// 2¹⁵)/2¹⁶⌋` (that last sum below 2¹⁸). A test checks it against the 64-bit product.
+#[inline(always)]
+fn rounded_high(a: u32, b: u32) -> u32 {
+    let (a1, a0, b1, b0) = (a >> 16, a & 0xffff, b >> 16, b & 0xffff);
+    let (m1, m2) = (a1 * b0, a0 * b1);
+    let low = (m1 & 0xffff) + (m2 & 0xffff) + ((a0 * b0) >> 16) + (1 << 15);
+    // The sum is the rounded high word of a·b, below 2³²: no partial sum wraps.
+    a1 * b1 + (m1 >> 16) + (m2 >> 16) + (low >> 16)
+}
+
 /// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table: the value of
 /// [`recip62`] (for ARMv6-M, where its 64-bit products are long). Each step's error is
 /// read off the low word of a product, exact because the step keeps it in `[0, 2³²)`:
@@ -433,7 +447,7 @@ impl ScreenMap {
         // Depth: q30 = ⌊(un·r + 2³¹)/2³²⌋ ≤ 2³¹ + 1 (un/wn ≤ 2 + 1/wn), and
         // ⌊(q30·65535 + 2¹⁴)/2¹⁵⌋ = 2·q30 − ⌈(q30 − 2¹⁴)/2¹⁵⌉ = 2·q30 − d with
         // d = ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋ ≤ q30: below 2³² − 2¹⁵.
-        let q30 = ((mul_wide(un, r) + (1 << 31)) >> 32) as u32;
+        let q30 = rounded_high(un, r);
         let d = (q30 + (1 << 14) - 1) >> 15;
         let sz = (q30 + (q30 - d)).min(MAX_DEPTH);
         Some(ScreenVertex::from_raw(sx, sy, sz))
@@ -698,6 +712,24 @@ mod tests {
     /// bits (the steps' products within `i32`), then every bucket's ends and middle and
     /// 10⁷ random divisors. `ZRASTER_EXHAUSTIVE=1` checks every divisor (2³⁰ of them;
     /// in a release build, some seconds).
+    #[test]
+    fn rounded_high_word_is_exact() {
+        let mut rnd = crate::testing::xorshift64(0x5851_f42d_4c95_7f2d);
+        let edges = [0, 1, 0xffff, 0x1_0000, 0x7fff_ffff, 0x8000_0000, u32::MAX];
+        for &a in &edges {
+            for &b in &edges {
+                let want = ((u64::from(a) * u64::from(b) + (1 << 31)) >> 32) as u32;
+                assert_eq!(rounded_high(a, b), want, "{a} {b}");
+            }
+        }
+        for _ in 0..crate::num::tests::fast_cases() {
+            let v = rnd();
+            let (a, b) = (v as u32, (v >> 32) as u32);
+            let want = ((u64::from(a) * u64::from(b) + (1 << 31)) >> 32) as u32;
+            assert_eq!(rounded_high(a, b), want, "{a} {b}");
+        }
+    }
+
     #[test]
     fn low_word_reciprocal_is_exact() {
         for v in 1u32 << 15..1 << 16 {
