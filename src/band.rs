@@ -329,7 +329,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
-        faces: impl Iterator<Item = (usize, Carry)>,
+        faces: BandFaces<'_>,
         carry: &mut ColorCarry<C>,
     ) -> Result<(), Error>
     where
@@ -347,7 +347,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let lambert = self.shading() == Shading::Lambert;
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
         let px = per_colouring!(self, materials, lambert, |shade| {
-            self.band_loop(frame, zbuf, indices, faces, carry, shade)?
+            self.band_loop(frame, zbuf, faces.with(indices), carry, shade)?
         });
         self.stats.add_pixel_counts(&px);
         Ok(())
@@ -360,8 +360,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         &self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
-        indices: &'m [[u16; 3]],
-        faces: impl Iterator<Item = (usize, Carry)>,
+        faces: impl Iterator<Item = (usize, &'m [u16; 3], Carry)>,
         carry: &mut ColorCarry<C>,
         shade: impl Fn(usize) -> Result<C, Error>,
     ) -> Result<FrameStats, Error>
@@ -378,8 +377,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
         // The pixels of the common faces in u32 registers, into `px` at the end.
         let mut counts = FrameStats::fill_counts();
-        for (f, how) in faces {
-            let Some(t) = indices.get(f) else { continue };
+        for (f, t, how) in faces {
             if self.see_through_face::<C>(f) {
                 // Drawn after the opaque faces. Skipped alike as kept and as taken, so
                 // the carried colours stay in step.
@@ -458,25 +456,45 @@ impl<'a> BandFaces<'a> {
     fn is_empty(&self) -> bool {
         self.heads.iter().all(|&h| h >> 2 == u32::from(END))
     }
+
+    /// The faces with their corners' indices, from the mesh's `indices`.
+    fn with<'m>(self, indices: &'m [[u16; 3]]) -> BandTriangles<'a, 'm> {
+        BandTriangles {
+            faces: self,
+            indices,
+        }
+    }
 }
 
-impl Iterator for BandFaces<'_> {
-    type Item = (usize, Carry);
+/// [`BandFaces`] with each face's corner indices: a face is looked up in the links
+/// and the indices under one bounds test, which [`END`] fails too.
+struct BandTriangles<'a, 'm> {
+    faces: BandFaces<'a>,
+    indices: &'m [[u16; 3]],
+}
+
+impl<'m> Iterator for BandTriangles<'_, 'm> {
+    type Item = (usize, &'m [u16; 3], Carry);
 
     #[inline]
-    fn next(&mut self) -> Option<(usize, Carry)> {
+    fn next(&mut self) -> Option<Self::Item> {
+        let BandFaces { links, heads } = &mut self.faces;
         // The chain with the lowest next face (no two chains hold the same face).
-        let [a, b, c, d] = self.heads;
+        let [a, b, c, d] = *heads;
         let least = a.min(b).min(c.min(d));
-        let (f, k) = (least >> 2, least & 3);
-        if f == u32::from(END) {
+        let (f, k) = ((least >> 2) as usize, least & 3);
+        // Both lookups are in bounds below `n`; END (more than any face) is not.
+        let n = links.len().min(self.indices.len());
+        if f >= n {
             return None;
         }
-        let link = self.links.get(f as usize).copied().unwrap_or(END);
-        if let Some(head) = self.heads.get_mut(k as usize) {
+        let (Some(&link), Some(t)) = (links.get(f), self.indices.get(f)) else {
+            return None;
+        };
+        if let Some(head) = heads.get_mut(k as usize) {
             *head = u32::from(link) << 2 | k;
         }
-        Some((f as usize, Carry::of_chain(k)))
+        Some((f, t, Carry::of_chain(k)))
     }
 }
 
