@@ -294,9 +294,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             };
             // The screen rows whose pixel centres the triangle may cover: top..=bottom,
             // none when top > bottom.
-            let (ya, yb, yc) = (p.xy().1, q.xy().1, r.xy().1);
-            let top = ((ya.min(yb).min(yc) + 7) >> 4).max(0);
-            let bottom = (((ya.max(yb).max(yc) + 7) >> 4) - 1).min(height - 1);
+            // (Rounding each y before the minimum and maximum keeps them 32-bit: of
+            // 16-bit values LLVM takes them in 16 bits and extends them again.)
+            let (ya, yb, yc) = (p.xy().1 + 7, q.xy().1 + 7, r.xy().1 + 7);
+            let top = (ya.min(yb).min(yc) >> 4).max(0);
+            let bottom = ((ya.max(yb).max(yc) >> 4) - 1).min(height - 1);
             if top > bottom {
                 continue;
             }
