@@ -141,8 +141,9 @@ fn main() -> ! {
     let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
 
     // The assembly fill loop against its portable twin, at every alignment and length
-    // up to 200 (bench/mcu.sh fails unless none differ).
-    let bad = zraster::check_fill_kernel(&mut depth[..256], 200);
+    // up to 680 (every remainder after several turns of the main loops; bench/mcu.sh
+    // fails unless none differ).
+    let bad = zraster::check_fill_kernel(&mut depth[..720], 680);
     hprintln!("fill kernel cases differing from the portable twin: {}", bad);
     // The assembly span loop likewise: every length up to 64 (every entry point of the
     // M0+ loop, every remainder of the M4 one) at every relative alignment.
