@@ -149,6 +149,9 @@ fn main() -> ! {
     // M0+ loop, every remainder of the M4 one) at every relative alignment.
     let bad = zraster::check_span_kernel(&mut depth[..512], 64);
     hprintln!("span kernel cases differing from the portable twin: {}", bad);
+    // The assembly cull scan likewise: random runs of faces over random caches.
+    let bad = zraster::check_cull_kernel(20_000);
+    hprintln!("cull kernel cases differing from the portable twin: {}", bad);
 
     // ---- bunny-320, full frame.
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();

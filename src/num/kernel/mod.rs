@@ -1,19 +1,24 @@
 //! Assembly loops for Cortex-M, each beside its portable twin: the twin is what every
 //! other target runs, and what the host tests and the QEMU bench check the assembly
 //! against (`bench/mcu` compares them on the Cortex-M4F and M0+ for every length and
-//! alignment it tries, and fails otherwise). Two loops: the frame clear
+//! alignment it tries, and fails otherwise). The loops: the frame clear
 //! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16));
+//! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
+//! by `check_cull_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span` and `mac`, each with `#![allow(unsafe_code)]`).
+//! (`fill`, `span`, `mac` and `cull`, each with `#![allow(unsafe_code)]`).
 
+mod cull;
 mod fill;
 mod mac;
 mod span;
 mod texel;
 
+pub use cull::check_cull_kernel;
+pub(crate) use cull::{skip_culled, CullScan, CULL_KERNEL};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
