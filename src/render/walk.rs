@@ -259,22 +259,18 @@ impl<'a> Iterator for CachedWalk<'a> {
 
 impl<'a> CachedWalk<'a> {
     /// [`Iterator::next`] past the dropped faces in assembly ([`skip_culled`]), to the
-    /// next face to look at: a face it finds drawn needs only its corners, any other
-    /// the decisions of the Rust scan.
+    /// next face to look at: a face it finds drawn comes with its corners, any other
+    /// takes the decisions of the Rust scan.
     #[inline(always)]
     fn next_scanned(&mut self) -> Option<<Self as Iterator>::Item> {
         let (cache, drop, faces) = (self.cache, self.drop, self.scan.faces());
         let get = |i: u16| cache.get(usize::from(i));
         loop {
-            if skip_culled(&mut self.pos, &self.scan) {
-                let t = faces.get(self.pos)?;
+            if let Some(corners) = skip_culled(&mut self.pos, &self.scan) {
                 let f = self.first + self.pos;
                 self.pos += 1;
-                let (Some(a), Some(b), Some(c)) = (get(t[0]), get(t[1]), get(t[2])) else {
-                    return Some(cached_triangle(cache, f, t).map(|_| (f, None)));
-                };
                 self.tally[2] += 1;
-                return Some(Ok((f, Some([a, b, c]))));
+                return Some(Ok((f, Some(corners))));
             }
             let t = faces.get(self.pos)?;
             let f = self.first + self.pos;

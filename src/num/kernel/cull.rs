@@ -29,7 +29,7 @@ impl<'a, T> CullScan<'a, T> {
     }
 }
 
-/// What the assembly loop loads in one LDM (r0, r2–r5, lr).
+/// What the assembly loop loads in one LDM (r0, r2–r5, r12, lr).
 #[repr(C)]
 struct ScanRegs<'a> {
     faces: *const [u16; 3],
@@ -40,6 +40,8 @@ struct ScanRegs<'a> {
     len: usize,
     neg_lo: i32,
     span: u32,
+    /// −2¹⁴ · 2¹⁶: the marks' bound for x in a word's high half.
+    mark: i32,
     faces_len: usize,
     cache: PhantomData<&'a [u8]>,
 }
@@ -72,6 +74,7 @@ impl<'a, T> CullScan<'a, T> {
                 len: if fits { cache.len() } else { 0 },
                 neg_lo: lo.wrapping_neg(),
                 span,
+                mark: -(1 << 30),
                 faces_len: faces.len(),
                 cache: PhantomData,
             },
@@ -82,9 +85,9 @@ impl<'a, T> CullScan<'a, T> {
 /// Advance `pos` past the faces of the scan from `pos` on that are dropped: every index
 /// below the cache's length, no corner unplaced (x below −2¹⁴, the cache's mark), and the
 /// twice-signed area `(xb − xa)(yc − ya) − (xc − xa)(yb − ya)` in the dropped range.
-/// Returns whether the face it stops at is drawn (every index in range, no corner
-/// unplaced, the area not dropped); `false` when none is left, or when that face has
-/// a bad index or an unplaced corner. Placed corners must lie within ±(2¹⁴ − 1), as
+/// Returns the corners of the face it stops at when that face is drawn (every index in
+/// range, no corner unplaced, the area not dropped); `None` when none is left, or when
+/// that face has a bad index or an unplaced corner. Placed corners must lie within ±(2¹⁴ − 1), as
 /// cached ones do, for the area to be exact in `i32`.
 ///
 /// On ARMv7E-M an assembly loop of 23 instructions a dropped face (the Rust scan takes
@@ -92,14 +95,16 @@ impl<'a, T> CullScan<'a, T> {
 /// that the cull pass keeps its own; it reads the faces by place, not by an iterator,
 /// so that neither it nor the caller divides a length by 6.
 #[inline(always)]
-pub(crate) fn skip_culled<T>(pos: &mut usize, scan: &CullScan<'_, T>) -> bool {
+pub(crate) fn skip_culled<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
     #[cfg(all(zraster_thumb, zraster_dsp))]
-    return skip_culled_dsp(pos, &scan.regs);
+    return skip_culled_dsp(pos, scan);
     #[allow(unreachable_code)]
     {
         let (n, drawn) = culled_run_portable(scan.faces.get(*pos..).unwrap_or(&[]), scan);
         *pos += n;
-        drawn
+        let t = scan.faces.get(*pos).filter(|_| drawn)?;
+        let get = |i: u16| scan.cache.get(usize::from(i));
+        Some([get(t[0])?, get(t[1])?, get(t[2])?])
     }
 }
 
@@ -143,15 +148,16 @@ pub(crate) fn culled_run_portable<T>(faces: &[[u16; 3]], scan: &CullScan<'_, T>)
 /// [`skip_culled`] on ARMv7E-M.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[inline(always)]
-fn skip_culled_dsp(pos: &mut usize, regs: &ScanRegs<'_>) -> bool {
-    let drawn: u32;
+fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
+    let (drawn, a, b, c): (u32, usize, usize, usize);
     // SAFETY: reads the faces from `pos` on, none when `pos` is not below their number,
     // one a turn while any is left (r1 counts them down), so only inside the faces; r1
     // ends as the place of the face it stops at (`pos` when none was left). It reads an
     // entry's word at `xy + 8 i` only for indices `i` it has found below `regs.len`,
     // which is the cache's length for a cache of 8-byte entries whose word at `xy_at`
     // (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside the cache. The
-    // registers it takes beyond its operands are pushed first and popped last.
+    // registers it takes beyond its operands are pushed first and popped last. For a
+    // drawn face it returns the three indices it found below `regs.len` in r3–r5.
     //
     // A turn: the three indices against the length (the IT block's compares run while
     // the previous ones found the index in range), the three entries' x/y words, the
@@ -160,9 +166,9 @@ fn skip_culled_dsp(pos: &mut usize, regs: &ScanRegs<'_>) -> bool {
     // one SMLSDX, compared with `span`.
     unsafe {
         core::arch::asm!(
-            "push {{r3-r5, r8-r12, lr}}",
-            "ldm r2, {{r0, r2-r5, lr}}", // faces, xy, len, −lo, span, the faces' number
-            "mov r12, #0xc0000000",     // −2¹⁴ as the high half of a word
+            "push {{r8-r12, lr}}",
+            // faces, xy, len, −lo, span, −2¹⁴ as the high half of a word, the faces' number
+            "ldm r2, {{r0, r2-r5, r12, lr}}",
             "add r0, r0, r1, lsl #1",
             "add r0, r0, r1, lsl #2", // the face at `pos`
             "subs r1, lr, r1",        // the faces left
@@ -194,18 +200,35 @@ fn skip_culled_dsp(pos: &mut usize, regs: &ScanRegs<'_>) -> bool {
             "3:", // a bad index or an unplaced corner, or none left
             "movs r2, #0",
             "b 6f",
-            "4:", // drawn
+            "4:", // drawn: its indices
+            "ldrh r3, [r0, #-6]",
+            "ldrh r4, [r0, #-4]",
+            "ldrh r5, [r0, #-2]",
             "movs r2, #1",
             "6:",
             "sub r1, lr, r1", // the face it stopped at (`pos` if none was left)
-            "pop {{r3-r5, r8-r12, lr}}",
+            "pop {{r8-r12, lr}}",
             out("r0") _,
             inout("r1") *pos,
-            inout("r2") regs => drawn,
+            inout("r2") &scan.regs => drawn,
+            out("r3") a,
+            out("r4") b,
+            out("r5") c,
             options(readonly),
         );
     }
-    drawn != 0
+    if drawn == 0 {
+        return None;
+    }
+    // SAFETY: the loop returns a drawn face's indices only once it has found each below
+    // `regs.len`, which is `scan.cache.len()` or 0 (`CullScan::new`).
+    Some(unsafe {
+        [
+            scan.cache.get_unchecked(a),
+            scan.cache.get_unchecked(b),
+            scan.cache.get_unchecked(c),
+        ]
+    })
 }
 
 /// On-target check of the assembly cull scan (`skip_culled`) against its twin, for the
@@ -278,14 +301,19 @@ pub fn check_cull_kernel(cases: usize) -> usize {
         let scan = CullScan::new(faces, cache, 2 * k, xy, lo, span);
         let start = rnd() as usize % 4;
         let mut pos = start;
-        let drawn = skip_culled(&mut pos, &scan);
+        let corners = skip_culled(&mut pos, &scan).map(|c| c.map(|e| e as *const Entry));
         let (n, twin_drawn) = culled_run_portable(faces.get(start..).unwrap_or(&[]), &scan);
         let twin_pos = if start < faces.len() {
             start + n
         } else {
             start
         };
-        if (pos, drawn) != (twin_pos, twin_drawn) {
+        // A drawn face's corners: its entries.
+        let twin_corners = faces.get(twin_pos).filter(|_| twin_drawn).and_then(|t| {
+            let get = |i: u16| cache.get(usize::from(i)).map(|e| e as *const Entry);
+            Some([get(t[0])?, get(t[1])?, get(t[2])?])
+        });
+        if (pos, corners) != (twin_pos, twin_corners) {
             bad += 1;
         }
     }
