@@ -82,13 +82,13 @@ impl<'a, T> CullScan<'a, T> {
     }
 }
 
-/// Advance `pos` past the faces of the scan from `pos` on that are dropped: every index
-/// below the cache's length, no corner unplaced (x below −2¹⁴, the cache's mark), and the
-/// twice-signed area `(xb − xa)(yc − ya) − (xc − xa)(yb − ya)` in the dropped range.
-/// Returns the corners of the face it stops at when that face is drawn (every index in
-/// range, no corner unplaced, the area not dropped); `None` when none is left, or when
-/// that face has a bad index or an unplaced corner. Placed corners must lie within ±(2¹⁴ − 1), as
-/// cached ones do, for the area to be exact in `i32`.
+/// Advance `pos` past the faces of the scan from `pos` on that are dropped: every
+/// index below the cache's length, no corner unplaced (x below −2¹⁴, the cache's mark),
+/// and the twice-signed area `(xb − xa)(yc − ya) − (xc − xa)(yb − ya)` in the dropped
+/// range. Returns the corners of the face it stops at when that face is drawn (every
+/// index in range, no corner unplaced, the area not dropped); `None` when none is left,
+/// or when that face has a bad index or an unplaced corner. Placed corners must lie
+/// within ±(2¹⁴ − 1), as cached ones do, for the area to be exact in `i32`.
 ///
 /// On ARMv7E-M an assembly loop of 23 instructions a dropped face (the Rust scan takes
 /// about 40), inline, saving the registers it takes beyond its operands itself, so
