@@ -29,8 +29,10 @@ impl<'a, T> CullScan<'a, T> {
     }
 }
 
-/// What the assembly loop loads in one LDM (r0, r2–r5, r12, lr).
-#[repr(C)]
+/// The assembly loop's operands (r0, r2–r5, r12, lr), handed over in registers: an
+/// address of them taken in the walk would keep the walk's fields in memory. Read by
+/// the ARMv7E-M loop only (the twin reads `span`).
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
 struct ScanRegs<'a> {
     faces: *const [u16; 3],
     /// The address of the first entry's x.
@@ -150,14 +152,16 @@ pub(crate) fn culled_run_portable<T>(faces: &[[u16; 3]], scan: &CullScan<'_, T>)
 #[inline(always)]
 fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
     let (drawn, a, b, c): (u32, usize, usize, usize);
+    let r = &scan.regs;
     // SAFETY: reads the faces from `pos` on, none when `pos` is not below their number,
     // one a turn while any is left (r1 counts them down), so only inside the faces; r1
     // ends as the place of the face it stops at (`pos` when none was left). It reads an
     // entry's word at `xy + 8 i` only for indices `i` it has found below `regs.len`,
     // which is the cache's length for a cache of 8-byte entries whose word at `xy_at`
     // (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside the cache. The
-    // registers it takes beyond its operands are pushed first and popped last. For a
-    // drawn face it returns the three indices it found below `regs.len` in r3–r5.
+    // registers it takes beyond its operands (r8–r11) are pushed first and popped
+    // last. For a drawn face it returns the three indices it found below `regs.len` in
+    // r3–r5.
     //
     // A turn: the three indices against the length (the IT block's compares run while
     // the previous ones found the index in range), the three entries' x/y words, the
@@ -166,9 +170,7 @@ fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
     // one SMLSDX, compared with `span`.
     unsafe {
         core::arch::asm!(
-            "push {{r8-r12, lr}}",
-            // faces, xy, len, −lo, span, −2¹⁴ as the high half of a word, the faces' number
-            "ldm r2, {{r0, r2-r5, r12, lr}}",
+            "push {{r8-r11}}",
             "add r0, r0, r1, lsl #1",
             "add r0, r0, r1, lsl #2", // the face at `pos`
             "subs r1, lr, r1",        // the faces left
@@ -207,13 +209,15 @@ fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
             "movs r2, #1",
             "6:",
             "sub r1, lr, r1", // the face it stopped at (`pos` if none was left)
-            "pop {{r8-r12, lr}}",
-            out("r0") _,
+            "pop {{r8-r11}}",
+            inout("r0") r.faces => _,
             inout("r1") *pos,
-            inout("r2") &scan.regs => drawn,
-            out("r3") a,
-            out("r4") b,
-            out("r5") c,
+            inout("r2") r.xy => drawn,
+            inout("r3") r.len => a,
+            inout("r4") r.neg_lo => b,
+            inout("r5") r.span => c,
+            inout("r12") r.mark => _,
+            inout("lr") r.faces_len => _,
             options(readonly),
         );
     }
