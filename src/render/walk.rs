@@ -5,6 +5,7 @@
 //! any mesh, which also clips), band binning, depth sorting and hidden-line.
 
 use super::*;
+use crate::num::kernel::{skip_culled, CullScan, CULL_KERNEL};
 
 /// Whether `tri` lies wholly above or below rows `row0..row1` (in 1/16 pixel): later
 /// passes (bands) skip such triangles before anything else.
@@ -113,7 +114,26 @@ pub(crate) struct CachedWalk<'a> {
     drop: DropRange,
     /// Faces by outcome: clipped (counted by the general path), outside, drawn.
     tally: [u32; 3],
+    /// Where there is an assembly scan over the dropped faces ([`CULL_KERNEL`]), the
+    /// walk goes by it and by `pos`, the next face's place in the faces, instead of
+    /// `faces` (which it leaves alone).
+    scan: CullScan<'a, CachedVertex>,
+    pos: usize,
 }
+
+/// The byte offset of a cache entry's x, which [`skip_culled`] reads with y (after it)
+/// as one word; an entry laid out otherwise turns the assembly scan off.
+const XY_AT: usize = {
+    let (x, y) = (
+        core::mem::offset_of!(CachedVertex, x),
+        core::mem::offset_of!(CachedVertex, y),
+    );
+    if y == x + 2 {
+        x
+    } else {
+        usize::MAX
+    }
+};
 
 /// The twice-signed screen areas a cull mode drops, as `area − lo ≤ span` in unsigned
 /// arithmetic: one subtraction and one compare a face for any mode (zero is in every
@@ -173,13 +193,16 @@ impl<'a> CachedWalk<'a> {
     ) -> Self {
         let first = faces.start;
         let faces = indices.get(faces).unwrap_or(&[]);
+        let drop = DropRange::of(cull);
         CachedWalk {
             faces: faces.iter(),
             first,
             walked: faces.len(),
             cache,
-            drop: DropRange::of(cull),
+            drop,
             tally: [0; 3],
+            scan: CullScan::new(faces, cache, XY_AT, CachedVertex::xy, drop.lo, drop.span),
+            pos: 0,
         }
     }
 
@@ -203,6 +226,9 @@ impl<'a> Iterator for CachedWalk<'a> {
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
+        if CULL_KERNEL {
+            return self.next_scanned();
+        }
         let (cache, drop) = (self.cache, self.drop);
         loop {
             let t = self.faces.next()?;
@@ -227,6 +253,44 @@ impl<'a> Iterator for CachedWalk<'a> {
             }
             self.tally[2] += 1;
             return Some(Ok((f(&self.faces), Some([a, b, c]))));
+        }
+    }
+}
+
+impl<'a> CachedWalk<'a> {
+    /// [`Iterator::next`] past the dropped faces in assembly ([`skip_culled`]), to the
+    /// next face to look at: a face it finds drawn comes with its corners, any other
+    /// takes the decisions of the Rust scan.
+    #[inline(always)]
+    fn next_scanned(&mut self) -> Option<<Self as Iterator>::Item> {
+        let (cache, drop, faces) = (self.cache, self.drop, self.scan.faces());
+        let get = |i: u16| cache.get(usize::from(i));
+        loop {
+            if let Some(corners) = skip_culled(&mut self.pos, &self.scan) {
+                let f = self.first + self.pos;
+                self.pos += 1;
+                self.tally[2] += 1;
+                return Some(Ok((f, Some(corners))));
+            }
+            let t = faces.get(self.pos)?;
+            let f = self.first + self.pos;
+            self.pos += 1;
+            let (Some(a), Some(b), Some(c)) = (get(t[0]), get(t[1]), get(t[2])) else {
+                return Some(cached_triangle(cache, f, t).map(|_| (f, None)));
+            };
+            if unplaced(a) | unplaced(b) | unplaced(c) {
+                if a.code() & b.code() & c.code() != 0 {
+                    self.tally[1] += 1;
+                    continue;
+                }
+                self.tally[0] += 1;
+                return Some(Ok((f, None)));
+            }
+            if drop.drops(cached_area(a, b, c)) {
+                continue;
+            }
+            self.tally[2] += 1;
+            return Some(Ok((f, Some([a, b, c]))));
         }
     }
 }
@@ -356,6 +420,56 @@ mod tests {
                     "{cull:?} {a}"
                 );
             }
+        }
+    }
+
+    /// The walk through the assembly scan's twin (`next_scanned`, on hosts the portable
+    /// scan of `num::kernel`) yields the faces, errors and counts of the Rust walk, over
+    /// random caches (unplaced corners, outside ones, extremes) and faces (bad indices,
+    /// degenerate triangles), for every cull mode.
+    #[test]
+    fn the_scanned_walk_is_the_rust_walk() {
+        let mut seed = 0x1234_5679_u32;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            seed
+        };
+        let m = (1 << 14) - 1;
+        for case in 0..3000 {
+            let cache: std::vec::Vec<CachedVertex> = (0..rnd() % 12)
+                .map(|_| {
+                    let r = rnd();
+                    let c = |r: u32| match r % 6 {
+                        0 => m,
+                        1 => -m,
+                        _ => (r >> 3) as i32 % (2 * m + 1) - m,
+                    };
+                    let code = if r % 8 == 0 { 1 << ((r >> 3) % 3) } else { 0 };
+                    let (x, y) = (c(rnd()), c(rnd()));
+                    CachedVertex::new(code, ScreenVertex::from_raw(x, y, rnd()))
+                })
+                .collect();
+            let faces: std::vec::Vec<[u16; 3]> = (0..rnd() % 16)
+                .map(|_| [0u16; 3].map(|_| (rnd() % (cache.len() as u32 + 2)) as u16))
+                .collect();
+            let cull = [Cull::Back, Cull::Front, Cull::None][case % 3];
+            let start = rnd() as usize % 3;
+            let range = start..faces.len().max(start);
+            let mut rust = CachedWalk::new(&faces, range.clone(), &cache, cull);
+            let mut scanned = CachedWalk::new(&faces, range, &cache, cull);
+            type Item<'a> = <CachedWalk<'a> as Iterator>::Item;
+            let key =
+                |x: Option<Item<'_>>| x.map(|r| r.map(|(f, c)| (f, c.map(|c| c.map(|v| *v)))));
+            loop {
+                let (a, b) = (key(rust.next()), key(scanned.next_scanned()));
+                assert_eq!(a, b, "case {case}");
+                if a.is_none() {
+                    break;
+                }
+            }
+            assert_eq!(rust.stats(), scanned.stats(), "case {case}");
         }
     }
 

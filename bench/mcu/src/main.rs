@@ -141,8 +141,9 @@ fn main() -> ! {
     let (mesh, xf, opts) = (scene::mesh(), scene::transform(), scene::options());
 
     // The assembly fill loop against its portable twin, at every alignment and length
-    // up to 200 (bench/mcu.sh fails unless none differ).
-    let bad = zraster::check_fill_kernel(&mut depth[..256], 200);
+    // up to 680 (every remainder after several turns of the main loops; bench/mcu.sh
+    // fails unless none differ).
+    let bad = zraster::check_fill_kernel(&mut depth[..720], 680);
     hprintln!("fill kernel cases differing from the portable twin: {}", bad);
     // The assembly span loop likewise: every length up to 64 (every entry point of the
     // M0+ loop, every remainder of the M4 one) at every relative alignment.
@@ -151,6 +152,9 @@ fn main() -> ! {
     // The rows of small triangles likewise (random rows of every length, both halves).
     let bad = zraster::check_rows_kernel(&mut depth[..4096]);
     hprintln!("rows kernel cases differing from the portable twin: {}", bad);
+    // The assembly cull scan likewise: random runs of faces over random caches.
+    let bad = zraster::check_cull_kernel(20_000);
+    hprintln!("cull kernel cases differing from the portable twin: {}", bad);
 
     // ---- bunny-320, full frame.
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();

@@ -1,16 +1,19 @@
 //! Assembly loops for Cortex-M, each beside its portable twin: the twin is what every
 //! other target runs, and what the host tests and the QEMU bench check the assembly
 //! against (`bench/mcu` compares them on the Cortex-M4F and M0+ for every length and
-//! alignment it tries, and fails otherwise). Two loops: the frame clear
+//! alignment it tries, and fails otherwise). The loops: the frame clear
 //! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16));
 //! the rows of a small flat-coloured triangle ([`rows_less_as_u16`](rows::rows_less_as_u16),
 //! on ARMv7E-M, which runs the span loop's SIMD steps for rows of three pixels or more);
+//! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
+//! by `check_cull_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `mac` and `texel`, each with `#![allow(unsafe_code)]`).
+//! (`fill`, `span`, `rows`, `cull`, `mac` and `texel`, each with `#![allow(unsafe_code)]`).
 
+mod cull;
 mod fill;
 mod mac;
 // Before `rows`, which uses its SIMD pixel macros.
@@ -19,6 +22,8 @@ mod span;
 mod rows;
 mod texel;
 
+pub use cull::check_cull_kernel;
+pub(crate) use cull::{skip_culled, CullScan, CULL_KERNEL};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
