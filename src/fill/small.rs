@@ -10,9 +10,9 @@
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::{rows_less_as_u16, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
+use crate::num::{floor_div32, DIVIDE};
 use crate::raster::{
-    plane_origin, small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS,
-    SMALL,
+    small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
 };
 
 /// Colour and depth rows of the same geometry, and the pixels drawing may touch.
@@ -92,32 +92,38 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     if start >= end || centre(xmin).max(clip.x0) > centre(xmax).min(clip.x1 - 1) {
         return Some((0, 0));
     }
-    let Some((sx, sy)) = small_steps(tri) else {
+    let Some((q, r, area)) = small_steps_q(tri) else {
         return Some((0, 0));
     };
     let depth = Depth {
-        sx: sx as u32, // modulo 2³², on purpose (see plane_origin)
-        sy: sy as u32,
+        sx: q << 4,
+        sy: r << 4,
         lo: p0.z().min(p1.z()).min(p2.z()) + DEPTH_BIAS,
         hi: p0.z().max(p1.z()).max(p2.z()) + DEPTH_BIAS,
     };
 
     // Vertices top to bottom, around a local origin: the pixel corner (ox, oy) at or
-    // above-left of all three.
+    // above-left of all three. An odd permutation turns the area's sign.
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
     let local = |p: &ScreenVertex| (p.x() - ox, p.y() - oy);
     let mut v = [local(p0), local(p1), local(p2)];
+    let first = v[0];
+    let mut odd = false;
     if v[1].1 < v[0].1 {
         v.swap(0, 1);
+        odd = !odd;
     }
     if v[2].1 < v[1].1 {
         v.swap(1, 2);
+        odd = !odd;
     }
     if v[1].1 < v[0].1 {
         v.swap(0, 1);
+        odd = !odd;
     }
     let [v0, v1, v2] = v;
-    let mid_right = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1) > 0;
+    // With y down, a positive area in sorted order puts v1 right of v0→v2.
+    let mid_right = (area > 0) != odd;
     let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
     let mid = centre(v1.1) + py0;
     let (cx0, cx1) = (clip.x0 - px0, clip.x1 - px0);
@@ -132,11 +138,8 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
 
     // Column 0 of row `start`: its depth and its index (wrapping: it may lie left of
     // the buffer; the indices of covered columns do not).
-    let z00 = plane_origin(p0, sx, sy);
     let mut row = Row {
-        z: z00
-            .wrapping_add((px0 as u32).wrapping_mul(depth.sx))
-            .wrapping_add((start as u32).wrapping_mul(depth.sy)),
+        z: small_origin(p0.z(), (first.0, first.1 - (start - py0) * SUBPIXEL), q, r),
         base: ((start - b.first_row) as usize * b.width).wrapping_add(px0 as usize),
         tested: 0,
         failed: 0,
@@ -252,6 +255,65 @@ fn kernel_edges(
     n0 as u32
 }
 
+/// [`small_steps`] over 16 (the steps a pixel in 20.12, `⌊16a/area⌋` and
+/// `⌊16b/area⌋`) modulo 2³², and the triangle's signed area; `None` for zero area.
+/// That is all the small path needs: its steps are these times 16, and its depths
+/// ([`small_origin`]) depend on them only modulo 2³².
+///
+/// With a divide instruction, numerators `a`, `b` inside ±(2²⁷ − 1) (the usual: tens
+/// of depth units across a few pixels) take two 32-bit divisions by |area| (< 2²⁷):
+/// 16a then lies strictly inside ±2³¹, so folding in the area's sign (`(n ^ m) − m`)
+/// cannot overflow, and ⌊16a/area⌋ = ⌊±16a/|area|⌋ is the quotient small_steps finds.
+/// Anything else takes small_steps itself.
+#[inline(always)]
+fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, i32)> {
+    let (dx1, dy1) = (p1.x() - p0.x(), p1.y() - p0.y());
+    let (dx2, dy2) = (p2.x() - p0.x(), p2.y() - p0.y());
+    let area = dx1 * dy2 - dx2 * dy1; // |·| < 2²⁷
+    if area == 0 {
+        return None;
+    }
+    if DIVIDE {
+        const LIM: i64 = (1 << 27) - 1;
+        let zq = |p: &ScreenVertex| (p.z() >> 4) as i32; // < 2²⁸
+        let (dz1, dz2) = (zq(p1) - zq(p0), zq(p2) - zq(p0));
+        let cross = |a: i32, b: i32, c: i32, d: i32| {
+            i64::from(a) * i64::from(b) - i64::from(c) * i64::from(d)
+        };
+        let (a, b) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
+        if (a + LIM) as u64 <= 2 * LIM as u64 && (b + LIM) as u64 <= 2 * LIM as u64 {
+            let m = area >> 31;
+            let fold = |n: i64| (((n as i32) << 4) ^ m) - m;
+            let d = (area ^ m) - m;
+            return Some((
+                floor_div32(fold(a), d) as u32,
+                floor_div32(fold(b), d) as u32,
+                area,
+            ));
+        }
+    }
+    let (sx, sy) = small_steps([p0, p1, p2])?;
+    Some(((sx >> 4) as u32, (sy >> 4) as u32, area))
+}
+
+/// The biased depth, modulo 2³², at the centre of a pixel whose top-left corner lies
+/// `(x, y)` (1/16 pixel) above-left of the vertex of depth `z` the plane is taken
+/// from, for the steps `16q`, `16r` of [`small_steps_q`]:
+/// `z + DEPTH_BIAS + q·(8 − x) + r·(8 − y)`.
+///
+/// This is [`plane_origin`](crate::raster::plane_origin) stepped to that pixel: for
+/// steps `sx = 16q`, `sy = 16r` its floor `⌊(sx·(8 − xf) + sy·(8 − yf))/16⌋` is exactly
+/// `q·(8 − xf) + r·(8 − yf)` (no rounding, and no wrapping in `i64`: |q|, |r| < 2⁵⁰),
+/// its whole-pixel parts `−16q·xi − 16r·yi` join them as `q·(8 − x₀) + r·(8 − y₀)`,
+/// and each pixel stepped adds 16q or 16r: modulo 2³² only q and r modulo 2³² count.
+#[inline(always)]
+fn small_origin(z: u32, (x, y): (i32, i32), q: u32, r: u32) -> u32 {
+    let half = (SUBPIXEL / 2) as u32;
+    z.wrapping_add(DEPTH_BIAS)
+        .wrapping_add(q.wrapping_mul(half.wrapping_sub(x as u32)))
+        .wrapping_add(r.wrapping_mul(half.wrapping_sub(y as u32)))
+}
+
 /// `n` rows between the `left` and `right` edges, columns clipped to `cx0..cx1`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
@@ -335,6 +397,47 @@ fn rows<C: Copy>(
 mod tests {
     use super::*;
     use std::vec;
+
+    /// `small_steps_q` and `small_origin` give the steps and depths of `small_steps`
+    /// and `plane_origin` (modulo 2³²) on random small triangles: depths across the
+    /// whole range and a few units apart, extents from 1 to 511 pixels, both windings,
+    /// the area's and the numerators' 32-bit limits on either side.
+    #[test]
+    fn small_depth_matches_the_plane_origin() {
+        use crate::raster::plane_origin;
+        let mut rnd = crate::testing::xorshift32(0x5eed_1234);
+        for i in 0..200_000u32 {
+            let mut r = |m: u32| rnd() % m;
+            let span = [40, 160, 2048, SMALL as u32][(i % 4) as usize];
+            const MAX: u32 = crate::fixed::MAX_DEPTH;
+            let z0 = r(MAX);
+            let spread = [1 << 12, 1 << 20, 1 << 28, MAX][(i / 4 % 4) as usize];
+            let mut vertex = || {
+                let (x, y) = (r(span) as i32 + 300, r(span) as i32 - 100);
+                let z = if spread == MAX {
+                    r(MAX + 1)
+                } else {
+                    z0.saturating_add(r(spread)).min(MAX)
+                };
+                ScreenVertex::new(x, y, z).unwrap()
+            };
+            let tri = [vertex(), vertex(), vertex()];
+            let t = tri.each_ref();
+            let (want, got) = (small_steps(t), small_steps_q(t));
+            let Some((sx, sy)) = want else {
+                assert!(got.is_none(), "{tri:?}");
+                continue;
+            };
+            let (q, r0, _) = got.unwrap();
+            assert_eq!((q << 4, r0 << 4), (sx as u32, sy as u32), "{tri:?}");
+            let (cx, cy) = (r(64) as i32 + 10, r(64) as i32 - 20);
+            let z00 = plane_origin(&tri[0], sx, sy)
+                .wrapping_add((cx as u32).wrapping_mul(sx as u32))
+                .wrapping_add((cy as u32).wrapping_mul(sy as u32));
+            let at = (tri[0].x() - cx * SUBPIXEL, tri[0].y() - cy * SUBPIXEL);
+            assert_eq!(small_origin(tri[0].z(), at, q, r0), z00, "{tri:?}");
+        }
+    }
 
     /// The rows through `rows_less_as_u16` (on the host its portable twin, on ARMv7E-M
     /// the assembly) give the pixels, depths and counts of the row loop, for random

@@ -224,8 +224,10 @@ mod plane;
 
 pub(crate) use edge::{EdgeDivide, EdgeWalk, Setup, SmallEdge, SMALL};
 pub(crate) use line::draw_line;
+#[cfg(test)]
+pub(crate) use plane::plane_origin;
 pub use plane::{depth_at, Plane};
-pub(crate) use plane::{plane_origin, small_steps, DepthRows, DEPTH_BIAS};
+pub(crate) use plane::{small_steps, DepthRows, DEPTH_BIAS};
 
 /// A half-open rectangle of pixels that drawing is confined to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
