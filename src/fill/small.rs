@@ -92,6 +92,12 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     if start >= end || centre(xmin).max(clip.x0) > centre(xmax).min(clip.x1 - 1) {
         return Some((0, 0));
     }
+    let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
+    if kernel && write && is_less(&pass) {
+        if let Some(done) = small_kernel(b, tri, color, (start, end), (ox, oy)) {
+            return Some(done);
+        }
+    }
     let Some((q, r, area)) = small_steps_q(tri) else {
         return Some((0, 0));
     };
@@ -101,62 +107,20 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         lo: p0.z().min(p1.z()).min(p2.z()) + DEPTH_BIAS,
         hi: p0.z().max(p1.z()).max(p2.z()) + DEPTH_BIAS,
     };
-
-    // Vertices top to bottom, around a local origin: the pixel corner (ox, oy) at or
-    // above-left of all three. An odd permutation turns the area's sign.
-    let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
-    let local = |p: &ScreenVertex| (p.x() - ox, p.y() - oy);
-    let mut v = [local(p0), local(p1), local(p2)];
-    let first = v[0];
-    let mut odd = false;
-    if v[1].1 < v[0].1 {
-        v.swap(0, 1);
-        odd = !odd;
-    }
-    if v[2].1 < v[1].1 {
-        v.swap(1, 2);
-        odd = !odd;
-    }
-    if v[1].1 < v[0].1 {
-        v.swap(0, 1);
-        odd = !odd;
-    }
-    let [v0, v1, v2] = v;
-    // With y down, a positive area in sorted order puts v1 right of v0→v2.
-    let mid_right = (area > 0) != odd;
+    let ([v0, v1, v2], mid_right) = sorted(tri, (ox, oy), area);
     let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
     let mid = centre(v1.1) + py0;
     let (cx0, cx1) = (clip.x0 - px0, clip.x1 - px0);
-    // The kernel's rows are written as their values are found (see RowsLess).
-    let use_kernel = kernel && write && is_less(&pass);
-    let mut block = RowsLess::new(cx0, cx1);
-    let n0 = if use_kernel {
-        kernel_edges(&mut block, v, mid_right, (start, mid, end), py0)
-    } else {
-        0
-    };
 
     // Column 0 of row `start`: its depth and its index (wrapping: it may lie left of
     // the buffer; the indices of covered columns do not).
+    let at = (p0.x() - ox, p0.y() - start * SUBPIXEL);
     let mut row = Row {
-        z: small_origin(p0.z(), (first.0, first.1 - (start - py0) * SUBPIXEL), q, r),
+        z: small_origin(p0.z(), at, q, r),
         base: ((start - b.first_row) as usize * b.width).wrapping_add(px0 as usize),
         tested: 0,
         failed: 0,
     };
-    if use_kernel {
-        block.depth(depth.sx, depth.sy, depth.lo, depth.hi);
-        let at = RowsAt {
-            row0: (start - b.first_row) as usize,
-            width: b.width,
-            px0,
-            n0,
-            z: row.z,
-        };
-        if let Some((tested, failed)) = rows_less_as_u16(&mut block, at, b.zdata, b.cdata, color) {
-            return Some((tested, tested.wrapping_sub(failed)));
-        }
-    }
     let edge = |a: (i32, i32), c: (i32, i32), py: i32| E::new(a, c, py - py0);
     let mut long = edge(v0, v2, start);
     // Two calls in each half rather than a choice of references: the loop then keeps
@@ -226,6 +190,68 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         }
     }
     Some((row.tested, row.tested - row.failed))
+}
+
+/// The vertices of `tri` around the local origin `(ox, oy)`, top to bottom, and
+/// whether the middle one lies right of the long edge: `area` (in `tri`'s order,
+/// [`small_steps_q`]) positive in sorted order, an odd permutation turning its sign.
+#[inline(always)]
+fn sorted(tri: [&ScreenVertex; 3], (ox, oy): (i32, i32), area: i32) -> ([(i32, i32); 3], bool) {
+    let local = |p: &ScreenVertex| (p.x() - ox, p.y() - oy);
+    let mut v = tri.map(local);
+    let mut odd = false;
+    if v[1].1 < v[0].1 {
+        v.swap(0, 1);
+        odd = !odd;
+    }
+    if v[2].1 < v[1].1 {
+        v.swap(1, 2);
+        odd = !odd;
+    }
+    if v[1].1 < v[0].1 {
+        v.swap(0, 1);
+        odd = !odd;
+    }
+    // With y down, a positive area in sorted order puts v1 right of v0→v2.
+    (v, (area > 0) != odd)
+}
+
+/// [`fill_small_with`]'s rows `start..end` by [`rows_less_as_u16`], the triangle's
+/// local origin `(ox, oy)`: its block filled stage by stage (depth, then edges), so
+/// that few values stay live. `None` when the kernel refuses (nothing drawn).
+#[inline(always)]
+fn small_kernel<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    tri: [&ScreenVertex; 3],
+    color: C,
+    (start, end): (i32, i32),
+    (ox, oy): (i32, i32),
+) -> Option<(u32, u32)> {
+    let [p0, p1, p2] = tri;
+    let Some((q, r, area)) = small_steps_q(tri) else {
+        return Some((0, 0));
+    };
+    let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
+    let mut block = RowsLess::new(b.clip.x0 - px0, b.clip.x1 - px0);
+    block.depth(
+        q << 4,
+        r << 4,
+        p0.z().min(p1.z()).min(p2.z()) + DEPTH_BIAS,
+        p0.z().max(p1.z()).max(p2.z()) + DEPTH_BIAS,
+    );
+    let z = small_origin(p0.z(), (p0.x() - ox, p0.y() - start * SUBPIXEL), q, r);
+    let (v, mid_right) = sorted(tri, (ox, oy), area);
+    let mid = ((v[1].1 + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS) + py0;
+    let n0 = kernel_edges(&mut block, v, mid_right, (start, mid, end), py0);
+    let at = RowsAt {
+        row0: (start - b.first_row) as usize,
+        width: b.width,
+        px0,
+        n0,
+        z,
+    };
+    let (tested, failed) = rows_less_as_u16(&mut block, at, b.zdata, b.cdata, color)?;
+    Some((tested, tested.wrapping_sub(failed)))
 }
 
 /// The edges of [`fill_small_with`]'s rows for [`rows_less_as_u16`]: vertices `v`
