@@ -73,14 +73,12 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     kernel: bool,
 ) -> Option<(u32, u32)> {
     let [p0, p1, p2] = tri;
+    let top = by_rows(tri);
     let (xmin, xmax) = (
         p0.x().min(p1.x()).min(p2.x()),
         p0.x().max(p1.x()).max(p2.x()),
     );
-    let (ymin, ymax) = (
-        p0.y().min(p1.y()).min(p2.y()),
-        p0.y().max(p1.y()).max(p2.y()),
-    );
+    let (ymin, ymax) = (top[0].y(), top[2].y());
     if xmax - xmin >= SMALL || ymax - ymin >= SMALL {
         return None;
     }
@@ -94,11 +92,11 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     }
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
     if kernel && write && is_less(&pass) {
-        if let Some(done) = small_kernel(b, tri, color, (start, end), (ox, oy)) {
+        if let Some(done) = small_kernel(b, tri, top, color, (start, end), (ox, oy)) {
             return Some(done);
         }
     }
-    let Some((q, r, area)) = small_steps_q(tri) else {
+    let Some((q, r, mid_right)) = small_steps_q(top) else {
         return Some((0, 0));
     };
     let depth = Depth {
@@ -107,7 +105,8 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         lo: p0.z().min(p1.z()).min(p2.z()) + DEPTH_BIAS,
         hi: p0.z().max(p1.z()).max(p2.z()) + DEPTH_BIAS,
     };
-    let ([v0, v1, v2], mid_right) = sorted(tri, (ox, oy), area);
+    let local = |p: &ScreenVertex| (p.x() - ox, p.y() - oy);
+    let [v0, v1, v2] = top.map(local);
     let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
     let mid = centre(v1.1) + py0;
     let (cx0, cx1) = (clip.x0 - px0, clip.x1 - px0);
@@ -192,28 +191,19 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     Some((row.tested, row.tested - row.failed))
 }
 
-/// The vertices of `tri` around the local origin `(ox, oy)`, top to bottom, and
-/// whether the middle one lies right of the long edge: `area` (in `tri`'s order,
-/// [`small_steps_q`]) positive in sorted order, an odd permutation turning its sign.
+/// The vertices of `tri` top to bottom (a stable sort by y).
 #[inline(always)]
-fn sorted(tri: [&ScreenVertex; 3], (ox, oy): (i32, i32), area: i32) -> ([(i32, i32); 3], bool) {
-    let local = |p: &ScreenVertex| (p.x() - ox, p.y() - oy);
-    let mut v = tri.map(local);
-    let mut odd = false;
-    if v[1].1 < v[0].1 {
+fn by_rows(mut v: [&ScreenVertex; 3]) -> [&ScreenVertex; 3] {
+    if v[1].y() < v[0].y() {
         v.swap(0, 1);
-        odd = !odd;
     }
-    if v[2].1 < v[1].1 {
+    if v[2].y() < v[1].y() {
         v.swap(1, 2);
-        odd = !odd;
     }
-    if v[1].1 < v[0].1 {
+    if v[1].y() < v[0].y() {
         v.swap(0, 1);
-        odd = !odd;
     }
-    // With y down, a positive area in sorted order puts v1 right of v0→v2.
-    (v, (area > 0) != odd)
+    v
 }
 
 /// [`fill_small_with`]'s rows `start..end` by [`rows_less_as_u16`], the triangle's
@@ -223,12 +213,13 @@ fn sorted(tri: [&ScreenVertex; 3], (ox, oy): (i32, i32), area: i32) -> ([(i32, i
 fn small_kernel<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
     tri: [&ScreenVertex; 3],
+    top: [&ScreenVertex; 3],
     color: C,
     (start, end): (i32, i32),
     (ox, oy): (i32, i32),
 ) -> Option<(u32, u32)> {
     let [p0, p1, p2] = tri;
-    let Some((q, r, area)) = small_steps_q(tri) else {
+    let Some((q, r, mid_right)) = small_steps_q(top) else {
         return Some((0, 0));
     };
     let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
@@ -240,7 +231,7 @@ fn small_kernel<C: Copy>(
         p0.z().max(p1.z()).max(p2.z()) + DEPTH_BIAS,
     );
     let z = small_origin(p0.z(), (p0.x() - ox, p0.y() - start * SUBPIXEL), q, r);
-    let (v, mid_right) = sorted(tri, (ox, oy), area);
+    let v = top.map(|p| (p.x() - ox, p.y() - oy));
     let mid = ((v[1].1 + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS) + py0;
     let n0 = kernel_edges(&mut block, v, mid_right, (start, mid, end), py0);
     let at = RowsAt {
@@ -282,9 +273,12 @@ fn kernel_edges(
 }
 
 /// [`small_steps`] over 16 (the steps a pixel in 20.12, `⌊16a/area⌋` and
-/// `⌊16b/area⌋`) modulo 2³², and the triangle's signed area; `None` for zero area.
-/// That is all the small path needs: its steps are these times 16, and its depths
-/// ([`small_origin`]) depend on them only modulo 2³².
+/// `⌊16b/area⌋`) modulo 2³², for vertices sorted top to bottom ([`by_rows`]), and
+/// whether the middle one lies right of the long edge; `None` for zero area. That is
+/// all the small path needs: its steps are these times 16, and its depths
+/// ([`small_origin`]) depend on them only modulo 2³². The order of the vertices does
+/// not change the steps (a permutation turns the signs of `a`, `b` and the area
+/// alike), so they are the sorted vertices' and the area is worked out once.
 ///
 /// With a divide instruction, numerators `a`, `b` inside ±(2²⁷ − 1) (the usual: tens
 /// of depth units across a few pixels) take two 32-bit divisions by |area| (< 2²⁷):
@@ -292,13 +286,15 @@ fn kernel_edges(
 /// cannot overflow, and ⌊16a/area⌋ = ⌊±16a/|area|⌋ is the quotient small_steps finds.
 /// Anything else takes small_steps itself.
 #[inline(always)]
-fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, i32)> {
+fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, bool)> {
     let (dx1, dy1) = (p1.x() - p0.x(), p1.y() - p0.y());
     let (dx2, dy2) = (p2.x() - p0.x(), p2.y() - p0.y());
     let area = dx1 * dy2 - dx2 * dy1; // |·| < 2²⁷
     if area == 0 {
         return None;
     }
+    // With y down, a positive area in sorted order puts v1 right of v0→v2.
+    let mid_right = area > 0;
     if DIVIDE {
         const LIM: i64 = (1 << 27) - 1;
         let zq = |p: &ScreenVertex| (p.z() >> 4) as i32; // < 2²⁸
@@ -314,12 +310,12 @@ fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, i32)> {
             return Some((
                 floor_div32(fold(a), d) as u32,
                 floor_div32(fold(b), d) as u32,
-                area,
+                mid_right,
             ));
         }
     }
     let (sx, sy) = small_steps([p0, p1, p2])?;
-    Some(((sx >> 4) as u32, (sy >> 4) as u32, area))
+    Some(((sx >> 4) as u32, (sy >> 4) as u32, mid_right))
 }
 
 /// The biased depth, modulo 2³², at the centre of a pixel whose top-left corner lies
@@ -449,12 +445,15 @@ mod tests {
             };
             let tri = [vertex(), vertex(), vertex()];
             let t = tri.each_ref();
-            let (want, got) = (small_steps(t), small_steps_q(t));
+            let (want, got) = (small_steps(t), small_steps_q(by_rows(t)));
             let Some((sx, sy)) = want else {
                 assert!(got.is_none(), "{tri:?}");
                 continue;
             };
-            let (q, r0, _) = got.unwrap();
+            let (q, r0, mid_right) = got.unwrap();
+            let [v0, v1, v2] = by_rows(t).map(|p| (p.x(), p.y()));
+            let area = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
+            assert_eq!(mid_right, area > 0, "{tri:?}");
             assert_eq!((q << 4, r0 << 4), (sx as u32, sy as u32), "{tri:?}");
             let (cx, cy) = (r(64) as i32 + 10, r(64) as i32 - 20);
             let z00 = plane_origin(&tri[0], sx, sy)
