@@ -92,7 +92,7 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     }
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
     if kernel && write && is_less(&pass) {
-        if let Some(done) = small_kernel(b, tri, top, color, (start, end), (ox, oy)) {
+        if let Some(done) = small_kernel(b, p0, top, color, (start, end), (ox, oy)) {
             return Some(done);
         }
     }
@@ -206,29 +206,30 @@ fn by_rows(mut v: [&ScreenVertex; 3]) -> [&ScreenVertex; 3] {
     v
 }
 
-/// [`fill_small_with`]'s rows `start..end` by [`rows_less_as_u16`], the triangle's
-/// local origin `(ox, oy)`: its block filled stage by stage (depth, then edges), so
+/// [`fill_small_with`]'s rows `start..end` by [`rows_less_as_u16`] for the corners
+/// `top` (sorted, [`by_rows`]; `p0` the first given, the depth plane's origin), the
+/// triangle's local origin `(ox, oy)`: its block filled stage by stage (depth, then edges), so
 /// that few values stay live. `None` when the kernel refuses (nothing drawn).
 #[inline(always)]
 fn small_kernel<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
-    tri: [&ScreenVertex; 3],
+    p0: &ScreenVertex,
     top: [&ScreenVertex; 3],
     color: C,
     (start, end): (i32, i32),
     (ox, oy): (i32, i32),
 ) -> Option<(u32, u32)> {
-    let [p0, p1, p2] = tri;
     let Some((q, r, mid_right)) = small_steps_q(top) else {
         return Some((0, 0));
     };
     let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
     let mut block = RowsLess::new(b.clip.x0 - px0, b.clip.x1 - px0);
+    let [t0, t1, t2] = top;
     block.depth(
         q << 4,
         r << 4,
-        p0.z().min(p1.z()).min(p2.z()) + DEPTH_BIAS,
-        p0.z().max(p1.z()).max(p2.z()) + DEPTH_BIAS,
+        t0.z().min(t1.z()).min(t2.z()) + DEPTH_BIAS,
+        t0.z().max(t1.z()).max(t2.z()) + DEPTH_BIAS,
     );
     let z = small_origin(p0.z(), (p0.x() - ox, p0.y() - start * SUBPIXEL), q, r);
     let v = top.map(|p| (p.x() - ox, p.y() - oy));
