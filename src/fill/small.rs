@@ -224,6 +224,9 @@ fn small_kernel<C: Copy>(
     };
     let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
     let mut block = RowsLess::new(b.clip.x0 - px0, b.clip.x1 - px0);
+    let v = top.map(|p| (p.x() - ox, p.y() - oy));
+    let mid = ((v[1].1 + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS) + py0;
+    let n0 = kernel_edges(&mut block, v, mid_right, (start, mid, end), py0);
     let [t0, t1, t2] = top;
     block.depth(
         q << 4,
@@ -232,9 +235,6 @@ fn small_kernel<C: Copy>(
         t0.z().max(t1.z()).max(t2.z()) + DEPTH_BIAS,
     );
     let z = small_origin(p0.z(), (p0.x() - ox, p0.y() - start * SUBPIXEL), q, r);
-    let v = top.map(|p| (p.x() - ox, p.y() - oy));
-    let mid = ((v[1].1 + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS) + py0;
-    let n0 = kernel_edges(&mut block, v, mid_right, (start, mid, end), py0);
     let at = RowsAt {
         row0: (start - b.first_row) as usize,
         width: b.width,
