@@ -281,10 +281,11 @@ fn kernel_edges(
 /// not change the steps (a permutation turns the signs of `a`, `b` and the area
 /// alike), so they are the sorted vertices' and the area is worked out once.
 ///
-/// With a divide instruction, numerators `a`, `b` inside ±(2²⁷ − 1) (the usual: tens
-/// of depth units across a few pixels) take two 32-bit divisions by |area| (< 2²⁷):
-/// 16a then lies strictly inside ±2³¹, so folding in the area's sign (`(n ^ m) − m`)
-/// cannot overflow, and ⌊16a/area⌋ = ⌊±16a/|area|⌋ is the quotient small_steps finds.
+/// With a divide instruction, numerators `a`, `b` in [−2²⁶, 2²⁶) (the usual: tens of
+/// depth units across a few pixels; one test each, a round trip through 27 bits) take
+/// two 32-bit divisions by |area| (< 2²⁷): 16a then lies inside ±2³⁰, so folding in
+/// the area's sign (`(n ^ m) − m`) cannot overflow, and ⌊16a/area⌋ = ⌊±16a/|area|⌋ is
+/// the quotient small_steps finds.
 /// Anything else takes small_steps itself.
 #[inline(always)]
 fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, bool)> {
@@ -297,14 +298,15 @@ fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, bool)> {
     // With y down, a positive area in sorted order puts v1 right of v0→v2.
     let mid_right = area > 0;
     if DIVIDE {
-        const LIM: i64 = (1 << 27) - 1;
         let zq = |p: &ScreenVertex| (p.z() >> 4) as i32; // < 2²⁸
         let (dz1, dz2) = (zq(p1) - zq(p0), zq(p2) - zq(p0));
         let cross = |a: i32, b: i32, c: i32, d: i32| {
             i64::from(a) * i64::from(b) - i64::from(c) * i64::from(d)
         };
         let (a, b) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
-        if (a + LIM) as u64 <= 2 * LIM as u64 && (b + LIM) as u64 <= 2 * LIM as u64 {
+        // a and b in [−2²⁶, 2²⁶): they survive a round trip through 27 bits.
+        let fits = |n: i64| i64::from((n as i32) << 5 >> 5) == n;
+        if fits(a) && fits(b) {
             let m = area >> 31;
             let fold = |n: i64| (((n as i32) << 4) ^ m) - m;
             let d = (area ^ m) - m;
