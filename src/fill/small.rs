@@ -82,12 +82,13 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     if xmax - xmin >= SMALL || ymax - ymin >= SMALL {
         return None;
     }
-    // The rows and columns whose centres may be covered, inside the clip: nothing more
-    // is worked out for a triangle outside it (a band's neighbours).
+    // The rows whose centres may be covered, inside the clip: nothing more is worked
+    // out for a triangle above or below it (a band's neighbours). One left or right
+    // of it (rare: bands are whole rows) finds each row's columns empty.
     let centre = |v: i32| (v + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS;
     let clip = b.clip;
     let (start, end) = (centre(ymin).max(clip.y0), centre(ymax).min(clip.y1));
-    if start >= end || centre(xmin).max(clip.x0) > centre(xmax).min(clip.x1 - 1) {
+    if start >= end {
         return Some((0, 0));
     }
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
