@@ -9,7 +9,7 @@
 
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
-use crate::num::kernel::{rows_less_as_u16, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
+use crate::num::kernel::{rows_less_as_u16, two_bytes, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
 use crate::num::{floor_div32, DIVIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
@@ -62,7 +62,8 @@ pub(crate) fn fill_small<C: Copy>(
 }
 
 /// [`fill_small`] with edges of kind `E`; with `kernel`, the depth test `Less` with
-/// depth writes in a two-byte colour goes to [`rows_less_as_u16`] (which may refuse).
+/// depth writes in a two-byte colour goes to [`rows_less_as_u16`] (which may refuse:
+/// then `None`, and the general path draws the triangle).
 #[inline(always)]
 fn fill_small_with<E: SmallEdge, C: Copy>(
     b: &mut Buffers<'_, '_, C>,
@@ -92,10 +93,10 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         return Some((0, 0));
     }
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
-    if kernel && write && is_less(&pass) {
-        if let Some(done) = small_kernel(b, p0, top, color, (start, end), (ox, oy)) {
-            return Some(done);
-        }
+    if kernel && write && is_less(&pass) && two_bytes::<C>() {
+        // Refused (rows outside the buffers: never with a clip inside them), the
+        // general path draws it: nothing stays live across the kernel for a retry.
+        return small_kernel(b, p0, top, color, (start, end), (ox, oy));
     }
     let Some((q, r, mid_right)) = small_steps_q(top) else {
         return Some((0, 0));
@@ -209,8 +210,9 @@ fn by_rows(mut v: [&ScreenVertex; 3]) -> [&ScreenVertex; 3] {
 
 /// [`fill_small_with`]'s rows `start..end` by [`rows_less_as_u16`] for the corners
 /// `top` (sorted, [`by_rows`]; `p0` the first given, the depth plane's origin), the
-/// triangle's local origin `(ox, oy)`: its block filled stage by stage (depth, then edges), so
-/// that few values stay live. `None` when the kernel refuses (nothing drawn).
+/// triangle's local origin `(ox, oy)`: its block filled stage by stage (edges, then
+/// depth), so that few values stay live. `None` when the kernel refuses (nothing
+/// drawn).
 #[inline(always)]
 fn small_kernel<C: Copy>(
     b: &mut Buffers<'_, '_, C>,

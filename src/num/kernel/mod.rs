@@ -28,6 +28,7 @@ pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
 pub use rows::check_rows_kernel;
+pub(crate) use rows::two_bytes;
 pub(crate) use rows::{rows_less_as_u16, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};

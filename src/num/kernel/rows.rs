@@ -122,6 +122,12 @@ impl RowsAt {
     }
 }
 
+/// Whether [`rows_less_as_u16`] takes colours of type `C`: two bytes, aligned to two.
+#[inline(always)]
+pub(crate) const fn two_bytes<C>() -> bool {
+    core::mem::size_of::<C>() == 2 && core::mem::align_of::<C>() >= 2
+}
+
 /// Draw `r` into the depth rows `z` and colour rows `c` in `color`: the depth test
 /// `Less` with depth writes. Returns (pixels tested, pixels failed), or `None` (nothing
 /// drawn) when `C` is not a two-byte type or when the rows do not lie inside the
@@ -134,7 +140,7 @@ pub(crate) fn rows_less_as_u16<C: Copy>(
     c: &mut [C],
     color: C,
 ) -> Option<(u32, u32)> {
-    if core::mem::size_of::<C>() != 2 || core::mem::align_of::<C>() < 2 {
+    if !two_bytes::<C>() {
         return None;
     }
     at.check(r, z.len().min(c.len()))?;
