@@ -49,6 +49,21 @@ pub(crate) struct RowsLess {
     short1: [u32; 3], // 72: t, d, dt of the second half's short edge
 }
 
+// The assembly reads and writes the block at these offsets, by LDRD/STRD/LDM (word
+// alignment): pinned here, so that a change of the layout fails to build.
+const _: () = {
+    use core::mem::{align_of, offset_of, size_of};
+    assert!(offset_of!(RowsLess, sx) == 0 && offset_of!(RowsLess, lo) == 4);
+    assert!(offset_of!(RowsLess, hi) == 8 && offset_of!(RowsLess, color) == 12);
+    assert!(offset_of!(RowsLess, delta) == 16 && offset_of!(RowsLess, dt) == 20);
+    assert!(offset_of!(RowsLess, cx) == 28 && offset_of!(RowsLess, sy) == 36);
+    assert!(offset_of!(RowsLess, pitch) == 40 && offset_of!(RowsLess, failed) == 44);
+    assert!(offset_of!(RowsLess, t) == 48 && offset_of!(RowsLess, d) == 56);
+    assert!(offset_of!(RowsLess, n1) == 64 && offset_of!(RowsLess, side) == 68);
+    assert!(offset_of!(RowsLess, short1) == 72 && size_of::<RowsLess>() == 84);
+    assert!(align_of::<RowsLess>() >= 4);
+};
+
 impl RowsLess {
     /// Rows clipped to the columns `cx0..cx1`, everything else 0 (field by field: each
     /// is written again before the assembly reads it, and the compiler drops these).
