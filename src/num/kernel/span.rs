@@ -140,6 +140,68 @@ macro_rules! dsp_one {
     };
 }
 
+/// The body of [`span_less_dsp`] from its first pixel to its count: r0, r1 the rows, r2
+/// their length (≥ 1), r3 `acc`, r4 `dz`, r5 the colour in both lanes, r6 `r5 ^
+/// 0x0001_0001`, r7 zero; leaves the failures in r12. One pixel alone if the rows are not
+/// word-aligned, eight a turn by LDRD/STRD, then four, two and one by the bits of the
+/// remainder. `$a`…`$f` are its six local labels (the rows kernel runs it too, beside
+/// labels of its own). Clobbers r0–r3 and r7–r11, lr and the flags.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! dsp_span {
+    ($a:literal, $b:literal, $c:literal, $d:literal, $e:literal, $f:literal) => {
+        concat!(
+            "tst r0, #2\n",
+            "beq ", $a, "f\n",
+            dsp_one!(),
+            "adds r0, #2\n",
+            "adds r1, #2\n",
+            "subs r2, #1\n",
+            $a, ":\n",
+            "subs r2, #8\n",
+            "blo ", $c, "f\n",
+            $b, ":\n",
+            "ldrd r8, r9, [r0]\n",
+            "ldrd r10, r11, [r1]\n",
+            dsp_pair!("r8", "r10"),
+            dsp_pair!("r9", "r11"),
+            "strd r8, r9, [r0], #8\n",
+            "strd r10, r11, [r1], #8\n",
+            "ldrd r8, r9, [r0]\n",
+            "ldrd r10, r11, [r1]\n",
+            dsp_pair!("r8", "r10"),
+            dsp_pair!("r9", "r11"),
+            "strd r8, r9, [r0], #8\n",
+            "strd r10, r11, [r1], #8\n",
+            "subs r2, #8\n",
+            "bhs ", $b, "b\n",
+            $c, ":\n",
+            // r2 is the remainder − 8: its low three bits are the remainder's.
+            "lsls r2, r2, #30\n", // C = bit 2, N = bit 1
+            "bcc ", $d, "f\n",
+            "ldrd r8, r9, [r0]\n",
+            "ldrd r10, r11, [r1]\n",
+            dsp_pair!("r8", "r10"),
+            dsp_pair!("r9", "r11"),
+            "strd r8, r9, [r0], #8\n",
+            "strd r10, r11, [r1], #8\n",
+            $d, ":\n",
+            "bpl ", $e, "f\n",
+            "ldr r8, [r0]\n",
+            "ldr r10, [r1]\n",
+            dsp_pair!("r8", "r10"),
+            "str r8, [r0], #4\n",
+            "str r10, [r1], #4\n",
+            $e, ":\n",
+            "lsls r2, r2, #2\n", // C = bit 0
+            "bcc ", $f, "f\n",
+            dsp_one!(),
+            $f, ":\n",
+            "mov r12, r7\n",
+        )
+    };
+}
+
 /// [`span_less_u16`] for ARMv7E-M, `z` and `c` of the same length `n ≥ 1` and at the
 /// same address modulo 4: one pixel alone if they are not word-aligned, then eight
 /// pixels a turn by LDRD/STRD (42 instructions), then four, two and one by the bits of
@@ -166,53 +228,7 @@ fn span_less_dsp(z: &mut [u16], c: &mut [u16], acc: u32, dz: u32, color: u16) ->
             "push {{r6, r7}}",
             "eor r6, r5, #0x00010001",
             "movs r7, #0",
-            "tst r0, #2",
-            "beq 2f",
-            dsp_one!(),
-            "adds r0, #2",
-            "adds r1, #2",
-            "subs r2, #1",
-            "2:",
-            "subs r2, #8",
-            "blo 4f",
-            "3:",
-            "ldrd r8, r9, [r0]",
-            "ldrd r10, r11, [r1]",
-            dsp_pair!("r8", "r10"),
-            dsp_pair!("r9", "r11"),
-            "strd r8, r9, [r0], #8",
-            "strd r10, r11, [r1], #8",
-            "ldrd r8, r9, [r0]",
-            "ldrd r10, r11, [r1]",
-            dsp_pair!("r8", "r10"),
-            dsp_pair!("r9", "r11"),
-            "strd r8, r9, [r0], #8",
-            "strd r10, r11, [r1], #8",
-            "subs r2, #8",
-            "bhs 3b",
-            "4:",
-            // r2 is the remainder − 8: its low three bits are the remainder's.
-            "lsls r2, r2, #30", // C = bit 2, N = bit 1
-            "bcc 5f",
-            "ldrd r8, r9, [r0]",
-            "ldrd r10, r11, [r1]",
-            dsp_pair!("r8", "r10"),
-            dsp_pair!("r9", "r11"),
-            "strd r8, r9, [r0], #8",
-            "strd r10, r11, [r1], #8",
-            "5:",
-            "bpl 6f",
-            "ldr r8, [r0]",
-            "ldr r10, [r1]",
-            dsp_pair!("r8", "r10"),
-            "str r8, [r0], #4",
-            "str r10, [r1], #4",
-            "6:",
-            "lsls r2, r2, #2", // C = bit 0
-            "bcc 7f",
-            dsp_one!(),
-            "7:",
-            "mov r12, r7",
+            dsp_span!("2", "3", "4", "5", "6", "7"),
             "pop {{r6, r7}}",
             inout("r0") z.as_mut_ptr() => _,
             inout("r1") c.as_mut_ptr() => _,
