@@ -145,51 +145,39 @@ impl FixedTransform {
         }
         // Every value below is exact: a coefficient times the scale is a product of
         // two f32 mantissas (48 bits) and a power of two, kept as integers (no f64,
-        // which a core without an FPU emulates in some 2 KB of library code).
-        let coef = |r: usize, c: usize| {
-            let v = mvp.m[r][c];
-            if c < 3 {
-                Exact::product(v, scale)
-            } else {
-                Exact::of(v)
-            }
-        };
-        let maxes = |rows: core::ops::Range<usize>| {
-            let (mut m, mut t) = (Exact::ZERO, Exact::ZERO);
-            for r in rows {
-                for c in 0..3 {
-                    m = m.max_abs(coef(r, c));
-                }
-                t = t.max_abs(coef(r, 3));
-            }
-            (m, t)
-        };
-        let (mxy, txy) = maxes(0..2);
-        let (mzw, tzw) = maxes(2..4);
-        if mzw.is_zero() && tzw.is_zero() {
+        // which a core without an FPU emulates in some 2 KB of library code). The
+        // coefficients carry the mesh scale; the translation column does not.
+        // Entry i of the matrix is row i / 4, column i % 4 (one loop each: their
+        // bodies once in the code).
+        let m = mvp.m.as_flattened();
+        let value = |i: usize| Exact::product(m[i], if i % 4 < 3 { scale } else { 1.0 });
+        // Limits by pair of rows (x and y; z and w) and column (coefficient, translation).
+        let limit = |i: usize, table: [[u64; 2]; 2]| table[i / 8][usize::from(i % 4 == 3)];
+        // Each pair of rows takes the largest power of two k that keeps all its values
+        // within their limits: the least of each value's own.
+        let mut k = [1000; 2];
+        for i in 0..16 {
+            k[i / 8] = k[i / 8].min(value(i).largest_fit(limit(i, FIT_LIMITS)));
+        }
+        // Only zero values leave k at 1000 (any other fits below 2^400).
+        if k[1] == 1000 {
             return Err(Error::InvalidParameter(
                 "degenerate or overflowing transform",
             ));
         }
-        let kxy = fit_exponent(mxy, txy, 16383, 1 << 29);
-        let kzw = fit_exponent(mzw, tzw, (1 << 27) - (1 << 14), 1 << 43);
-        let (mut xy, mut hi, mut lo) = ([[0; 4]; 2], [[0; 4]; 2], [[0; 4]; 2]);
-        for r in 0..4 {
-            for c in 0..4 {
-                // Coefficients carry the mesh scale; the translation column does not.
-                let v = coef(r, c);
-                if r < 2 {
-                    let max = if c < 3 { 16383 } else { 1 << 29 };
-                    xy[r][c] = v.round_scaled(kxy, max) as i32;
-                } else {
-                    let v = v.round_scaled(kzw, if c < 3 { 1 << 27 } else { 1 << 43 });
-                    // v = hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
-                    hi[r - 2][c] = (v >> 14) as i32;
-                    lo[r - 2][c] = (v & 0x3fff) as i32;
-                }
-            }
+        let mut q = [[0; 4]; 4];
+        for (i, v) in q.as_flattened_mut().iter_mut().enumerate() {
+            *v = value(i).round_scaled(k[i / 8], limit(i, ROUND_LIMITS));
         }
-        Ok(FixedTransform::from_rows(xy, hi, lo, pow2_f32(kzw - kxy)))
+        // z and w as hi·2¹⁴ + lo with 0 ≤ lo < 2¹⁴ (an arithmetic shift floors).
+        let part = |r: usize, f: fn(i64) -> i32| q[r].map(f);
+        let (xy, hi, lo) = (|v| v as i32, |v| (v >> 14) as i32, |v| (v & 0x3fff) as i32);
+        Ok(FixedTransform::from_rows(
+            [part(0, xy), part(1, xy)],
+            [part(2, hi), part(3, hi)],
+            [part(2, lo), part(3, lo)],
+            pow2_f32(k[1] - k[0]),
+        ))
     }
 
     /// The transform of the rows `[c₀, c₁, c₂, t]` (coefficients within ±16383).
@@ -226,8 +214,6 @@ struct Exact {
 }
 
 impl Exact {
-    const ZERO: Exact = Exact { m: 0, e: 0 };
-
     /// A finite `f32`, exactly.
     fn of(v: f32) -> Exact {
         let bits = v.to_bits();
@@ -253,68 +239,28 @@ impl Exact {
         }
     }
 
-    fn is_zero(self) -> bool {
-        self.m == 0
-    }
-
-    /// ⌊log₂ |self|⌋ (for a non-zero value).
-    fn ilog2(self) -> i32 {
-        self.e + 63 - self.m.unsigned_abs().leading_zeros() as i32
-    }
-
-    /// The larger of `self` and `|v|`, for a non-negative `self`.
-    fn max_abs(self, v: Exact) -> Exact {
-        let v = Exact {
-            m: v.m.abs(),
-            e: v.e,
-        };
-        if v.is_zero() {
-            return self;
-        }
-        if self.is_zero() {
-            return v;
-        }
-        // Compare the binary exponents, then the mantissas aligned to the same one.
-        match self.ilog2().cmp(&v.ilog2()) {
-            core::cmp::Ordering::Less => v,
-            core::cmp::Ordering::Greater => self,
-            core::cmp::Ordering::Equal => {
-                let e = self.e.min(v.e);
-                // Same top bit, both below 2⁴⁸: the aligned mantissas fit 63 bits.
-                if (self.m << (self.e - e)) >= (v.m << (v.e - e)) {
-                    self
-                } else {
-                    v
-                }
-            }
-        }
-    }
-
-    /// Whether `|self| · 2^k ≤ lim`, for `lim ≥ 0`.
-    fn scaled_at_most(self, k: i32, lim: i64) -> bool {
+    /// The largest k in ±1000 with |self|·2^k ≤ lim (1000 for zero), for
+    /// 0 < lim < 2⁶³.
+    fn largest_fit(self, lim: u64) -> i32 {
         let m = self.m.unsigned_abs();
-        let s = self.e + k;
         if m == 0 {
-            true
-        } else if s >= 0 {
-            s < 64 && m <= lim.unsigned_abs() >> s
-        } else {
-            // m ≤ lim · 2^−s; beyond 64 bits the right side exceeds any m (< 2⁴⁸).
-            let up = (-s).min(64) as u32;
-            up >= lim.unsigned_abs().leading_zeros() || m <= lim.unsigned_abs() << up
+            return 1000;
         }
+        // m·2^s has lim's top bit; one less when that is still above lim.
+        let s = m.leading_zeros() as i32 - lim.leading_zeros() as i32;
+        let over = if s >= 0 { m << s > lim } else { m > lim << -s };
+        (s - i32::from(over) - self.e).clamp(-1000, 1000)
     }
 
     /// `self · 2^k` rounded to the nearest integer (halves away from zero), clamped to
     /// `±max`.
-    #[inline(never)]
-    fn round_scaled(self, k: i32, max: i64) -> i64 {
+    fn round_scaled(self, k: i32, max: u64) -> i64 {
         let (m, s) = (self.m.unsigned_abs(), self.e + k);
         let r = if m == 0 {
             0
         } else if s >= 0 {
-            if s >= 63 || m > max.unsigned_abs() >> s {
-                max.unsigned_abs()
+            if s >= 63 || m > max >> s {
+                max
             } else {
                 m << s
             }
@@ -323,7 +269,7 @@ impl Exact {
         } else {
             (m + (1 << (-s - 1))) >> -s
         };
-        let r = r.min(max.unsigned_abs()) as i64;
+        let r = r.min(max) as i64;
         if self.m < 0 {
             -r
         } else {
@@ -332,28 +278,12 @@ impl Exact {
     }
 }
 
-/// The largest power of two k in ±1000 with |m|·2^k ≤ mlim and |t|·2^k ≤ tlim (−1000
-/// if none). `fits` only turns false as k grows, so the search may start anywhere: it
-/// starts one below the guess from the binary exponents and takes a step or two.
-fn fit_exponent(m: Exact, t: Exact, mlim: i64, tlim: i64) -> i32 {
-    let fits = |k: i32| m.scaled_at_most(k, mlim) && t.scaled_at_most(k, tlim);
-    let lim_log = |lim: i64| 63 - lim.leading_zeros() as i32;
-    let room = |v: Exact, lim: i64| {
-        if v.is_zero() {
-            i32::MAX
-        } else {
-            lim_log(lim) - v.ilog2() - 1
-        }
-    };
-    let mut k = room(m, mlim).min(room(t, tlim)).clamp(-1000, 1000);
-    while k < 1000 && fits(k + 1) {
-        k += 1;
-    }
-    while k > -1000 && !fits(k) {
-        k -= 1;
-    }
-    k
-}
+/// The limits of [`FixedTransform`]'s values when fitting the scale: x and y rows'
+/// coefficients and translations, then z and w rows'.
+const FIT_LIMITS: [[u64; 2]; 2] = [[16383, 1 << 29], [(1 << 27) - (1 << 14), 1 << 43]];
+
+/// The clamps of [`FixedTransform`]'s values once scaled, ordered as [`FIT_LIMITS`].
+const ROUND_LIMITS: [[u64; 2]; 2] = [[16383, 1 << 29], [1 << 27, 1 << 43]];
 
 /// 2^k as `f32`, as converting the exact power would give it: infinite above 2¹²⁷,
 /// subnormal down to 2⁻¹⁴⁹, zero below.
