@@ -212,6 +212,44 @@ pub(crate) fn udivrem(n: u32, d: u32) -> (u32, u32) {
     }
 }
 
+/// `(n / d, n % d)` in 128 bits for `d > 0`, by long division a bit at a time: the
+/// remainder takes `n`'s bits from the top as they shift out, the quotient's shift in
+/// behind them (one loop for both: LLVM expands a 128-bit division and remainder
+/// inline on 32-bit Arm, each by its own loop, some 500 bytes each).
+#[inline(never)]
+pub(crate) fn udivrem_wide(n: u128, d: u128) -> (u128, u128) {
+    let (mut q, mut r, mut steps) = (n, 0u128, 128);
+    // Each zero word at the top of n leaves r at 0 and adds 32 zero quotient bits.
+    while steps > 0 && q >> 96 == 0 {
+        q <<= 32;
+        steps -= 32;
+    }
+    for _ in 0..steps {
+        // r < d before the step, so 2r + 1 < 2d: when r's top bit shifts out, the
+        // remainder is above d.
+        let top = r >> 127 != 0;
+        r = r << 1 | q >> 127;
+        q <<= 1;
+        if top || r >= d {
+            r = r.wrapping_sub(d);
+            q |= 1;
+        }
+    }
+    (q, r)
+}
+
+/// [`div_floor_wide`] through [`udivrem_wide`], for `d > 0`.
+#[inline]
+pub(crate) fn div_floor_wide_soft(n: i128, d: i128) -> i128 {
+    let (q, r) = udivrem_wide(n.unsigned_abs(), d as u128);
+    let q = q as i128;
+    match (n < 0, r == 0) {
+        (false, _) => q,
+        (true, true) => q.wrapping_neg(),
+        (true, false) => q.wrapping_neg() - 1,
+    }
+}
+
 /// [`floor_div32`] through [`udivrem`]. For `n = i32::MIN` the quotient 2³¹ wraps to
 /// `i32::MIN`, which negated is itself: still exact.
 #[inline]

@@ -14,9 +14,9 @@ mod armv7m;
 pub(crate) mod kernel;
 
 pub(crate) use armv6m::{
-    bits_beyond_31_parts, div_floor_pair_recip, floor_div32_soft, mul_narrow_parts,
-    mul_small_parts, mul_wide_parts, recip62, scaled_ratio_parts, shl64_parts, shr64_parts,
-    udivrem,
+    bits_beyond_31_parts, div_floor_pair_recip, div_floor_wide_soft, floor_div32_soft,
+    mul_narrow_parts, mul_small_parts, mul_wide_parts, recip62, scaled_ratio_parts, shl64_parts,
+    shr64_parts, udivrem,
 };
 use armv7m::floor_div32_flip;
 
@@ -288,12 +288,16 @@ pub(crate) fn div_ceil(n: i64, d: i64) -> i64 {
     -div_floor(-n, d)
 }
 
-/// ⌊n / d⌋ in 128 bits, for the rare exact evaluation of very large triangles. Out of
-/// line: a 128-bit division is a kilobyte of code on ARMv6-M, and rare.
+/// ⌊n / d⌋ in 128 bits for `d ≠ 0`, for the rare exact evaluation of very large
+/// triangles: on ARMv6-M by shift and subtract ([`div_floor_wide_soft`], a tenth of the
+/// code of LLVM's inline expansion). Out of line: rare.
 #[inline(never)]
 #[cold]
 pub(crate) fn div_floor_wide(n: i128, d: i128) -> i128 {
     let (n, d) = if d < 0 { (-n, -d) } else { (n, d) };
+    if ARMV6M {
+        return div_floor_wide_soft(n, d);
+    }
     n.div_euclid(d)
 }
 

@@ -390,6 +390,42 @@ fn floor_and_ceil_division_round_the_right_way() {
 }
 
 #[test]
+fn wide_division_by_shift_and_subtract_is_exact() {
+    let edges = [
+        0i128,
+        1,
+        -1,
+        7,
+        -7,
+        i128::from(i64::MAX),
+        i128::from(i64::MIN),
+        1 << 100,
+        -(1 << 100) - 3,
+        i128::MAX,
+        i128::MIN + 1,
+    ];
+    for &n in &edges {
+        for &d in edges.iter().filter(|&&d| d > 0) {
+            assert_eq!(div_floor_wide_soft(n, d), n.div_euclid(d), "{n} / {d}");
+        }
+    }
+    let mut x = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = || {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        x
+    };
+    for _ in 0..100_000 {
+        // Numerators to about 2⁸⁰ and divisors to 2⁵², as the plane's.
+        let n = (i128::from(next() as i64) << 16 >> (next() % 80)) | i128::from(next() % 3);
+        let d = (i128::from(next() >> 11) >> (next() % 52)).max(1);
+        assert_eq!(div_floor_wide_soft(n, d), n.div_euclid(d), "{n} / {d}");
+        assert_eq!(div_floor_wide(n, -d), (-n).div_euclid(d), "{n} / -{d}");
+    }
+}
+
+#[test]
 fn rounding_and_saturation() {
     assert_eq!(round_f32(2.5), 3);
     assert_eq!(round_f32(-2.5), -3);
