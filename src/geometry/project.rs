@@ -7,8 +7,8 @@ use super::transform::Clip4;
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::num::{
-    bits_beyond_31, mul_i64_i32, mul_wide, mul_wide_narrow, recip62, round_f32, scaled_ratio_parts,
-    shr64, ARMV6M, INTEGER_PROJECTION,
+    bits_beyond_31, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32, scaled_ratio_parts, shr64,
+    ARMV6M, INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
 
@@ -129,8 +129,8 @@ fn rounded_high(a: u32, b: u32) -> u32 {
     a1 * b1 + (m1 >> 16) + (m2 >> 16) + (low >> 16)
 }
 
-/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table: the value of
-/// [`recip62`] (for ARMv6-M, where its 64-bit products are long). Each step's error is
+/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table or a division (on
+/// ARMv6-M, 64-bit products are long). Each step's error is
 /// read off the low word of a product, exact because the step keeps it in `[0, 2³²)`:
 ///
 /// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v: a line through 1/x (error below 1/17),
@@ -162,6 +162,16 @@ fn recip62_low(d: u32) -> u32 {
     let h = y >> 3;
     let x = (y << 13) + ((h * (e >> 16) + ((h * (e & 0xffff)) >> 16)) >> 17);
     x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
+}
+
+/// ⌊2⁶²/d⌋ for 2³⁰ ≤ d < 2³¹: 2³² at 2³⁰, else [`recip62_low`].
+#[inline(always)]
+fn recip62(d: u32) -> u64 {
+    if d == 1 << 30 {
+        1 << 32
+    } else {
+        u64::from(recip62_low(d))
+    }
 }
 
 /// Screen mapping of a viewport, precomputed.
@@ -708,7 +718,7 @@ mod tests {
         );
     }
 
-    /// [`recip62_low`] is [`recip62`]: its first step exact for every one of d's top 16
+    /// [`recip62_low`] is ⌊2⁶²/d⌋: its first step exact for every one of d's top 16
     /// bits (the steps' products within `i32`), then every bucket's ends and middle and
     /// 10⁷ random divisors. `ZRASTER_EXHAUSTIVE=1` checks every divisor (2³⁰ of them;
     /// in a release build, some seconds).
@@ -746,7 +756,7 @@ mod tests {
             assert_eq!(y, (1 << 31) / w, "v {v}");
             for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
                 if d > 1 << 30 && d < 1 << 31 {
-                    assert_eq!(u64::from(recip62_low(d)), recip62(d), "d {d}");
+                    assert_eq!(u64::from(recip62_low(d)), (1 << 62) / u64::from(d), "d {d}");
                 }
             }
         }
@@ -767,6 +777,14 @@ mod tests {
                     "d {d}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn recip62_is_the_exact_quotient() {
+        let check = |d: u32| assert_eq!(recip62(d), (1u64 << 62) / u64::from(d), "{d}");
+        for d in [1 << 30, (1 << 30) + 1, 0x5555_5555, (1 << 31) - 1] {
+            check(d);
         }
     }
 

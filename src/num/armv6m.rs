@@ -5,7 +5,7 @@
 // Indexing into fixed tables by values masked below their length: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use super::{by_digits, mul_wide, mul_wide_narrow};
+use super::{by_digits, mul_wide};
 
 /// The reciprocal form of [`div_floor_pair`]; `None` outside its range.
 #[inline]
@@ -262,65 +262,6 @@ pub(crate) fn floor_div32_soft(n: i32, d: i32) -> i32 {
         (true, false) => q.wrapping_neg() - 1,
     }
 }
-
-/// ⌊2⁶² / d⌋. For 2³⁰ < d < 2³¹ (the projection's normal case) without a 64-bit
-/// division, which chips with integer projection lack: a first guess from a table
-/// (9 bits), two Newton steps (18, then about 36 bits) in 32×32-bit products, and a
-/// last step or two to the exact quotient, checked by its remainder. About 140
-/// instructions on a Cortex-M0+, against 330 for bit-by-bit long division. Other `d`
-/// (and 0, taken as 1) go through `u64` division.
-pub(crate) fn recip62(d: u32) -> u64 {
-    if d <= 1 << 30 || d >= 1 << 31 {
-        return (1 << 62) / u64::from(d.max(1));
-    }
-    // d in [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²): guess 2⁶² over the middle of that range.
-    let i = ((d >> 22) & 0xff) as usize;
-    let t = u32::from(RECIP_TABLE.get(i).copied().unwrap_or(u16::MAX));
-    // Two Newton steps x ← x + x·e/2⁶², e = 2⁶² − d·x: |e| < 2⁵⁴ here, so e/2²⁴ fits
-    // 30 bits and x ≤ 2⁶²/d + 1 < 2³² − 2 after each step (Newton's method for 1/d
-    // approaches from below, and rounding the correction down adds at most 1).
-    // The first from x = t·2¹⁶, whose products are t's 16 bits times 32 (d·t < 2⁴⁷,
-    // t·e/2²⁴ < 2⁴⁶: both stay below 2⁶⁴ shifted back up by 16): two multiplies each.
-    let e = (1i64 << 62) - (mul_narrow_parts(t, d) << 16) as i64;
-    let m = ((mul_narrow_parts(t, (e.unsigned_abs() >> 24) as u32) << 16) >> 38) as u32;
-    let x = t << 16;
-    let mut x = if e >= 0 { x + m } else { x - m };
-    let e = (1i64 << 62) - mul_wide(d, x) as i64;
-    let m = (mul_wide(x, (e.unsigned_abs() >> 24) as u32) >> 38) as u32;
-    // The new remainder 2⁶² − d·(x ± m) is e ∓ d·m: the correction m is about 2¹⁴
-    // (x is within about 2⁻¹⁸ of 2⁶²/d), so d·m is two 16 × 32-bit products
-    // ([`mul_wide_narrow`]) instead of a full d·x (four); |e ∓ d·m| < 2⁵⁶.
-    let dm = mul_wide_narrow(m, d) as i64; // m < 2²⁴, d < 2³¹: below 2⁵⁵
-    let mut e = if e >= 0 {
-        x += m;
-        e - dm
-    } else {
-        x -= m;
-        e + dm
-    };
-    // Within a few units now: step to the quotient whose remainder lies in [0, d).
-    while e < 0 {
-        x -= 1;
-        e += i64::from(d);
-    }
-    while e >= i64::from(d) {
-        x += 1;
-        e -= i64::from(d);
-    }
-    u64::from(x)
-}
-
-/// ⌊2⁴¹ / (513 + 2i)⌋ / 2¹⁶: 2⁶² over the middle of [2³⁰ + i·2²², 2³⁰ + (i + 1)·2²²),
-/// to 16 bits. Worked out at compile time.
-const RECIP_TABLE: [u16; 256] = {
-    let mut t = [0u16; 256];
-    let mut i = 0;
-    while i < 256 {
-        t[i] = (((1u64 << 41) / (513 + 2 * i as u64)) >> 16) as u16;
-        i += 1;
-    }
-    t
-};
 
 /// `⌊(a·h·r + 2⁶¹) / 2⁶²⌋` (the projection's rounded `a·h/d` through `r = ⌊2⁶²/d⌋`) in
 /// five 16 × 16-bit products, or `None` when that cannot be told from them without the

@@ -49,40 +49,6 @@ fn div_floor_pair32_agrees_with_div_floor_pair() {
 }
 
 #[test]
-fn recip62_is_the_exact_quotient() {
-    let check = |d: u32| assert_eq!(recip62(d), (1u64 << 62) / u64::from(d), "{d}");
-    for d in [
-        1 << 30,
-        (1 << 30) + 1,
-        (1 << 30) + 2,
-        0x5555_5555,
-        (1 << 31) - 2,
-        (1 << 31) - 1,
-    ] {
-        check(d);
-    }
-    // Both ends of every interval of the first guess.
-    for i in 0..256u32 {
-        let d = (1 << 30) + (i << 22);
-        for d in [
-            d.wrapping_sub(1),
-            d,
-            d + 1,
-            d + (1 << 21),
-            d + (1 << 22) - 1,
-        ] {
-            if d > 0 && d < 1 << 31 {
-                check(d);
-            }
-        }
-    }
-    let mut rnd = crate::testing::xorshift32(0x2545_f491);
-    for _ in 0..100_000 {
-        check((1 << 30) | (rnd() >> 2));
-    }
-}
-
-#[test]
 fn wide_products_are_exact() {
     let edges = [
         0u32,
