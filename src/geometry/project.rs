@@ -7,8 +7,8 @@ use super::transform::Clip4;
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::num::{
-    bits_beyond_31, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32, scaled_ratio_parts, shr64,
-    ARMV6M, INTEGER_PROJECTION,
+    bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
+    scaled_ratio_parts, shr64, ARMV6M, INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
 
@@ -382,19 +382,19 @@ impl ScreenMap {
         let sx = if wn >= 1 << 30 {
             self.ox_i + ratio(mul_i64_i32(xn, self.half_w as i32))
         } else {
-            self.ox_i + (2 * xn * self.half_w + wn).div_euclid(2 * wn)
+            self.ox_i + div_floor(2 * xn * self.half_w + wn, 2 * wn)
         };
         let sy = if wn >= 1 << 30 {
             self.oy_i - ratio(mul_i64_i32(yn, self.half_h as i32))
         } else {
-            self.oy_i - (2 * yn * self.half_h + wn).div_euclid(2 * wn)
+            self.oy_i - div_floor(2 * yn * self.half_h + wn, 2 * wn)
         };
         // Depth: (z/w + 1)/2 · 65535 · 2¹⁶ = (un/wn) · 65535 · 2¹⁵, through the ratio in
         // Q30 (≤ 2³¹; times 65535 < 2⁴⁷).
         let q30 = if wn >= 1 << 30 {
             ((times_r(un as u64) >> 1) + 1) as i64 >> 1 // un/wn · 2³⁰, rounded (un ≥ 0)
         } else {
-            (2 * (un << 30) + wn).div_euclid(2 * wn)
+            div_floor(2 * (un << 30) + wn, 2 * wn)
         };
         let sz = ((mul_i64_i32(q30, 65535) + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH));
         Some((0, ScreenVertex::from_raw(sx as i32, sy as i32, sz as u32)))
