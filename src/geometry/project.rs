@@ -164,16 +164,6 @@ fn recip62_low(d: u32) -> u32 {
     x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
-/// ⌊2⁶²/d⌋ for 2³⁰ ≤ d < 2³¹: 2³² at 2³⁰, else [`recip62_low`].
-#[inline(always)]
-fn recip62(d: u32) -> u64 {
-    if d == 1 << 30 {
-        1 << 32
-    } else {
-        u64::from(recip62_low(d))
-    }
-}
-
 /// Screen mapping of a viewport, precomputed.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ScreenMap {
@@ -353,21 +343,21 @@ impl ScreenMap {
         // divisions further down run instead). Each quotient n/wn is then n·r/2⁶²,
         // formed from 32-bit halves of n (no 128-bit arithmetic), exact to within one
         // unit of the result's last place.
-        let r = if wn >= 1 << 30 { recip62(wn as u32) } else { 0 };
+        let r = if wn > 1 << 30 {
+            recip62_low(wn as u32)
+        } else {
+            0
+        };
         let times_r = |n: u64| -> u64 {
-            // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴; with 32×32-bit products
-            // unless r = 2³² (wn = 2³⁰ exactly).
-            let (hi, lo) = (n >> 32, n & 0xffff_ffff);
-            if r >> 32 == 0 {
-                let (hi, lo, r) = (hi as u32, lo as u32, r as u32);
-                mul_wide_narrow(hi, r)
-                    .wrapping_shl(2)
-                    .wrapping_add(mul_wide(lo, r) >> 30)
-            } else {
-                hi.wrapping_mul(r)
-                    .wrapping_shl(2)
-                    .wrapping_add(lo.wrapping_mul(r) >> 30)
+            // (n · r) >> 30, for n < 2⁶⁴ and n·r/2³⁰ < 2⁶⁴, from 32×32-bit products;
+            // a shift when r = 2³² (wn = 2³⁰ exactly).
+            if wn == 1 << 30 {
+                return n.wrapping_shl(2);
             }
+            let (hi, lo) = ((n >> 32) as u32, n as u32);
+            mul_wide_narrow(hi, r)
+                .wrapping_shl(2)
+                .wrapping_add(mul_wide(lo, r) >> 30)
         };
         // A quotient rounded to nearest: (n/wn) in units of 2⁻³², then halved.
         let ratio = |n: i64| -> i64 {
@@ -780,11 +770,36 @@ mod tests {
         }
     }
 
+    /// At w = 2³¹ (normalised to exactly 2³⁰, where the reciprocal 2³² is a shift) the
+    /// integer projection gives the exactly rounded quotients.
     #[test]
-    fn recip62_is_the_exact_quotient() {
-        let check = |d: u32| assert_eq!(recip62(d), (1u64 << 62) / u64::from(d), "{d}");
-        for d in [1 << 30, (1 << 30) + 1, 0x5555_5555, (1 << 31) - 1] {
-            check(d);
+    fn integer_projection_at_a_power_of_two_w() {
+        let map = ScreenMap::new(&Viewport::new(320, 240).unwrap());
+        let w = 1i64 << 31;
+        let round = |n: i64| n.signum() * ((n.abs() + (1 << 29)) >> 30);
+        for (x, y, z) in [
+            (0, 0, 0i64),
+            (12345, -9876, 1 << 30),
+            (-(1 << 30) + 3, (1 << 30) - 5, -(1 << 31) + 7),
+            (i32::MAX, i32::MIN, (1 << 31) - 1),
+        ] {
+            let c = Clip4::from_parts(
+                [x, y],
+                [(z >> 14) as i32, (w >> 14) as i32],
+                [(z & 0x3fff) as i32, 0],
+                1.0,
+            );
+            let (xn, yn, un) = (i64::from(x) >> 1, i64::from(y) >> 1, (z + w) >> 1);
+            let want = ScreenVertex::from_raw(
+                (map.ox_i + round(xn * map.half_w)) as i32,
+                (map.oy_i - round(yn * map.half_h)) as i32,
+                ((un * 65535 + (1 << 14)) >> 15).clamp(0, i64::from(MAX_DEPTH)) as u32,
+            );
+            assert_eq!(
+                map.project_integer(&c, z, w, 0),
+                Some((0, want)),
+                "{x} {y} {z}"
+            );
         }
     }
 
