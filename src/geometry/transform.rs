@@ -116,9 +116,8 @@ struct Row {
 impl Row {
     /// The row of coefficients `c` (each within ±16383) and translation `t`.
     fn new([c0, c1, c2]: [i32; 3], t: i32) -> Row {
-        let half = |v: i32| v.clamp(-16383, 16383) as i16;
         Row {
-            c01: pack_i16(half(c0), half(c1)),
+            c01: pack_i16(c0 as i16, c1 as i16),
             c2,
             t,
         }
