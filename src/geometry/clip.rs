@@ -22,8 +22,10 @@ pub(crate) const MAX_CLIPPED: usize = 10;
 /// A clipped polygon.
 pub(crate) type ClipPolygon = Vec<ClipVertex, MAX_CLIPPED>;
 
-/// Signed distance to a plane (inside ≥ 0).
-#[inline]
+/// Signed distance to a plane (inside ≥ 0). Out of line without an FPU, where each of
+/// its seven cases is a call or two: one copy of them (only clipped triangles come here).
+#[cfg_attr(zraster_soft_float, inline(never))]
+#[cfg_attr(not(zraster_soft_float), inline)]
 fn distance(plane: u8, c: &[f32; 4]) -> f32 {
     let [x, y, z, w] = *c;
     match plane {
