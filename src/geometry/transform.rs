@@ -139,7 +139,9 @@ impl Row {
 impl FixedTransform {
     #[inline(never)] // once a frame: its locals stay off the drawing code's stack
     pub(crate) fn new(mvp: &Mat4, scale: f32) -> Result<FixedTransform, Error> {
-        if !mvp.is_finite() || !scale.is_finite() {
+        // An exponent field of all ones: infinite or NaN.
+        let finite = |v: f32| v.to_bits() & 0x7f80_0000 != 0x7f80_0000;
+        if !finite(scale) {
             return Err(Error::NotFinite);
         }
         // Every value below is exact: a coefficient times the scale is a product of
@@ -156,6 +158,9 @@ impl FixedTransform {
         // within their limits: the least of each value's own.
         let mut k = [1000; 2];
         for i in 0..16 {
+            if !finite(m[i]) {
+                return Err(Error::NotFinite);
+            }
             k[i / 8] = k[i / 8].min(value(i).largest_fit(limit(i, FIT_LIMITS)));
         }
         // Only zero values leave k at 1000 (any other fits below 2^400).
@@ -360,7 +365,9 @@ mod tests {
             }
             k
         }
-        if !mvp.is_finite() || !scale.is_finite() {
+        // An exponent field of all ones: infinite or NaN.
+        let finite = |v: f32| v.to_bits() & 0x7f80_0000 != 0x7f80_0000;
+        if !finite(scale) {
             return Err(Error::NotFinite);
         }
         let scale = f64::from(scale);
