@@ -154,7 +154,9 @@ impl<'a, M: Copy> Mesh<'a, M> {
         }
     }
 
-    /// The model-space position of vertex `i`.
+    /// The model-space position of vertex `i`. Out of line without an FPU, where it is
+    /// six float calls.
+    #[cfg_attr(zraster_soft_float, inline(never))]
     pub fn position(&self, i: usize) -> Option<Vec3> {
         let p = self.positions.get(i)?;
         Some(Vec3::new(f32::from(p[0]), f32::from(p[1]), f32::from(p[2])) * self.scale)
