@@ -250,6 +250,12 @@ pub(crate) fn div_floor_wide_soft(n: i128, d: i128) -> i128 {
     }
 }
 
+/// [`udivrem`] out of line (for [`div_floor`]'s two digits: one copy of the loop).
+#[inline(never)]
+pub(crate) fn udivrem_call(n: u32, d: u32) -> (u32, u32) {
+    udivrem(n, d)
+}
+
 /// [`floor_div32`] through [`udivrem`]. For `n = i32::MIN` the quotient 2³¹ wraps to
 /// `i32::MIN`, which negated is itself: still exact.
 #[inline]

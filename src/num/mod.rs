@@ -16,7 +16,7 @@ pub(crate) mod kernel;
 pub(crate) use armv6m::{
     bits_beyond_31_parts, div_floor_pair_recip, div_floor_wide_soft, floor_div32_soft,
     mul_narrow_parts, mul_small_parts, mul_wide_parts, scaled_ratio_parts, shl64_parts,
-    shr64_parts, udivrem,
+    shr64_parts, udivrem_call,
 };
 use armv7m::floor_div32_flip;
 
@@ -36,10 +36,11 @@ pub(crate) fn div_floor(n: i64, d: i64) -> i64 {
     let m = n.unsigned_abs();
     if d < 1 << 16 && m < 1 << 48 {
         let d32 = d as u32;
-        // On ARMv6-M by shift and subtract (the digits are usually a few bits).
+        // On ARMv6-M by shift and subtract (the digits are usually a few bits), out of
+        // line: one copy for both digits.
         let (q, r0) = by_digits(m, |x| {
             if ARMV6M {
-                udivrem(x, d32)
+                udivrem_call(x, d32)
             } else {
                 (x / d32, x % d32)
             }
@@ -143,7 +144,7 @@ pub(crate) fn by_digits(m: u64, divrem: impl Fn(u32) -> (u32, u32)) -> (u64, u32
 
 /// ARMv6-M (Cortex-M0/M0+): no divide instruction and no 32×32→64-bit multiply. A
 /// division is a library call costing about 130 instructions whatever the operands
-/// ([`udivrem`] costs about 7 per quotient bit, and the rasterizer's quotients are
+/// ([`udivrem`](armv6m::udivrem) costs about 7 per quotient bit, and the rasterizer's quotients are
 /// mostly a few bits), and a 64-bit product a call costing about 45 ([`mul_wide`] is
 /// four multiplies inline).
 pub(crate) const ARMV6M: bool = cfg!(zraster_armv6m);

@@ -1,6 +1,6 @@
 //! Each backend form against the plain operation it replaces, on the host.
 
-use super::armv6m::recip32_small;
+use super::armv6m::{recip32_small, udivrem};
 use super::*;
 
 #[test]
