@@ -403,7 +403,8 @@ pub use num::kernel::check_cull_kernel;
 /// `src/num/kernel/`).
 #[doc(hidden)]
 pub use num::kernel::{
-    check_fill_kernel, check_rows_kernel, check_span_kernel, check_texel_kernel,
+    check_fill_kernel, check_rows_kernel, check_rows_walk_kernel, check_span_kernel,
+    check_texel_kernel,
 };
 
 /// The largest width or height of a Z-buffer or colour buffer, in pixels (8192).

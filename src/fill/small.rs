@@ -10,6 +10,7 @@
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::{rows_less_as_u16, two_bytes, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
+use crate::num::kernel::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
 use crate::num::{floor_div32, DIVIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
@@ -55,15 +56,17 @@ pub(crate) fn fill_small<C: Copy>(
     pass: impl Fn(u16, u16) -> bool + Copy,
 ) -> Option<(u32, u32)> {
     if crate::num::DIVIDE {
-        fill_small_with::<EdgeDivide, C>(b, tri, color, write, pass, ROWS_KERNEL)
+        fill_small_with::<EdgeDivide, C>(b, tri, color, write, pass, ROWS_KERNEL, false)
     } else {
-        fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false)
+        fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, WALK_KERNEL)
     }
 }
 
 /// [`fill_small`] with edges of kind `E`; with `kernel`, the depth test `Less` with
-/// depth writes in a two-byte colour goes to [`rows_less_as_u16`] (which may refuse:
-/// then `None`, and the general path draws the triangle).
+/// depth writes in a two-byte colour goes to [`rows_less_as_u16`], with `walk` to
+/// [`rows_walk_less_as_u16`] (either may refuse: then `None`, and the general path
+/// draws the triangle).
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn fill_small_with<E: SmallEdge, C: Copy>(
     b: &mut Buffers<'_, '_, C>,
@@ -72,6 +75,7 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     write: bool,
     pass: impl Fn(u16, u16) -> bool + Copy,
     kernel: bool,
+    walk: bool,
 ) -> Option<(u32, u32)> {
     let [p0, p1, p2] = tri;
     let top = by_rows(tri);
@@ -122,6 +126,19 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         tested: 0,
         failed: 0,
     };
+    if walk && write && is_less(&pass) && two_bytes::<C>() {
+        let (rows, at) = ((start, mid, end, py0), (start - b.first_row, px0, row.z));
+        return small_walk(
+            b,
+            [v0, v1, v2],
+            mid_right,
+            rows,
+            at,
+            depth,
+            (cx0, cx1),
+            color,
+        );
+    }
     let edge = |a: (i32, i32), c: (i32, i32), py: i32| E::new(a, c, py - py0);
     let mut long = edge(v0, v2, start);
     // Two calls in each half rather than a choice of references: the loop then keeps
@@ -274,6 +291,50 @@ fn kernel_edges(
     let short = [edge(v0, v1, start), edge(v1, v2, lower_start)];
     rows.edges(edge(v0, v2, start), short, n1 as u32, mid_right);
     n0 as u32
+}
+
+/// [`fill_small_with`]'s rows through ARMv6-M's loop [`rows_walk_less_as_u16`], edges
+/// in the [`EdgeWalk`] form: vertices `v` sorted top to bottom (local coordinates),
+/// rows `start..end` split at `mid`, the first at buffer row `row0`, local column 0 at
+/// `px0` with depth `z`. `None` when it refuses (nothing drawn).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn small_walk<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    [v0, v1, v2]: [(i32, i32); 3],
+    mid_right: bool,
+    (start, mid, end, py0): (i32, i32, i32, i32),
+    (row0, px0, z): (i32, i32, u32),
+    d: Depth,
+    cx: (i32, i32),
+    color: C,
+) -> Option<(u32, u32)> {
+    let edge = |a: (i32, i32), c: (i32, i32), py: i32| {
+        WalkEdge::from_parts(EdgeWalk::new_small(a, c, py - py0).parts())
+    };
+    let lower_start = mid.max(start);
+    let (n0, n1) = ((mid.min(end) - start).max(0), (end - lower_start).max(0));
+    // A half with no rows has no short edge to walk (it may be flat).
+    let short = |n: i32, a, c, py| {
+        if n > 0 {
+            edge(a, c, py)
+        } else {
+            WalkEdge::default()
+        }
+    };
+    let short = [short(n0, v0, v1, start), short(n1, v1, v2, lower_start)];
+    let depth = [d.sx, d.sy, d.lo, d.hi];
+    let long = edge(v0, v2, start);
+    let mut r = RowsWalk::new(depth, [cx.0, cx.1], long, short, n1 as u32, mid_right);
+    let at = RowsAt {
+        row0: row0 as usize,
+        width: b.width,
+        px0,
+        n0: n0 as u32,
+        z,
+    };
+    let (tested, failed) = rows_walk_less_as_u16(&mut r, at, b.zdata, b.cdata, color)?;
+    Some((tested, tested.wrapping_sub(failed)))
 }
 
 /// [`small_steps`] over 16 (the steps a pixel in 20.12, `⌊16a/area⌋` and
@@ -471,7 +532,8 @@ mod tests {
     }
 
     /// The rows through `rows_less_as_u16` (on the host its portable twin, on ARMv7E-M
-    /// the assembly) give the pixels, depths and counts of the row loop, for random
+    /// the assembly) and through `rows_walk_less_as_u16` (its twin; on ARMv6-M the
+    /// assembly) give the pixels, depths and counts of the row loop, for random
     /// triangles from 3 to 700 pixels across (from 512 on, neither takes the small
     /// path), clipped by every side, in buffers that start on row 3 (a band).
     #[test]
@@ -504,7 +566,8 @@ mod tests {
                 }
             };
             let depth: vec::Vec<u16> = (0..W * H).map(|_| (r(65536) | 0x4000) as u16).collect();
-            let run = |kernel: bool| {
+            // The row loop, `rows_less_as_u16` (`Some(false)`), `rows_walk_less_as_u16`.
+            let run = |kernel: Option<bool>| {
                 let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
                 let mut b = Buffers {
                     zdata: &mut zdata,
@@ -513,18 +576,27 @@ mod tests {
                     first_row: 3,
                     clip,
                 };
-                let done = fill_small_with::<EdgeDivide, u16>(
-                    &mut b,
-                    tri.each_ref(),
-                    7,
-                    true,
-                    less,
-                    kernel,
-                );
+                let (t, write) = (tri.each_ref(), true);
+                let done = match kernel {
+                    None => {
+                        fill_small_with::<EdgeDivide, u16>(&mut b, t, 7, write, less, false, false)
+                    }
+                    Some(false) => {
+                        fill_small_with::<EdgeDivide, u16>(&mut b, t, 7, write, less, true, false)
+                    }
+                    Some(true) => {
+                        fill_small_with::<EdgeWalk, u16>(&mut b, t, 7, write, less, false, true)
+                    }
+                };
                 (done, zdata, cdata)
             };
-            let (want, got) = (run(false), run(true));
-            assert!(want == got, "triangle {i}: {tri:?} in {clip:?}");
+            let want = run(None);
+            for kernel in [false, true] {
+                assert!(
+                    want == run(Some(kernel)),
+                    "triangle {i}: {tri:?} in {clip:?}"
+                );
+            }
         }
     }
 }

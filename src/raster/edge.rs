@@ -69,6 +69,12 @@ impl EdgeWalk {
         }
     }
 
+    /// The walk's state for an assembly loop: `[x, err, rem, denom, step]`.
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> [i32; 5] {
+        [self.x, self.err, self.rem, self.denom, self.step]
+    }
+
     #[inline(always)]
     pub(crate) fn advance(&mut self) {
         self.x += self.step;

@@ -152,6 +152,8 @@ fn main() -> ! {
     // The rows of small triangles likewise (random rows of every length, both halves).
     let bad = zraster::check_rows_kernel(&mut depth[..4096]);
     hprintln!("rows kernel cases differing from the portable twin: {}", bad);
+    let bad = zraster::check_rows_walk_kernel(&mut depth[..4096]);
+    hprintln!("rows walk kernel cases differing from the portable twin: {}", bad);
     // The assembly cull scan likewise: random runs of faces over random caches.
     let bad = zraster::check_cull_kernel(20_000);
     hprintln!("cull kernel cases differing from the portable twin: {}", bad);

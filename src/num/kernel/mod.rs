@@ -4,14 +4,16 @@
 //! alignment it tries, and fails otherwise). The loops: the frame clear
 //! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16));
 //! the rows of a small flat-coloured triangle ([`rows_less_as_u16`](rows::rows_less_as_u16),
-//! on ARMv7E-M, which runs the span loop's SIMD steps for rows of three pixels or more);
+//! on ARMv7E-M, which runs the span loop's SIMD steps for rows of three pixels or more;
+//! on ARMv6-M [`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16), edges by DDA);
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
 //! by `check_cull_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `cull`, `mac` and `texel`, each with `#![allow(unsafe_code)]`).
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `mac` and `texel`, each with
+//! `#![allow(unsafe_code)]`).
 
 mod cull;
 mod fill;
@@ -20,6 +22,7 @@ mod mac;
 #[macro_use]
 mod span;
 mod rows;
+mod rows_v6m;
 mod texel;
 
 pub use cull::check_cull_kernel;
@@ -30,6 +33,8 @@ pub(crate) use mac::smlad;
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{rows_less_as_u16, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
+pub use rows_v6m::check_rows_walk_kernel;
+pub(crate) use rows_v6m::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;

@@ -122,17 +122,25 @@ pub(crate) struct RowsAt {
 }
 
 impl RowsAt {
-    /// Whether every pixel [`RowsLess`] may touch lies inside buffers of `len`
-    /// elements: columns `px0 + cx0 .. px0 + cx1` inside `0..width`, rows
-    /// `row0 .. row0 + n0 + n1` inside the length. `None` when they do not.
+    /// Whether every pixel rows clipped to the local columns `cx0..cx1` may touch lies
+    /// inside buffers of `len` elements ([`RowsLess`]'s, or the ARMv6-M loop's, with
+    /// `n1` rows in the second half): columns `px0 + cx0 .. px0 + cx1` inside
+    /// `0..width`, rows `row0 .. row0 + n0 + n1` inside the length. `None` when they do
+    /// not.
     #[inline(always)]
-    fn check(&self, r: &RowsLess, len: usize) -> Option<()> {
-        let rows = (self.n0 as usize).checked_add(r.n1 as usize)?;
-        let end = self.row0.checked_add(rows)?.checked_mul(self.width)?;
-        let (x0, x1) = (
-            self.px0.checked_add(r.cx[0])?,
-            self.px0.checked_add(r.cx[1])?,
-        );
+    pub(super) fn check(&self, n1: u32, [cx0, cx1]: [i32; 2], len: usize) -> Option<()> {
+        let rows = (self.n0 as usize).checked_add(n1 as usize)?;
+        let end_row = self.row0.checked_add(rows)?;
+        let end = if crate::num::ARMV6M {
+            // No 32 × 32 → 64-bit multiply: rows and width below 2¹⁶ multiply in 32 bits.
+            if (end_row | self.width) > 0xffff {
+                return None;
+            }
+            end_row * self.width
+        } else {
+            end_row.checked_mul(self.width)?
+        };
+        let (x0, x1) = (self.px0.checked_add(cx0)?, self.px0.checked_add(cx1)?);
         (end <= len && x0 >= 0 && x1 <= i32::try_from(self.width).ok()?).then_some(())
     }
 }
@@ -155,20 +163,28 @@ pub(crate) fn rows_less_as_u16<C: Copy>(
     c: &mut [C],
     color: C,
 ) -> Option<(u32, u32)> {
+    let (words, bits) = as_u16(c, color)?;
+    at.check(r.n1, r.cx, z.len().min(words.len()))?;
+    rows_less_u16(r, at, z, words, bits)
+}
+
+/// The colour rows `c` and `color` as `u16`s when `C` is two bytes aligned to two
+/// ([`two_bytes`]): the same memory, each element then keeping its bytes or taking
+/// `color`'s. `None` for any other `C`.
+#[inline(always)]
+pub(super) fn as_u16<C: Copy>(c: &mut [C], color: C) -> Option<(&mut [u16], u16)> {
     if !two_bytes::<C>() {
         return None;
     }
-    at.check(r, z.len().min(c.len()))?;
     // SAFETY: C is two bytes with alignment two (checked above), so `color`'s bytes
     // read as a u16 and `c` viewed as `c.len()` u16s covers exactly the same memory; each
     // element then keeps its bytes or takes `color`'s: a valid C.
-    let (bits, words) = unsafe {
-        (
-            core::mem::transmute_copy::<C, u16>(&color),
+    unsafe {
+        Some((
             core::slice::from_raw_parts_mut(c.as_mut_ptr().cast::<u16>(), c.len()),
-        )
-    };
-    rows_less_u16(r, at, z, words, bits)
+            core::mem::transmute_copy::<C, u16>(&color),
+        ))
+    }
 }
 
 /// [`rows_less_as_u16`] for `u16` colours, the rows already checked to lie inside
@@ -225,30 +241,50 @@ pub(crate) fn rows_less_portable(
             let xr = t[1].checked_div(d[1]).unwrap_or(0) as i32;
             t = [t[0].wrapping_add(dt[0]), t[1].wrapping_add(dt[1])];
             let (xa, xb) = (xl.max(r.cx[0]), xr.min(r.cx[1]));
-            if xa < xb {
-                tested = tested.wrapping_add((xb - xa) as u32);
-                let mut acc = zrow
-                    .wrapping_add((xa as u32).wrapping_mul(r.sx))
-                    .max(r.lo)
-                    .min(r.hi);
-                for x in xa..xb {
-                    let i = base.wrapping_add_signed(x as isize);
-                    if let (Some(zp), Some(cp)) = (z.get_mut(i), c.get_mut(i)) {
-                        let d = (acc >> 16) as u16;
-                        if d < *zp {
-                            (*zp, *cp) = (d, color);
-                        } else {
-                            failed = failed.wrapping_add(1);
-                        }
-                    }
-                    acc = acc.wrapping_add(r.sx);
-                }
-            }
+            let depth = [zrow, r.sx, r.lo, r.hi];
+            let (t, f) = twin_row(z, c, base, (xa, xb), depth, color);
+            (tested, failed) = (tested.wrapping_add(t), failed.wrapping_add(f));
             zrow = zrow.wrapping_add(r.sy);
             base = base.wrapping_add(at.width);
         }
     }
     (tested, failed)
+}
+
+/// One row of the portable twins: columns `xa..xb` (none when `xb ≤ xa`) from the
+/// buffers' index `base` of local column 0, the depth at local column `x`
+/// `clamp(zrow + x·sx, lo, hi)` at the first, then `+ sx` a pixel, tested `Less` and
+/// written with `color`. Returns (pixels tested, pixels failed); pixels outside the
+/// buffers are skipped.
+pub(super) fn twin_row(
+    z: &mut [u16],
+    c: &mut [u16],
+    base: usize,
+    (xa, xb): (i32, i32),
+    [zrow, sx, lo, hi]: [u32; 4],
+    color: u16,
+) -> (u32, u32) {
+    if xa >= xb {
+        return (0, 0);
+    }
+    let mut failed = 0u32;
+    let mut acc = zrow
+        .wrapping_add((xa as u32).wrapping_mul(sx))
+        .max(lo)
+        .min(hi);
+    for x in xa..xb {
+        let i = base.wrapping_add_signed(x as isize);
+        if let (Some(zp), Some(cp)) = (z.get_mut(i), c.get_mut(i)) {
+            let d = (acc >> 16) as u16;
+            if d < *zp {
+                (*zp, *cp) = (d, color);
+            } else {
+                failed = failed.wrapping_add(1);
+            }
+        }
+        acc = acc.wrapping_add(sx);
+    }
+    (xb.wrapping_sub(xa) as u32, failed)
 }
 
 /// One pixel of a short row: depth in r9, address in r10 (`$at`: `[r10]`, or
@@ -496,8 +532,8 @@ fn rows_less_dsp(
     (tested, r.failed)
 }
 
-/// The xorshift32 generator of [`check_rows_kernel`].
-fn next(seed: &mut u32) -> u32 {
+/// The xorshift32 generator of the rows kernels' checks.
+pub(super) fn next(seed: &mut u32) -> u32 {
     *seed ^= *seed << 13;
     *seed ^= *seed >> 17;
     *seed ^= *seed << 5;
@@ -532,25 +568,44 @@ fn check_case(seed: &mut u32, case: u32, w: usize) -> (RowsLess, RowsAt, u16) {
     let (long, short0) = if mid_right { (l, rt) } else { (rt, l) };
     let (l, rt) = check_pair(seed);
     let short1 = if mid_right { rt } else { l };
+    let place = check_place(seed, case, w);
+    let mut r = RowsLess::new(place.cx[0], place.cx[1]);
+    r.edges(long, [short0, short1], place.n1, mid_right);
+    let [sx, sy, lo, hi] = place.depth;
+    r.depth(sx, sy, lo, hi);
+    (r, place.at, place.color)
+}
+
+/// A case of the rows kernels' checks but for its edges: the clip columns, the depth
+/// plane `[sx, sy, lo, hi]`, where the rows lie (with the first half's `n0`), the
+/// second half's row count, the colour.
+pub(super) struct CheckPlace {
+    pub cx: [i32; 2],
+    pub depth: [u32; 4],
+    pub at: RowsAt,
+    pub n1: u32,
+    pub color: u16,
+}
+
+/// A random [`CheckPlace`] for case `case` (clipped or not, and each sign of `sx`, by
+/// `case`) in rows of width `w`.
+pub(super) fn check_place(seed: &mut u32, case: u32, w: usize) -> CheckPlace {
     let px0 = (next(seed) % 20) as i32 - 6;
-    let (cx0, cx1) = if case.is_multiple_of(2) {
-        (-px0, w as i32 - px0)
+    let cx = if case.is_multiple_of(2) {
+        [-px0, w as i32 - px0]
     } else {
         let a = next(seed) % w as u32;
         let b = a + next(seed) % (w as u32 - a + 1);
-        (a as i32 - px0, b as i32 - px0)
+        [a as i32 - px0, b as i32 - px0]
     };
     let sx = match case % 4 {
         0 => next(seed) >> 12,
         1 => (next(seed) >> 12).wrapping_neg(),
         _ => next(seed) >> (8 + next(seed) % 16),
     };
-    let mut r = RowsLess::new(cx0, cx1);
     let (n0, n1) = (next(seed) % 7, next(seed) % 7);
-    r.edges(long, [short0, short1], n1, mid_right);
     let (z, sy, lo) = (next(seed), next(seed), next(seed) >> 2);
     let hi = lo.wrapping_add(next(seed) >> 2).max(lo);
-    r.depth(sx, sy, lo, hi);
     let row0 = (next(seed) % 3) as usize;
     let at = RowsAt {
         row0,
@@ -559,28 +614,38 @@ fn check_case(seed: &mut u32, case: u32, w: usize) -> (RowsLess, RowsAt, u16) {
         n0,
         z,
     };
-    (r, at, next(seed) as u16)
+    let color = next(seed) as u16;
+    CheckPlace {
+        cx,
+        depth: [sx, sy, lo, hi],
+        at,
+        n1,
+        color,
+    }
 }
 
-/// On-target check of the rows assembly against its twin, for the bench firmware:
-/// random triangles' rows (edges, depths, clip columns, both halves, rows of every
-/// length from empty to 40 pixels, failing and passing depths) at both alignments,
-/// through `rows_less_as_u16` and `rows_less_portable` into copies of the same
-/// buffers, compared (depths, colours, counts). `buf` holds four 48 × 16 buffers
-/// (3,072 halfwords; a shorter one is a failure). Returns the number of cases that
-/// differ (where there is no assembly, the twin against itself). Out of line: its
-/// frame is not the bench's.
-#[inline(never)]
-pub fn check_rows_kernel(buf: &mut [u16]) -> usize {
-    const W: usize = 48;
-    const H: usize = 16;
-    let Some(buf) = buf.get_mut(..4 * W * H) else {
+/// The width of the rows kernels' check buffers (48 × 16 each).
+pub(super) const CHECK_W: usize = 48;
+
+/// The rows kernels' on-target checks: 600 cases, each `draw(seed, case, z, c, twin)`
+/// made from the same seed twice (a kernel writes its block) and drawn by the kernel,
+/// then (`twin`) by its portable twin (`None` where the kernel must refuse: rows
+/// outside the buffers), into copies of the same random buffers (depths failing and
+/// passing, the colour rows at both alignments to the depth rows), compared (depths,
+/// colours, counts). `buf` holds four 48 × 16 buffers (3,072 halfwords; a shorter one
+/// is a failure). Returns the number of cases that differ.
+pub(super) fn check_cases(
+    buf: &mut [u16],
+    mut seed: u32,
+    draw: impl Fn(&mut u32, u32, &mut [u16], &mut [u16], bool) -> Option<(u32, u32)>,
+) -> usize {
+    const N: usize = CHECK_W * 16;
+    let Some(buf) = buf.get_mut(..4 * N) else {
         return usize::MAX;
     };
-    let (mine, twin) = buf.split_at_mut(2 * W * H);
-    let (z1, c1) = mine.split_at_mut(W * H);
-    let (z2, c2) = twin.split_at_mut(W * H);
-    let mut seed = 0x2545_f491_u32;
+    let (mine, twin) = buf.split_at_mut(2 * N);
+    let (z1, c1) = mine.split_at_mut(N);
+    let (z2, c2) = twin.split_at_mut(N);
     let mut bad = 0;
     for case in 0..600u32 {
         for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
@@ -597,19 +662,33 @@ pub fn check_rows_kernel(buf: &mut [u16]) -> usize {
         let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
             return usize::MAX;
         };
-        // The case made twice (the assembly writes its block), one at a time.
         let first = seed;
-        let (mut r, at, color) = check_case(&mut seed, case, W);
-        let inside = at.check(&r, W * H - off).is_some();
-        let got = rows_less_as_u16(&mut r, at, &mut z1[..], ca, color);
-        let (r, _, _) = check_case(&mut first.clone(), case, W);
-        let want = inside.then(|| rows_less_portable(&r, at, &mut z2[..], cb, color));
+        let got = draw(&mut seed, case, &mut z1[..], ca, false);
+        let want = draw(&mut first.clone(), case, &mut z2[..], cb, true);
         // Refused only outside the buffers, and nothing written then.
         if got != want || z1 != z2 || c1 != c2 {
             bad += 1;
         }
     }
     bad
+}
+
+/// On-target check of the rows assembly against its twin, for the bench firmware
+/// (`check_cases`): random triangles' rows (edges, depths, clip columns, both
+/// halves, rows of every length from empty to 40 pixels) through `rows_less_as_u16`
+/// and `rows_less_portable`. Returns the number of cases that differ (where there is
+/// no assembly, the twin against itself). Out of line: its frame is not the bench's.
+#[inline(never)]
+pub fn check_rows_kernel(buf: &mut [u16]) -> usize {
+    check_cases(buf, 0x2545_f491, |seed, case, z, c, twin| {
+        let (mut r, at, color) = check_case(seed, case, CHECK_W);
+        if twin {
+            at.check(r.n1, r.cx, z.len().min(c.len()))?;
+            Some(rows_less_portable(&r, at, z, c, color))
+        } else {
+            rows_less_as_u16(&mut r, at, z, c, color)
+        }
+    })
 }
 
 #[cfg(test)]
@@ -644,10 +723,10 @@ mod tests {
             z: 0,
         };
         let len = 8 * 4;
-        assert!(at(0, 0).check(&r, len).is_some());
-        assert!(at(1, 0).check(&r, len).is_none());
-        assert!(at(0, 1).check(&r, len).is_none());
-        assert!(at(0, -1).check(&r, len).is_none());
-        assert!(at(usize::MAX, 0).check(&r, len).is_none());
+        assert!(at(0, 0).check(r.n1, r.cx, len).is_some());
+        assert!(at(1, 0).check(r.n1, r.cx, len).is_none());
+        assert!(at(0, 1).check(r.n1, r.cx, len).is_none());
+        assert!(at(0, -1).check(r.n1, r.cx, len).is_none());
+        assert!(at(usize::MAX, 0).check(r.n1, r.cx, len).is_none());
     }
 }
