@@ -65,7 +65,7 @@ pub(crate) fn fill_small<C: Copy>(
 /// [`fill_small`] with edges of kind `E`; with `kernel`, the depth test `Less` with
 /// depth writes in a two-byte colour goes to [`rows_less_as_u16`], with `walk` to
 /// [`rows_walk_less_as_u16`] (either may refuse: then `None`, and the general path
-/// draws the triangle).
+/// draws the triangle; with `walk`, `Less` without depth writes is `None` too).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn fill_small_with<E: SmallEdge, C: Copy>(
@@ -126,7 +126,12 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         tested: 0,
         failed: 0,
     };
-    if walk && write && is_less(&pass) && two_bytes::<C>() {
+    if walk && is_less(&pass) && two_bytes::<C>() {
+        // Without depth writes (rare) the general path draws it: the row loop below is
+        // then not built for `Less` at all.
+        if !write {
+            return None;
+        }
         let (rows, at) = ((start, mid, end, py0), (start - b.first_row, px0, row.z));
         return small_walk(
             b,
@@ -567,7 +572,7 @@ mod tests {
             };
             let depth: vec::Vec<u16> = (0..W * H).map(|_| (r(65536) | 0x4000) as u16).collect();
             // The row loop, `rows_less_as_u16` (`Some(false)`), `rows_walk_less_as_u16`.
-            let run = |kernel: Option<bool>| {
+            let run = |kernel: Option<bool>, write: bool| {
                 let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
                 let mut b = Buffers {
                     zdata: &mut zdata,
@@ -576,7 +581,7 @@ mod tests {
                     first_row: 3,
                     clip,
                 };
-                let (t, write) = (tri.each_ref(), true);
+                let t = tri.each_ref();
                 let done = match kernel {
                     None => {
                         fill_small_with::<EdgeDivide, u16>(&mut b, t, 7, write, less, false, false)
@@ -590,13 +595,21 @@ mod tests {
                 };
                 (done, zdata, cdata)
             };
-            let want = run(None);
+            let want = run(None, true);
             for kernel in [false, true] {
                 assert!(
-                    want == run(Some(kernel)),
+                    want == run(Some(kernel), true),
                     "triangle {i}: {tri:?} in {clip:?}"
                 );
             }
+            // With `walk`, `Less` without depth writes is left to the general path (or
+            // has no rows inside): nothing drawn.
+            let (done, zdata, cdata) = run(Some(true), false);
+            let drawn = zdata != depth || cdata.iter().any(|&c| c != 0);
+            assert!(
+                !drawn && matches!(done, None | Some((0, 0))),
+                "triangle {i}"
+            );
         }
     }
 }
