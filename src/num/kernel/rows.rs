@@ -560,20 +560,20 @@ fn check_pair(seed: &mut u32) -> (DivEdge, DivEdge) {
     (check_edge(seed, xl), check_edge(seed, xl + w))
 }
 
-/// Case `case` of [`check_rows_kernel`], in rows of width `w`: its rows, where they
-/// lie, its colour.
-fn check_case(seed: &mut u32, case: u32, w: usize) -> (RowsLess, RowsAt, u16) {
+/// Case `case` of [`check_rows_kernel`], in rows of width [`CHECK_W`]: its rows, and
+/// where they lie.
+fn check_case(seed: &mut u32, case: u32) -> (RowsLess, CheckPlace) {
     let mid_right = next(seed).is_multiple_of(2);
     let (l, rt) = check_pair(seed);
     let (long, short0) = if mid_right { (l, rt) } else { (rt, l) };
     let (l, rt) = check_pair(seed);
     let short1 = if mid_right { rt } else { l };
-    let place = check_place(seed, case, w);
+    let place = check_place(seed, case, CHECK_W);
     let mut r = RowsLess::new(place.cx[0], place.cx[1]);
     r.edges(long, [short0, short1], place.n1, mid_right);
     let [sx, sy, lo, hi] = place.depth;
     r.depth(sx, sy, lo, hi);
-    (r, place.at, place.color)
+    (r, place)
 }
 
 /// A case of the rows kernels' checks but for its edges: the clip columns, the depth
@@ -627,25 +627,27 @@ pub(super) fn check_place(seed: &mut u32, case: u32, w: usize) -> CheckPlace {
 /// The width of the rows kernels' check buffers (48 × 16 each).
 pub(super) const CHECK_W: usize = 48;
 
-/// The rows kernels' on-target checks: 600 cases, each `draw(seed, case, z, c, twin)`
-/// made from the same seed twice (a kernel writes its block) and drawn by the kernel,
-/// then (`twin`) by its portable twin (`None` where the kernel must refuse: rows
-/// outside the buffers), into copies of the same random buffers (depths failing and
-/// passing, the colour rows at both alignments to the depth rows), compared (depths,
-/// colours, counts). `buf` holds four 48 × 16 buffers (3,072 halfwords; a shorter one
-/// is a failure). Returns the number of cases that differ.
-pub(super) fn check_cases(
+/// The rows kernels' on-target checks: 600 cases, each `make` from the same seed twice
+/// (a kernel writes its block), drawn by `kernel` and by its portable `twin` (where
+/// the kernel must not refuse: rows inside the buffers, [`RowsAt::check`]) into
+/// copies of the same random buffers (depths failing and passing, the colour rows at
+/// both alignments to the depth rows), compared (depths, colours, counts). `buf` holds
+/// four 48 × 16 buffers (3,072 halfwords; a shorter one is a failure). Returns the
+/// number of cases that differ.
+pub(super) fn check_cases<R>(
     buf: &mut [u16],
     mut seed: u32,
-    draw: impl Fn(&mut u32, u32, &mut [u16], &mut [u16], bool) -> Option<(u32, u32)>,
+    make: impl Fn(&mut u32, u32) -> (R, CheckPlace),
+    kernel: impl Fn(&mut R, RowsAt, &mut [u16], &mut [u16], u16) -> Option<(u32, u32)>,
+    twin: impl Fn(&R, RowsAt, &mut [u16], &mut [u16], u16) -> (u32, u32),
 ) -> usize {
     const N: usize = CHECK_W * 16;
     let Some(buf) = buf.get_mut(..4 * N) else {
         return usize::MAX;
     };
-    let (mine, twin) = buf.split_at_mut(2 * N);
+    let (mine, theirs) = buf.split_at_mut(2 * N);
     let (z1, c1) = mine.split_at_mut(N);
-    let (z2, c2) = twin.split_at_mut(N);
+    let (z2, c2) = theirs.split_at_mut(N);
     let mut bad = 0;
     for case in 0..600u32 {
         for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
@@ -663,8 +665,11 @@ pub(super) fn check_cases(
             return usize::MAX;
         };
         let first = seed;
-        let got = draw(&mut seed, case, &mut z1[..], ca, false);
-        let want = draw(&mut first.clone(), case, &mut z2[..], cb, true);
+        let (mut r, p) = make(&mut seed, case);
+        let got = kernel(&mut r, p.at, &mut z1[..], ca, p.color);
+        let (r, p) = make(&mut first.clone(), case);
+        let inside = p.at.check(p.n1, p.cx, N - off);
+        let want = inside.map(|()| twin(&r, p.at, &mut z2[..], cb, p.color));
         // Refused only outside the buffers, and nothing written then.
         if got != want || z1 != z2 || c1 != c2 {
             bad += 1;
@@ -680,15 +685,8 @@ pub(super) fn check_cases(
 /// no assembly, the twin against itself). Out of line: its frame is not the bench's.
 #[inline(never)]
 pub fn check_rows_kernel(buf: &mut [u16]) -> usize {
-    check_cases(buf, 0x2545_f491, |seed, case, z, c, twin| {
-        let (mut r, at, color) = check_case(seed, case, CHECK_W);
-        if twin {
-            at.check(r.n1, r.cx, z.len().min(c.len()))?;
-            Some(rows_less_portable(&r, at, z, c, color))
-        } else {
-            rows_less_as_u16(&mut r, at, z, c, color)
-        }
-    })
+    let kernel = rows_less_as_u16::<u16>;
+    check_cases(buf, 0x2545_f491, check_case, kernel, rows_less_portable)
 }
 
 #[cfg(test)]

@@ -477,26 +477,16 @@ fn check_edge(seed: &mut u32) -> WalkEdge {
 /// no assembly, the twin against itself). Out of line: its frame is not the bench's.
 #[inline(never)]
 pub fn check_rows_walk_kernel(buf: &mut [u16]) -> usize {
-    check_cases(buf, 0x1357_9bdf, |seed, case, z, c, twin| {
+    let make = |seed: &mut u32, case| {
         let (left, right, short1) = (check_edge(seed), check_edge(seed), check_edge(seed));
         let place = check_place(seed, case, CHECK_W);
         let mid_right = next(seed).is_multiple_of(2);
-        let mut r = RowsWalk::new(
-            place.depth,
-            place.cx,
-            left,
-            [right, short1],
-            place.n1,
-            mid_right,
-        );
-        let (at, color) = (place.at, place.color);
-        if twin {
-            at.check(r.n1, r.cx, z.len().min(c.len()))?;
-            Some(rows_walk_less_portable(&r, at, z, c, color))
-        } else {
-            rows_walk_less_as_u16(&mut r, at, z, c, color)
-        }
-    })
+        let (depth, cx, n1) = (place.depth, place.cx, place.n1);
+        let r = RowsWalk::new(depth, cx, left, [right, short1], n1, mid_right);
+        (r, place)
+    };
+    let kernel = rows_walk_less_as_u16::<u16>;
+    check_cases(buf, 0x1357_9bdf, make, kernel, rows_walk_less_portable)
 }
 
 #[cfg(test)]
