@@ -67,7 +67,7 @@ impl WalkEdge {
 pub(crate) struct RowsWalk {
     sx: u32,              // 0
     lo: u32,              // 4
-    hi: u32,              // 8
+    span: u32,            // 8: hi − lo
     color: u32,           // 12
     delta: u32,           // 16: colour address − depth address
     cx: [i32; 2],         // 20
@@ -85,7 +85,7 @@ pub(crate) struct RowsWalk {
 const _: () = {
     use core::mem::{align_of, offset_of, size_of};
     assert!(offset_of!(RowsWalk, sx) == 0 && offset_of!(RowsWalk, lo) == 4);
-    assert!(offset_of!(RowsWalk, hi) == 8 && offset_of!(RowsWalk, color) == 12);
+    assert!(offset_of!(RowsWalk, span) == 8 && offset_of!(RowsWalk, color) == 12);
     assert!(offset_of!(RowsWalk, delta) == 16 && offset_of!(RowsWalk, cx) == 20);
     assert!(offset_of!(RowsWalk, failed) == 28 && offset_of!(RowsWalk, sy) == 32);
     assert!(offset_of!(RowsWalk, pitch) == 36 && offset_of!(RowsWalk, n1) == 40);
@@ -113,7 +113,7 @@ impl RowsWalk {
         RowsWalk {
             sx,
             lo,
-            hi,
+            span: hi.wrapping_sub(lo),
             color: 0,
             delta: 0,
             cx,
@@ -199,7 +199,7 @@ pub(crate) fn rows_walk_less_portable(
             let (xa, xb) = (e[0].x().max(r.cx[0]), e[1].x().min(r.cx[1]));
             e[0].advance();
             e[1].advance();
-            let depth = [zrow, r.sx, r.lo, r.hi];
+            let depth = [zrow, r.sx, r.lo, r.lo.wrapping_add(r.span)];
             let (t, f) = twin_row(z, c, base, (xa, xb), depth, color);
             (tested, failed) = (tested.wrapping_add(t), failed.wrapping_add(f));
             zrow = zrow.wrapping_add(r.sy);
@@ -311,24 +311,22 @@ core::arch::global_asm!(
     "bgt 14f",
     "subs r5, r7, r6",
     "ble 5f",
-    "mov r3, r6",
+    // r6 its first column, r5 its length.
     "15:",
     "add r10, r5",
-    // Its depth at the first column, clamped to lo..=hi (out of line).
+    // Its depth at the first column and that column's depth address; the depth
+    // clamped to lo..=hi out of line (when depth − lo > hi − lo, unsigned).
     "ldr r4, [r0]",
-    "muls r4, r3",
+    "muls r4, r6",
     "add r4, r8",
-    "ldr r6, [r0, #4]",
-    "cmp r4, r6",
-    "blo 16f",
-    "17:",
-    "ldr r6, [r0, #8]",
-    "cmp r4, r6",
-    "bhi 18f",
-    "19:",
-    // That column's depth address.
-    "lsls r3, r3, #1",
+    "lsls r3, r6, #1",
     "add r3, r9",
+    "ldr r6, [r0, #4]",
+    "subs r7, r4, r6",
+    "ldr r6, [r0, #8]",
+    "cmp r7, r6",
+    "bhi 16f",
+    "17:",
     "cmp r5, #1",
     "bne 3f",
     "lsrs r6, r4, #16",
@@ -390,24 +388,26 @@ core::arch::global_asm!(
     "14:",
     "ldr r3, [r0, #20]",
     "cmp r6, r3",
-    "blt 23f",
-    "mov r3, r6",
+    "bge 23f",
+    "mov r6, r3",
     "23:",
     "ldr r4, [r0, #24]",
     "cmp r7, r4",
     "bgt 24f",
     "mov r4, r7",
     "24:",
-    "subs r5, r4, r3",
+    "subs r5, r4, r6",
     "ble 5b",
     "b 15b",
-    // The first depth clamped.
+    // The first depth clamped: below lo to lo, else to lo + (hi − lo).
     "16:",
-    "mov r4, r6",
-    "b 17b",
+    "ldr r7, [r0, #4]",
+    "cmp r4, r7",
+    "blo 18f",
+    "adds r7, r7, r6",
     "18:",
-    "mov r4, r6",
-    "b 19b",
+    "mov r4, r7",
+    "b 17b",
     // A failed pixel of a one-pixel row.
     "6:",
     "ldr r6, [r0, #28]",
