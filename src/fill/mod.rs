@@ -241,8 +241,20 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
     }
 
     /// Fill one triangle in `color`.
+    #[inline(always)]
     pub(crate) fn fill(&mut self, tri: [&ScreenVertex; 3], color: C) -> SpanStats {
-        match self {
+        let Filled { tested, written } = self.fill_counted(tri, color);
+        SpanStats {
+            pixels_tested: tested,
+            pixels_written: written,
+            runs: 0,
+        }
+    }
+
+    /// [`fill`](FlatTarget::fill) returning the two counts it has (a fill into buffers
+    /// emits no runs), in registers rather than through memory.
+    fn fill_counted(&mut self, tri: [&ScreenVertex; 3], color: C) -> Filled {
+        let s = match self {
             // The corners stay where they are: no copy of the triangle a call.
             FlatTarget::Fused { b, test, write, .. } => {
                 fill_fused::<S, C>(b, *test, *write, tri, color)
@@ -254,8 +266,21 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
                 fill_split::<S, C>(frame, zbuf, clip, &[*p, *q, *r], color)
             }
             FlatTarget::Split { .. } => SpanStats::default(),
+        };
+        Filled {
+            tested: s.pixels_tested,
+            written: s.pixels_written,
         }
     }
+}
+
+/// The pixel counts of one [`FlatTarget`] fill: eight bytes, returned in two registers.
+#[derive(Clone, Copy)]
+pub(crate) struct Filled {
+    /// Pixels depth-tested.
+    pub(crate) tested: u32,
+    /// Pixels written.
+    pub(crate) written: u32,
 }
 
 /// [`FlatTarget::fill`] into buffers of the same geometry; inlined into it (one call a
