@@ -105,7 +105,11 @@ pub(crate) fn decide<V: Corner>([a, b, c]: [&V; 3], rows: Option<(i32, i32)>, cu
 /// the cull mode's range of dropped areas ([`DropRange`]). It counts only the rare
 /// outcomes and the drawn faces (the culled ones, most of them, are what is left over),
 /// so the compiler keeps its few values in registers.
-pub(crate) struct CachedWalk<'a> {
+///
+/// `V6M`: whether on ARMv6-M it goes by the assembly scan too, which pays in the draw
+/// loop, whose Rust scan spills, but not in band binning's loop ([`CachedWalk::new`]),
+/// whose does not. Elsewhere it is without effect.
+pub(crate) struct CachedWalk<'a, const V6M: bool = false> {
     faces: core::slice::Iter<'a, [u16; 3]>,
     /// The number of the first face.
     first: usize,
@@ -191,6 +195,34 @@ impl<'a> CachedWalk<'a> {
         cache: &'a [CachedVertex],
         cull: Cull,
     ) -> Self {
+        Self::with(indices, faces, cache, cull)
+    }
+}
+
+impl<'a> CachedWalk<'a, true> {
+    /// [`CachedWalk::new`] by the assembly scan on ARMv6-M too (for the draw loop).
+    #[inline(always)]
+    pub(crate) fn drawing(
+        indices: &'a [[u16; 3]],
+        faces: core::ops::Range<usize>,
+        cache: &'a [CachedVertex],
+        cull: Cull,
+    ) -> Self {
+        Self::with(indices, faces, cache, cull)
+    }
+}
+
+impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
+    /// Whether the walk goes by [`skip_culled`].
+    const SCANNED: bool = CULL_KERNEL && (V6M || !crate::num::ARMV6M);
+
+    #[inline(always)]
+    fn with(
+        indices: &'a [[u16; 3]],
+        faces: core::ops::Range<usize>,
+        cache: &'a [CachedVertex],
+        cull: Cull,
+    ) -> Self {
         let first = faces.start;
         let faces = indices.get(faces).unwrap_or(&[]);
         let drop = DropRange::of(cull);
@@ -221,12 +253,12 @@ impl<'a> CachedWalk<'a> {
     }
 }
 
-impl<'a> Iterator for CachedWalk<'a> {
+impl<'a, const V6M: bool> Iterator for CachedWalk<'a, V6M> {
     type Item = Result<(usize, Option<[&'a CachedVertex; 3]>), Error>;
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
-        if CULL_KERNEL {
+        if Self::SCANNED {
             return self.next_scanned();
         }
         let (cache, drop) = (self.cache, self.drop);
@@ -257,7 +289,7 @@ impl<'a> Iterator for CachedWalk<'a> {
     }
 }
 
-impl<'a> CachedWalk<'a> {
+impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
     /// [`Iterator::next`] past the dropped faces in assembly ([`skip_culled`]), to the
     /// next face to look at: a face it finds drawn comes with its corners, any other
     /// takes the decisions of the Rust scan.

@@ -1,12 +1,12 @@
-//! The cull scan of a cached triangle mesh: an assembly loop on ARMv7E-M over the
-//! faces the cull mode drops, beside its portable twin.
+//! The cull scan of a cached triangle mesh: an assembly loop on ARMv7E-M and on
+//! ARMv6-M over the faces the cull mode drops, beside its portable twin.
 #![allow(unsafe_code)]
 
 use core::marker::PhantomData;
 
-/// Whether [`skip_culled`] is the assembly loop (ARMv7E-M); elsewhere the cull pass
-/// keeps its own Rust scan and does not call it.
-pub(crate) const CULL_KERNEL: bool = cfg!(all(zraster_thumb, zraster_dsp));
+/// Whether [`skip_culled`] is an assembly loop (ARMv7E-M, ARMv6-M); elsewhere the cull
+/// pass keeps its own Rust scan and does not call it.
+pub(crate) const CULL_KERNEL: bool = cfg!(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)));
 
 /// The faces of a cached mesh, its cache of 8-byte entries holding x and y (`i16`, y
 /// after x) in one word, and a cull mode's range of dropped areas, as [`skip_culled`]
@@ -29,10 +29,12 @@ impl<'a, T> CullScan<'a, T> {
     }
 }
 
-/// The assembly loop's operands (r0, r2–r5, r12, lr), handed over in registers: an
-/// address of them taken in the walk would keep the walk's fields in memory. Read by
-/// the ARMv7E-M loop only (the twin reads `span`).
-#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+/// The assembly loops' operands. The ARMv7E-M loop takes them in registers (r0,
+/// r2–r5, r12, lr): an address of them taken in the walk would keep the walk's fields
+/// in memory. The ARMv6-M loop, whose operands can only be r0–r5, loads the first six
+/// words by one LDM and `end` (hence `repr(C)` and the order). The twin reads `span`.
+#[repr(C)]
+#[cfg_attr(not(zraster_thumb), allow(dead_code))]
 struct ScanRegs<'a> {
     faces: *const [u16; 3],
     /// The address of the first entry's x.
@@ -42,9 +44,11 @@ struct ScanRegs<'a> {
     len: usize,
     neg_lo: i32,
     span: u32,
-    /// −2¹⁴ · 2¹⁶: the marks' bound for x in a word's high half.
+    /// −2¹⁴ · 2¹⁶: the marks' bound for x in a word's high half (ARMv7E-M).
     mark: i32,
     faces_len: usize,
+    /// One past the last face (ARMv6-M).
+    end: *const [u16; 3],
     cache: PhantomData<&'a [u8]>,
 }
 
@@ -78,6 +82,7 @@ impl<'a, T> CullScan<'a, T> {
                 span,
                 mark: -(1 << 30),
                 faces_len: faces.len(),
+                end: faces.as_ptr_range().end,
                 cache: PhantomData,
             },
         }
@@ -95,11 +100,14 @@ impl<'a, T> CullScan<'a, T> {
 /// On ARMv7E-M an assembly loop of 23 instructions a dropped face (the Rust scan takes
 /// about 40), inline, saving the registers it takes beyond its operands itself, so
 /// that the cull pass keeps its own; it reads the faces by place, not by an iterator,
-/// so that neither it nor the caller divides a length by 6.
+/// so that neither it nor the caller divides a length by 6. On ARMv6-M one of 40 (the
+/// Rust scan there spills: about 66).
 #[inline(always)]
 pub(crate) fn skip_culled<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
     #[cfg(all(zraster_thumb, zraster_dsp))]
     return skip_culled_dsp(pos, scan);
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    return skip_culled_v6m(pos, scan);
     #[allow(unreachable_code)]
     {
         let (n, drawn) = culled_run_portable(scan.faces.get(*pos..).unwrap_or(&[]), scan);
@@ -221,6 +229,130 @@ fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
             options(readonly),
         );
     }
+    if drawn == 0 {
+        return None;
+    }
+    // SAFETY: the loop returns a drawn face's indices only once it has found each below
+    // `regs.len`, which is `scan.cache.len()` or 0 (`CullScan::new`).
+    Some(unsafe {
+        [
+            scan.cache.get_unchecked(a),
+            scan.cache.get_unchecked(b),
+            scan.cache.get_unchecked(c),
+        ]
+    })
+}
+
+/// [`skip_culled`] on ARMv6-M.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+#[inline(always)]
+fn skip_culled_v6m<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
+    if *pos >= scan.regs.faces_len {
+        return None;
+    }
+    let (at, drawn, a, b, c): (*const [u16; 3], u32, usize, usize, usize);
+    // SAFETY: `pos` is below the number of faces (tested above), so r0 starts at a
+    // face; the loop reads one face a turn and stops at `end` (r7), so only inside the
+    // faces. It reads an entry's word at `xy + 8 i` only for indices `i` it has found
+    // below `regs.len` (r8), which is the cache's length for a cache of 8-byte entries
+    // whose word at `xy_at` (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside
+    // the cache. LDM reads the first six words of `ScanRegs` and LDR `end` (`repr(C)`).
+    // r6, r7 (which cannot be operands) and r8 are pushed first and popped last (had
+    // the caller to save r8, its frame would grow); r12 and lr are declared clobbered. For
+    // a drawn face it returns the three indices it found below `regs.len` in r3–r5;
+    // r0 returns the face it stops at.
+    //
+    // A turn: the three indices against the length, the three entries' x/y words, the
+    // marks (bits 15 and 14 of x differ: x < −2¹⁴, or x ≥ 2¹⁴, which a placed corner
+    // is not) by the overflow of doubling x·2¹⁶, the differences of x as the low
+    // halves of the words' differences (each below 2¹⁵ in magnitude), of y from the
+    // high halves, and the area less `lo` (two products, each below 2³⁰ in magnitude),
+    // compared with `span`.
+    unsafe {
+        core::arch::asm!(
+            "push {{r6, r7}}",
+            "mov r6, r8",
+            "push {{r6}}",
+            "ldr r7, [r0, #28]", // the faces' end
+            "ldm r0, {{r0, r2, r3, r4, r5, r6}}",
+            "mov r8, r3",  // the entries' number
+            "mov r12, r4", // −lo
+            "mov lr, r5",  // span
+            "lsls r3, r1, #1",
+            "adds r3, r3, r1",
+            "lsls r3, r3, #1",
+            "adds r0, r0, r3", // the face at `pos`
+            "mov r1, r2",      // the first entry's x/y word
+            "2:",
+            "ldrh r2, [r0, #0]",
+            "ldrh r3, [r0, #2]",
+            "ldrh r4, [r0, #4]",
+            "cmp r2, r8",
+            "bhs 3f",
+            "cmp r3, r8",
+            "bhs 3f",
+            "cmp r4, r8",
+            "bhs 3f",
+            "lsls r2, r2, #3",
+            "lsls r3, r3, #3",
+            "lsls r4, r4, #3",
+            "ldr r2, [r1, r2]",
+            "ldr r3, [r1, r3]",
+            "ldr r4, [r1, r4]",
+            "lsls r5, r2, #16",
+            "adds r5, r5, r5",
+            "bvs 3f",
+            "lsls r5, r3, #16",
+            "adds r5, r5, r5",
+            "bvs 3f",
+            "lsls r5, r4, #16",
+            "adds r5, r5, r5",
+            "bvs 3f",
+            "subs r5, r3, r2",
+            "sxth r5, r5", // xb − xa
+            "subs r6, r4, r2",
+            "sxth r6, r6", // xc − xa
+            "asrs r2, r2, #16",
+            "asrs r3, r3, #16",
+            "subs r3, r3, r2", // yb − ya
+            "asrs r4, r4, #16",
+            "subs r4, r4, r2", // yc − ya
+            "muls r5, r4, r5", // (xb − xa)(yc − ya)
+            "muls r6, r3, r6", // (xc − xa)(yb − ya)
+            "subs r5, r5, r6",
+            "add r5, r12",
+            "cmp r5, lr",
+            "bhi 4f",
+            "adds r0, #6",
+            "cmp r0, r7",
+            "bne 2b",
+            "3:", // a bad index or an unplaced corner, or none left
+            "movs r2, #0",
+            "b 6f",
+            "4:", // drawn: its indices
+            "ldrh r3, [r0, #0]",
+            "ldrh r4, [r0, #2]",
+            "ldrh r5, [r0, #4]",
+            "movs r2, #1",
+            "6:",
+            "pop {{r6}}",
+            "mov r8, r6",
+            "pop {{r6, r7}}",
+            inout("r0") &scan.regs as *const ScanRegs<'_> => at,
+            inout("r1") *pos => _,
+            out("r2") drawn,
+            out("r3") a,
+            out("r4") b,
+            out("r5") c,
+            out("r12") _,
+            out("lr") _,
+            options(readonly),
+        );
+    }
+    // The place: the bytes from the first face over 6, exactly (a multiple of 6 halved,
+    // times the inverse of 3 modulo 2³²; no division routine).
+    let bytes = at as usize - scan.regs.faces as usize;
+    *pos = (bytes >> 1).wrapping_mul(0xAAAA_AAAB);
     if drawn == 0 {
         return None;
     }
