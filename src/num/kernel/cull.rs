@@ -29,11 +29,9 @@ impl<'a, T> CullScan<'a, T> {
     }
 }
 
-/// The assembly loops' operands. The ARMv7E-M loop takes them in registers (r0,
-/// r2–r5, r12, lr): an address of them taken in the walk would keep the walk's fields
-/// in memory. The ARMv6-M loop, whose operands can only be r0–r5, loads the first six
-/// words by one LDM and `end` (hence `repr(C)` and the order). The twin reads `span`.
-#[repr(C)]
+/// The assembly loops' operands, handed over in registers (ARMv7E-M: r0, r2–r5, r12,
+/// lr; ARMv6-M, whose inline assembly takes r0–r5 only: r0–r5): an address of them
+/// taken in the walk would keep the walk's fields in memory. The twin reads `span`.
 #[cfg_attr(not(zraster_thumb), allow(dead_code))]
 struct ScanRegs<'a> {
     faces: *const [u16; 3],
@@ -45,9 +43,11 @@ struct ScanRegs<'a> {
     neg_lo: i32,
     span: u32,
     /// −2¹⁴ · 2¹⁶: the marks' bound for x in a word's high half (ARMv7E-M).
+    #[cfg_attr(not(zraster_dsp), allow(dead_code))]
     mark: i32,
     faces_len: usize,
     /// One past the last face (ARMv6-M).
+    #[cfg_attr(not(zraster_armv6m), allow(dead_code))]
     end: *const [u16; 3],
     cache: PhantomData<&'a [u8]>,
 }
@@ -100,7 +100,7 @@ impl<'a, T> CullScan<'a, T> {
 /// On ARMv7E-M an assembly loop of 23 instructions a dropped face (the Rust scan takes
 /// about 40), inline, saving the registers it takes beyond its operands itself, so
 /// that the cull pass keeps its own; it reads the faces by place, not by an iterator,
-/// so that neither it nor the caller divides a length by 6. On ARMv6-M one of 40 (the
+/// so that neither it nor the caller divides a length by 6. On ARMv6-M one of 42 (the
 /// Rust scan there spills: about 66).
 #[inline(always)]
 pub(crate) fn skip_culled<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
@@ -250,17 +250,18 @@ fn skip_culled_v6m<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
     if *pos >= scan.regs.faces_len {
         return None;
     }
+    let r = &scan.regs;
     let (at, drawn, a, b, c): (*const [u16; 3], u32, usize, usize, usize);
     // SAFETY: `pos` is below the number of faces (tested above), so r0 starts at a
-    // face; the loop reads one face a turn and stops at `end` (r7), so only inside the
-    // faces. It reads an entry's word at `xy + 8 i` only for indices `i` it has found
-    // below `regs.len` (r8), which is the cache's length for a cache of 8-byte entries
-    // whose word at `xy_at` (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside
-    // the cache. LDM reads the first six words of `ScanRegs` and LDR `end` (`repr(C)`).
-    // r6, r7 (which cannot be operands) and r8 are pushed first and popped last (had
-    // the caller to save r8, its frame would grow); r12 and lr are declared clobbered. For
-    // a drawn face it returns the three indices it found below `regs.len` in r3–r5;
-    // r0 returns the face it stops at.
+    // face (`wrapping_add` gives its address); the loop reads one face a turn and stops
+    // at `end` (r7), so only inside the faces. It reads an entry's word at `xy + 8 i`
+    // only for indices `i` it has found below `regs.len` (r8), which is the cache's
+    // length for a cache of 8-byte entries whose word at `xy_at` (0 or 4) is aligned,
+    // or 0 (`CullScan::new`), so only inside the cache. r6, r7 (which cannot be
+    // operands) and r8 are pushed first and popped last (saved by the caller instead,
+    // its frame would grow); r12 and lr are declared clobbered. For a drawn face it
+    // returns the three indices it found below `regs.len` in r3–r5; r0 returns the face
+    // it stops at.
     //
     // A turn: the three indices against the length, the three entries' x/y words, the
     // marks (bits 15 and 14 of x differ: x < −2¹⁴, or x ≥ 2¹⁴, which a placed corner
@@ -273,16 +274,10 @@ fn skip_culled_v6m<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
             "push {{r6, r7}}",
             "mov r6, r8",
             "push {{r6}}",
-            "ldr r7, [r0, #28]", // the faces' end
-            "ldm r0, {{r0, r2, r3, r4, r5, r6}}",
-            "mov r8, r3",  // the entries' number
+            "mov r8, r2",  // the entries' number
+            "mov r7, r3",  // the faces' end
             "mov r12, r4", // −lo
             "mov lr, r5",  // span
-            "lsls r3, r1, #1",
-            "adds r3, r3, r1",
-            "lsls r3, r3, #1",
-            "adds r0, r0, r3", // the face at `pos`
-            "mov r1, r2",      // the first entry's x/y word
             "2:",
             "ldrh r2, [r0, #0]",
             "ldrh r3, [r0, #2]",
@@ -338,12 +333,12 @@ fn skip_culled_v6m<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
             "pop {{r6}}",
             "mov r8, r6",
             "pop {{r6, r7}}",
-            inout("r0") &scan.regs as *const ScanRegs<'_> => at,
-            inout("r1") *pos => _,
-            out("r2") drawn,
-            out("r3") a,
-            out("r4") b,
-            out("r5") c,
+            inout("r0") r.faces.wrapping_add(*pos) => at,
+            inout("r1") r.xy => _,
+            inout("r2") r.len => drawn,
+            inout("r3") r.end => a,
+            inout("r4") r.neg_lo => b,
+            inout("r5") r.span => c,
             out("r12") _,
             out("lr") _,
             options(readonly),
