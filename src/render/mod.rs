@@ -37,6 +37,7 @@ use crate::geometry::project::{outcode_of, to_f32, ScreenMap, W_SHIFT_HINT};
 use crate::geometry::transform::FixedTransform;
 use crate::math::Vec3;
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
+use crate::num::kernel::XyWord;
 use crate::raster::{
     draw_line, signed_area, signed_area_guarded, Clip, Plane, ScreenVertex, SpanStats,
 };
@@ -118,18 +119,37 @@ impl FrameStats {
 /// holds its outcode: faces using it take the general path, which clips them or
 /// projects that vertex again.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)]
 pub struct CachedVertex {
-    /// x in 1/16 pixel, or [`CachedVertex::MARK`].
-    x: i16,
-    /// y in 1/16 pixel, or the outcode when marked.
-    y: i16,
     /// Depth in 16.16.
     z: u32,
+    /// x and y as one word, x in the low half (the cull scans read the word): x in
+    /// 1/16 pixel, or [`CachedVertex::MARK`]; y in 1/16 pixel, or the outcode when
+    /// marked.
+    xy: XyWord,
 }
 
 impl CachedVertex {
     /// `x` of a vertex the entry does not place.
     const MARK: i16 = i16::MIN;
+
+    /// The word of x and y.
+    #[inline(always)]
+    const fn pack(x: i16, y: i16) -> XyWord {
+        XyWord::new(x, y)
+    }
+
+    /// x.
+    #[inline(always)]
+    const fn x(&self) -> i16 {
+        self.xy.x()
+    }
+
+    /// y.
+    #[inline(always)]
+    const fn y(&self) -> i16 {
+        self.xy.y()
+    }
 
     /// The entry for a vertex with outcode `code` and screen position `v`.
     #[inline]
@@ -137,14 +157,12 @@ impl CachedVertex {
         let fits = |c: i32| crate::num::abs_below(c, 1 << 14);
         if code == 0 && fits(v.x()) && fits(v.y()) {
             CachedVertex {
-                x: v.x() as i16,
-                y: v.y() as i16,
+                xy: Self::pack(v.x() as i16, v.y() as i16),
                 z: v.z(),
             }
         } else {
             CachedVertex {
-                x: Self::MARK,
-                y: i16::from(code),
+                xy: Self::pack(Self::MARK, i16::from(code)),
                 z: 0,
             }
         }
@@ -157,8 +175,7 @@ impl CachedVertex {
         // |c| < 2¹⁴ as one unsigned compare (a branch here: the other way is a call).
         let fits = |c: i32| c.wrapping_add((1 << 14) - 1) as u32 <= 2 * ((1 << 14) - 1);
         (fits(v.x()) && fits(v.y())).then(|| CachedVertex {
-            x: v.x() as i16,
-            y: v.y() as i16,
+            xy: Self::pack(v.x() as i16, v.y() as i16),
             z: v.z(),
         })
     }
@@ -166,14 +183,14 @@ impl CachedVertex {
     /// Whether the entry holds no screen position (outside, or beyond ±1024 pixels).
     #[inline(always)]
     pub(crate) fn marked(&self) -> bool {
-        self.x == Self::MARK
+        self.x() == Self::MARK
     }
 
     /// The vertex's outcode (0 for every vertex inside the view volume).
     #[inline(always)]
     pub(crate) fn code(&self) -> u8 {
         if self.marked() {
-            self.y as u8
+            self.y() as u8
         } else {
             0
         }
@@ -185,24 +202,27 @@ impl CachedVertex {
         if self.marked() {
             ScreenVertex::ORIGIN
         } else {
-            ScreenVertex::from_raw(i32::from(self.x), i32::from(self.y), self.z)
+            self.placed()
         }
     }
 
     /// x and y (1/16 pixel) of an entry known not to be marked.
     #[inline(always)]
     pub(crate) fn xy(&self) -> (i32, i32) {
-        (i32::from(self.x), i32::from(self.y))
+        (i32::from(self.x()), i32::from(self.y()))
     }
 
     /// The screen position of an entry known not to be marked.
     #[inline(always)]
     pub(crate) fn placed(&self) -> ScreenVertex {
-        ScreenVertex::from_raw(i32::from(self.x), i32::from(self.y), self.z)
+        ScreenVertex::from_raw(i32::from(self.x()), i32::from(self.y()), self.z)
     }
 
     /// An empty entry, to initialise cache arrays.
-    pub const EMPTY: CachedVertex = CachedVertex { x: 0, y: 0, z: 0 };
+    pub const EMPTY: CachedVertex = CachedVertex {
+        xy: XyWord::new(0, 0),
+        z: 0,
+    };
 }
 
 impl Default for CachedVertex {

@@ -125,19 +125,8 @@ pub(crate) struct CachedWalk<'a, const V6M: bool = false> {
     pos: usize,
 }
 
-/// The byte offset of a cache entry's x, which [`skip_culled`] reads with y (after it)
-/// as one word; an entry laid out otherwise turns the assembly scan off.
-const XY_AT: usize = {
-    let (x, y) = (
-        core::mem::offset_of!(CachedVertex, x),
-        core::mem::offset_of!(CachedVertex, y),
-    );
-    if y == x + 2 {
-        x
-    } else {
-        usize::MAX
-    }
-};
+/// The byte offset of a cache entry's word of x and y, which [`skip_culled`] reads.
+const XY_AT: usize = core::mem::offset_of!(CachedVertex, xy);
 
 /// The twice-signed screen areas a cull mode drops, as `area − lo ≤ span` in unsigned
 /// arithmetic: one subtraction and one compare a face for any mode (zero is in every

@@ -8,6 +8,61 @@ use core::marker::PhantomData;
 /// pass keeps its own Rust scan and does not call it.
 pub(crate) const CULL_KERNEL: bool = cfg!(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)));
 
+/// A cache entry's x and y (1/16 pixel) as the cull scans read them: one word, x in its
+/// low half. On ARMv6-M an `i32`, whose halves one LDR and SXTH or ASRS give (its
+/// halfword loads take a register offset only); elsewhere two `i16`, read by one
+/// halfword load each.
+#[cfg(zraster_armv6m)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct XyWord(i32);
+
+#[cfg(zraster_armv6m)]
+impl XyWord {
+    /// The word of `x` and `y`.
+    #[inline(always)]
+    pub(crate) const fn new(x: i16, y: i16) -> XyWord {
+        XyWord(((y as i32) << 16) | (x as u16 as i32))
+    }
+    /// x.
+    #[inline(always)]
+    pub(crate) const fn x(&self) -> i16 {
+        self.0 as i16
+    }
+    /// y.
+    #[inline(always)]
+    pub(crate) const fn y(&self) -> i16 {
+        (self.0 >> 16) as i16
+    }
+}
+
+/// A cache entry's x and y (see the ARMv6-M form): x first.
+#[cfg(not(zraster_armv6m))]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)]
+pub(crate) struct XyWord {
+    x: i16,
+    y: i16,
+}
+
+#[cfg(not(zraster_armv6m))]
+impl XyWord {
+    /// The word of `x` and `y`.
+    #[inline(always)]
+    pub(crate) const fn new(x: i16, y: i16) -> XyWord {
+        XyWord { x, y }
+    }
+    /// x.
+    #[inline(always)]
+    pub(crate) const fn x(&self) -> i16 {
+        self.x
+    }
+    /// y.
+    #[inline(always)]
+    pub(crate) const fn y(&self) -> i16 {
+        self.y
+    }
+}
+
 /// The faces of a cached mesh, its cache of 8-byte entries holding x and y (`i16`, y
 /// after x) in one word, and a cull mode's range of dropped areas, as [`skip_culled`]
 /// reads them.
