@@ -267,7 +267,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         };
         // A band drawn without bins skips the triangles off its rows.
         let rows = (!first).then(|| clip.subpixel_rows());
-        let mut walk = CachedWalk::drawing(indices, faces, cache, self.options.cull);
+        let walk = CachedWalk::drawing(indices, faces, cache, self.options.cull);
+        let operands = walk.operands();
+        let mut walk = walk.reading(&operands);
         let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
         let mut clipped = FrameStats::default();
         // The drawn faces' pixels in u32 registers, into `px` once at the end.

@@ -5,7 +5,7 @@
 //! any mesh, which also clips), band binning, depth sorting and hidden-line.
 
 use super::*;
-use crate::num::kernel::{skip_culled, CullScan, CULL_KERNEL};
+use crate::num::kernel::{skip_culled, skip_culled_by, CullScan, ScanRegs, CULL_KERNEL};
 
 /// Whether `tri` lies wholly above or below rows `row0..row1` (in 1/16 pixel): later
 /// passes (bands) skip such triangles before anything else.
@@ -106,10 +106,11 @@ pub(crate) fn decide<V: Corner>([a, b, c]: [&V; 3], rows: Option<(i32, i32)>, cu
 /// outcomes and the drawn faces (the culled ones, most of them, are what is left over),
 /// so the compiler keeps its few values in registers.
 ///
-/// `V6M`: whether on ARMv6-M it goes by the assembly scan too, which pays in the draw
-/// loop, whose Rust scan spills, but not in band binning's loop ([`CachedWalk::new`]),
-/// whose does not. Elsewhere it is without effect.
-pub(crate) struct CachedWalk<'a, const V6M: bool = false> {
+/// `DRAW`: whether it is the draw loop's walk ([`CachedWalk::drawing`]), which on
+/// ARMv6-M goes by the assembly scan too (it pays there, where the Rust scan spills,
+/// but not in band binning's loop, [`CachedWalk::new`]) and on ARMv7E-M reads the
+/// scan's operands from a copy kept apart ([`CachedWalk::reading`]).
+pub(crate) struct CachedWalk<'a, const DRAW: bool = false> {
     faces: core::slice::Iter<'a, [u16; 3]>,
     /// The number of the first face.
     first: usize,
@@ -123,6 +124,8 @@ pub(crate) struct CachedWalk<'a, const V6M: bool = false> {
     /// `faces` (which it leaves alone).
     scan: CullScan<'a, CachedVertex>,
     pos: usize,
+    /// The copy of the scan's operands the draw loop's walk reads.
+    operands: Option<&'a ScanRegs<'a>>,
 }
 
 /// The byte offset of a cache entry's word of x and y, which [`skip_culled`] reads.
@@ -189,7 +192,8 @@ impl<'a> CachedWalk<'a> {
 }
 
 impl<'a> CachedWalk<'a, true> {
-    /// [`CachedWalk::new`] by the assembly scan on ARMv6-M too (for the draw loop).
+    /// [`CachedWalk::new`] for the draw loop (see `DRAW`), to be given its operands'
+    /// copy by [`reading`](CachedWalk::reading).
     #[inline(always)]
     pub(crate) fn drawing(
         indices: &'a [[u16; 3]],
@@ -199,11 +203,31 @@ impl<'a> CachedWalk<'a, true> {
     ) -> Self {
         Self::with(indices, faces, cache, cull)
     }
+
+    /// A copy of the scan's operands, which the caller keeps (apart from the walk) for
+    /// [`reading`](CachedWalk::reading).
+    #[inline(always)]
+    pub(crate) fn operands(&self) -> ScanRegs<'a> {
+        self.scan.operands()
+    }
+
+    /// The walk reading the scan's operands from `operands` (its own, copied).
+    #[inline(always)]
+    pub(crate) fn reading<'b>(self, operands: &'b ScanRegs<'b>) -> CachedWalk<'b, true>
+    where
+        'a: 'b,
+    {
+        let walk: CachedWalk<'b, true> = self;
+        CachedWalk {
+            operands: Some(operands),
+            ..walk
+        }
+    }
 }
 
-impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
+impl<'a, const DRAW: bool> CachedWalk<'a, DRAW> {
     /// Whether the walk goes by [`skip_culled`].
-    const SCANNED: bool = CULL_KERNEL && (V6M || !crate::num::ARMV6M);
+    const SCANNED: bool = CULL_KERNEL && (DRAW || !crate::num::ARMV6M);
 
     #[inline(always)]
     fn with(
@@ -224,6 +248,7 @@ impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
             tally: [0; 3],
             scan: CullScan::new(faces, cache, XY_AT, CachedVertex::xy, drop.lo, drop.span),
             pos: 0,
+            operands: None,
         }
     }
 
@@ -242,7 +267,7 @@ impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
     }
 }
 
-impl<'a, const V6M: bool> Iterator for CachedWalk<'a, V6M> {
+impl<'a, const DRAW: bool> Iterator for CachedWalk<'a, DRAW> {
     type Item = Result<(usize, Option<[&'a CachedVertex; 3]>), Error>;
 
     #[inline(always)]
@@ -278,7 +303,7 @@ impl<'a, const V6M: bool> Iterator for CachedWalk<'a, V6M> {
     }
 }
 
-impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
+impl<'a, const DRAW: bool> CachedWalk<'a, DRAW> {
     /// [`Iterator::next`] past the dropped faces in assembly ([`skip_culled`]), to the
     /// next face to look at: a face it finds drawn comes with its corners, any other
     /// takes the decisions of the Rust scan.
@@ -287,7 +312,11 @@ impl<'a, const V6M: bool> CachedWalk<'a, V6M> {
         let (cache, drop, faces) = (self.cache, self.drop, self.scan.faces());
         let get = |i: u16| cache.get(usize::from(i));
         loop {
-            if let Some(corners) = skip_culled(&mut self.pos, &self.scan) {
+            let found = match self.operands {
+                Some(operands) => skip_culled_by(&mut self.pos, &self.scan, operands),
+                None => skip_culled(&mut self.pos, &self.scan),
+            };
+            if let Some(corners) = found {
                 let f = self.first + self.pos;
                 self.pos += 1;
                 self.tally[2] += 1;
@@ -445,7 +474,8 @@ mod tests {
     }
 
     /// The walk through the assembly scan's twin (`next_scanned`, on hosts the portable
-    /// scan of `num::kernel`) yields the faces, errors and counts of the Rust walk, over
+    /// scan of `num::kernel`), also as the draw loop's (operands read from a copy),
+    /// yields the faces, errors and counts of the Rust walk, over
     /// random caches (unplaced corners, outside ones, extremes) and faces (bad indices,
     /// degenerate triangles), for every cull mode.
     #[test]
@@ -479,18 +509,23 @@ mod tests {
             let start = rnd() as usize % 3;
             let range = start..faces.len().max(start);
             let mut rust = CachedWalk::new(&faces, range.clone(), &cache, cull);
-            let mut scanned = CachedWalk::new(&faces, range, &cache, cull);
+            let mut scanned = CachedWalk::new(&faces, range.clone(), &cache, cull);
+            let drawing = CachedWalk::drawing(&faces, range, &cache, cull);
+            let operands = drawing.operands();
+            let mut drawing = drawing.reading(&operands);
             type Item<'a> = <CachedWalk<'a> as Iterator>::Item;
             let key =
                 |x: Option<Item<'_>>| x.map(|r| r.map(|(f, c)| (f, c.map(|c| c.map(|v| *v)))));
             loop {
                 let (a, b) = (key(rust.next()), key(scanned.next_scanned()));
                 assert_eq!(a, b, "case {case}");
+                assert_eq!(a, key(drawing.next_scanned()), "case {case}");
                 if a.is_none() {
                     break;
                 }
             }
             assert_eq!(rust.stats(), scanned.stats(), "case {case}");
+            assert_eq!(rust.stats(), drawing.stats(), "case {case}");
         }
     }
 

@@ -77,6 +77,12 @@ pub(crate) struct CullScan<'a, T> {
 }
 
 impl<'a, T> CullScan<'a, T> {
+    /// A copy of the scan's operands, for [`skip_culled_by`].
+    #[inline(always)]
+    pub(crate) fn operands(&self) -> ScanRegs<'a> {
+        self.regs
+    }
+
     /// The faces scanned.
     #[inline(always)]
     pub(crate) fn faces(&self) -> &'a [[u16; 3]] {
@@ -86,9 +92,14 @@ impl<'a, T> CullScan<'a, T> {
 
 /// The assembly loops' operands, handed over in registers (ARMv7E-M: r0, r2–r5, r12,
 /// lr; ARMv6-M, whose inline assembly takes r0–r5 only: r0–r5): an address of them
-/// taken in the walk would keep the walk's fields in memory. The twin reads `span`.
+/// taken in the walk would keep the walk's fields in memory. A copy kept apart from
+/// the walk ([`CullScan::operands`]) the ARMv7E-M loop can read by one LDM instead
+/// ([`skip_culled_by`]; hence `repr(C)` and the order of the first seven words). The
+/// twin reads `span`.
 #[cfg_attr(not(zraster_thumb), allow(dead_code))]
-struct ScanRegs<'a> {
+#[derive(Clone, Copy)]
+#[repr(C)]
+pub(crate) struct ScanRegs<'a> {
     faces: *const [u16; 3],
     /// The address of the first entry's x.
     xy: *const u8,
@@ -160,7 +171,7 @@ impl<'a, T> CullScan<'a, T> {
 #[inline(always)]
 pub(crate) fn skip_culled<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
     #[cfg(all(zraster_thumb, zraster_dsp))]
-    return skip_culled_dsp(pos, scan);
+    return skip_culled_dsp::<_, false>(pos, scan, &scan.regs);
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     return skip_culled_v6m(pos, scan);
     #[allow(unreachable_code)]
@@ -170,6 +181,25 @@ pub(crate) fn skip_culled<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Opt
         let t = scan.faces.get(*pos).filter(|_| drawn)?;
         let get = |i: u16| scan.cache.get(usize::from(i));
         Some([get(t[0])?, get(t[1])?, get(t[2])?])
+    }
+}
+
+/// [`skip_culled`] with the operands read from `regs`, a copy of the scan's own
+/// ([`CullScan::operands`]) that the caller keeps apart from its walk: on ARMv7E-M by
+/// one LDM at each call instead of seven values the caller reloads. Elsewhere
+/// [`skip_culled`] (on ARMv6-M its registers are the cheaper).
+#[inline(always)]
+pub(crate) fn skip_culled_by<'a, T>(
+    pos: &mut usize,
+    scan: &CullScan<'a, T>,
+    regs: &ScanRegs<'a>,
+) -> Option<[&'a T; 3]> {
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    return skip_culled_dsp::<_, true>(pos, scan, regs);
+    #[allow(unreachable_code)]
+    {
+        let _ = regs;
+        skip_culled(pos, scan)
     }
 }
 
@@ -210,21 +240,76 @@ pub(crate) fn culled_run_portable<T>(faces: &[[u16; 3]], scan: &CullScan<'_, T>)
     )
 }
 
-/// [`skip_culled`] on ARMv7E-M.
+/// The loop of [`skip_culled_dsp`] from its first face on (r0 at the face at `pos`,
+/// r1 the faces left, r2 the first entry's x/y word, r3 the entries' number, r4 −lo,
+/// r5 span, r12 the marks' bound, lr the faces' number), to its end.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+macro_rules! dsp_cull_loop {
+    () => {
+        concat!(
+            "2:\n",
+            "ldrh r8, [r0], #6\n",
+            "ldrh r9, [r0, #-4]\n",
+            "ldrh r10, [r0, #-2]\n",
+            "cmp r8, r3\n",
+            "itt lo\n",
+            "cmplo r9, r3\n",
+            "cmplo r10, r3\n",
+            "bhs 3f\n",
+            "ldr r8, [r2, r8, lsl #3]\n",
+            "ldr r9, [r2, r9, lsl #3]\n",
+            "ldr r10, [r2, r10, lsl #3]\n",
+            "cmp r12, r8, lsl #16\n",
+            "itt le\n",
+            "cmple r12, r9, lsl #16\n",
+            "cmple r12, r10, lsl #16\n",
+            "bgt 3f\n",
+            "ssub16 r9, r9, r8\n",
+            "ssub16 r10, r10, r8\n",
+            "smlsdx r11, r9, r10, r4\n",
+            "cmp r11, r5\n",
+            "bhi 4f\n",
+            "subs r1, #1\n",
+            "bne 2b\n",
+            // A bad index or an unplaced corner, or none left.
+            "3:\n",
+            "movs r2, #0\n",
+            "b 6f\n",
+            // Drawn: its indices.
+            "4:\n",
+            "ldrh r3, [r0, #-6]\n",
+            "ldrh r4, [r0, #-4]\n",
+            "ldrh r5, [r0, #-2]\n",
+            "movs r2, #1\n",
+            "6:\n",
+            // The face it stopped at (`pos` if none was left).
+            "sub r1, lr, r1\n",
+            "pop {{r8-r11}}\n",
+        )
+    };
+}
+
+/// [`skip_culled`] on ARMv7E-M: the operands in registers, or (`BY_LDM`) read from
+/// `regs` by one LDM.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[inline(always)]
-fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'a T; 3]> {
+fn skip_culled_dsp<'a, T, const BY_LDM: bool>(
+    pos: &mut usize,
+    scan: &CullScan<'a, T>,
+    regs: &ScanRegs<'a>,
+) -> Option<[&'a T; 3]> {
     let (drawn, a, b, c): (u32, usize, usize, usize);
-    let r = &scan.regs;
+    let r = regs;
     // SAFETY: reads the faces from `pos` on, none when `pos` is not below their number,
     // one a turn while any is left (r1 counts them down), so only inside the faces; r1
     // ends as the place of the face it stops at (`pos` when none was left). It reads an
     // entry's word at `xy + 8 i` only for indices `i` it has found below `regs.len`,
     // which is the cache's length for a cache of 8-byte entries whose word at `xy_at`
-    // (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside the cache. The
-    // registers it takes beyond its operands (r8–r11) are pushed first and popped
-    // last. For a drawn face it returns the three indices it found below `regs.len` in
-    // r3–r5.
+    // (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside the cache (`regs` is
+    // the scan's own operands or a copy of them, `CullScan::operands`; LDM reads its
+    // first seven words, `repr(C)`). The registers it takes beyond its operands
+    // (r8–r11) are pushed first and popped last. For a drawn face it returns the three
+    // indices it found below `regs.len` in r3–r5.
     //
     // A turn: the three indices against the length (the IT block's compares run while
     // the previous ones found the index in range), the three entries' x/y words, the
@@ -232,57 +317,44 @@ fn skip_culled_dsp<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
     // corners as halfword pairs (each below 2¹⁵ in magnitude) and the area less `lo` by
     // one SMLSDX, compared with `span`.
     unsafe {
-        core::arch::asm!(
-            "push {{r8-r11}}",
-            "add r0, r0, r1, lsl #1",
-            "add r0, r0, r1, lsl #2", // the face at `pos`
-            "subs r1, lr, r1",        // the faces left
-            "bls 3f",                 // none (`pos` at or past the end)
-            "2:",
-            "ldrh r8, [r0], #6",
-            "ldrh r9, [r0, #-4]",
-            "ldrh r10, [r0, #-2]",
-            "cmp r8, r3",
-            "itt lo",
-            "cmplo r9, r3",
-            "cmplo r10, r3",
-            "bhs 3f",
-            "ldr r8, [r2, r8, lsl #3]",
-            "ldr r9, [r2, r9, lsl #3]",
-            "ldr r10, [r2, r10, lsl #3]",
-            "cmp r12, r8, lsl #16",
-            "itt le",
-            "cmple r12, r9, lsl #16",
-            "cmple r12, r10, lsl #16",
-            "bgt 3f",
-            "ssub16 r9, r9, r8",
-            "ssub16 r10, r10, r8",
-            "smlsdx r11, r9, r10, r4",
-            "cmp r11, r5",
-            "bhi 4f",
-            "subs r1, #1",
-            "bne 2b",
-            "3:", // a bad index or an unplaced corner, or none left
-            "movs r2, #0",
-            "b 6f",
-            "4:", // drawn: its indices
-            "ldrh r3, [r0, #-6]",
-            "ldrh r4, [r0, #-4]",
-            "ldrh r5, [r0, #-2]",
-            "movs r2, #1",
-            "6:",
-            "sub r1, lr, r1", // the face it stopped at (`pos` if none was left)
-            "pop {{r8-r11}}",
-            inout("r0") r.faces => _,
-            inout("r1") *pos,
-            inout("r2") r.xy => drawn,
-            inout("r3") r.len => a,
-            inout("r4") r.neg_lo => b,
-            inout("r5") r.span => c,
-            inout("r12") r.mark => _,
-            inout("lr") r.faces_len => _,
-            options(readonly),
-        );
+        if BY_LDM {
+            core::arch::asm!(
+                "push {{r8-r11}}",
+                "ldm r0, {{r0, r2, r3, r4, r5, r12, lr}}",
+                "add r0, r0, r1, lsl #1",
+                "add r0, r0, r1, lsl #2", // the face at `pos`
+                "subs r1, lr, r1",        // the faces left
+                "bls 3f",                 // none (`pos` at or past the end)
+                dsp_cull_loop!(),
+                inout("r0") r as *const ScanRegs<'_> => _,
+                inout("r1") *pos,
+                out("r2") drawn,
+                out("r3") a,
+                out("r4") b,
+                out("r5") c,
+                out("r12") _,
+                out("lr") _,
+                options(readonly),
+            );
+        } else {
+            core::arch::asm!(
+                "push {{r8-r11}}",
+                "add r0, r0, r1, lsl #1",
+                "add r0, r0, r1, lsl #2", // the face at `pos`
+                "subs r1, lr, r1",        // the faces left
+                "bls 3f",                 // none (`pos` at or past the end)
+                dsp_cull_loop!(),
+                inout("r0") r.faces => _,
+                inout("r1") *pos,
+                inout("r2") r.xy => drawn,
+                inout("r3") r.len => a,
+                inout("r4") r.neg_lo => b,
+                inout("r5") r.span => c,
+                inout("r12") r.mark => _,
+                inout("lr") r.faces_len => _,
+                options(readonly),
+            );
+        }
     }
     if drawn == 0 {
         return None;
@@ -421,8 +493,10 @@ fn skip_culled_v6m<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
 /// bench firmware: `cases` random runs of up to 12 faces from a random start, over
 /// caches of up to 24 entries (both layouts: x at byte 0 and at byte 4), with unplaced
 /// corners, indices out of range, degenerate and extreme triangles (corners at
-/// ±(2¹⁴ − 1)), for the three cull modes and random ranges. Returns the number of runs
-/// where the two stop at different faces or differ on whether that face is drawn.
+/// ±(2¹⁴ − 1)), for the three cull modes and random ranges, with the operands in
+/// registers and read from a copy ([`skip_culled_by`]). Returns the number of runs
+/// where either stops at a different face than the twin or differs on whether that face
+/// is drawn.
 #[inline(never)] // its arrays stay out of the caller's frame (the bench's stack figure)
 pub fn check_cull_kernel(cases: usize) -> usize {
     /// A cache entry of either layout: x and y in `w[k]`, `w[k + 1]`.
@@ -488,6 +562,10 @@ pub fn check_cull_kernel(cases: usize) -> usize {
         let start = rnd() as usize % 4;
         let mut pos = start;
         let corners = skip_culled(&mut pos, &scan).map(|c| c.map(|e| e as *const Entry));
+        // The same with the operands read from a copy.
+        let (operands, mut pos_by) = (scan.operands(), start);
+        let corners_by =
+            skip_culled_by(&mut pos_by, &scan, &operands).map(|c| c.map(|e| e as *const Entry));
         let (n, twin_drawn) = culled_run_portable(faces.get(start..).unwrap_or(&[]), &scan);
         let twin_pos = if start < faces.len() {
             start + n
@@ -500,6 +578,9 @@ pub fn check_cull_kernel(cases: usize) -> usize {
             Some([get(t[0])?, get(t[1])?, get(t[2])?])
         });
         if (pos, corners) != (twin_pos, twin_corners) {
+            bad += 1;
+        }
+        if (pos_by, corners_by) != (twin_pos, twin_corners) {
             bad += 1;
         }
     }

@@ -26,7 +26,7 @@ mod rows_v6m;
 mod texel;
 
 pub use cull::check_cull_kernel;
-pub(crate) use cull::{skip_culled, CullScan, XyWord, CULL_KERNEL};
+pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
