@@ -16,6 +16,8 @@ use crate::Error;
 /// The y axis points down (row 0 at the top). Construction checks the ranges documented
 /// in [`fixed`](crate::fixed): `|x|, |y| ≤ GUARD_BAND`, `depth ≤ MAX_DEPTH`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+// x, y, z at offsets 0, 4, 8: the small triangle's assembly set-up reads them in place.
+#[repr(C)]
 pub struct ScreenVertex {
     x: i32,
     y: i32,
