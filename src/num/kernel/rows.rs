@@ -601,9 +601,12 @@ macro_rules! rows_body {
             rows_failed!("5b"),
             "7:\n",
             rows_failed!("2b"),
-            // Three pixels or more: span_less_dsp's loop, r0–r8 saved meanwhile, when
-            // the colour and depth rows are aligned alike; else one pixel a turn.
+            // Eight pixels or more: span_less_dsp's loop, r0–r8 saved meanwhile, when
+            // the colour and depth rows are aligned alike; else (and for three to
+            // seven) one pixel a turn.
             "4:\n",
+            "cmp r11, #8\n",
+            "blo 40f\n",
             "ldr r12, [r0, #16]\n",
             "tst r12, #2\n",
             "bne 40f\n",
@@ -634,15 +637,15 @@ macro_rules! rows_body {
             "add r9, r1\n",
             "cmp lr, r12\n",
             "bhs 43f\n",
-            "strh lr, [r10]\n",
             "strh r2, [r10, r3]\n",
+            "strh lr, [r10], #2\n",
             "42:\n",
-            "add r10, r10, #2\n",
             "subs r11, #1\n",
             "bne 41b\n",
             "pop {{r1-r3}}\n",
             "b 5b\n",
             "43:\n",
+            "add r10, r10, #2\n",
             rows_failed!("42b"),
             "9:\n",
             "mov r1, r6\n",
@@ -650,7 +653,7 @@ macro_rules! rows_body {
     };
 }
 
-/// [`rows_less_u16`] for ARMv7E-M. Rows of one and two pixels inline; longer ones by
+/// [`rows_less_u16`] for ARMv7E-M. Rows of one and two pixels inline; from eight by
 /// the two-pixel SIMD steps of `span_less_dsp` when `z` and `c` lie at the same
 /// address modulo 4, else one pixel a turn. Registers: r0 the block, r1/r2 the left and
 /// right `t`, r3 the row's depth at local column 0, r4 its depth address, r5 rows left
@@ -683,11 +686,11 @@ fn rows_less_dsp(
     // each half down; a half of 0 rows is skipped), stepping the row address by the
     // pitch, and writes only columns max(x, cx0) .. min(x', cx1) of a row (signed
     // compares, clamped whenever either bound is crossed): inside both buffers (the
-    // colour at the depth address + delta). Rows of three or more pixels run the loop
+    // colour at the depth address + delta). Rows of eight or more pixels run the loop
     // of `span_less_dsp` over exactly that range (its own SAFETY argument: the colour
     // and depth addresses alike modulo 4, tested on `delta`), with r0–r8 pushed around
-    // it and popped after, or (not alike) a loop of exactly that many pixels with
-    // r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as the twin has it).
+    // it and popped after, or (not alike, or three to seven pixels) a loop of exactly
+    // that many pixels with r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as the twin has it).
     // The block is read and written through r0 (`failed`, `dt` reordered, the second
     // half's count). r6 and r7 (not allowed as operands) are pushed and popped; every
     // other register written is declared; the flags (GE included) are scratch.
