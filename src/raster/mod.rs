@@ -24,6 +24,13 @@ pub struct ScreenVertex {
     z: u32,
 }
 
+// The layout the set-up assembly reads (`num::kernel::rows`).
+const _: () = {
+    use core::mem::offset_of;
+    assert!(offset_of!(ScreenVertex, x) == 0 && offset_of!(ScreenVertex, y) == 4);
+    assert!(offset_of!(ScreenVertex, z) == 8);
+};
+
 impl ScreenVertex {
     /// The vertex at (0, 0) with depth 0.
     pub const ORIGIN: ScreenVertex = ScreenVertex { x: 0, y: 0, z: 0 };

@@ -1,5 +1,6 @@
 //! The rows of a small flat-coloured triangle, both halves in one pass: edges by one
-//! division a row, the depth test `Less` with depth writes, a two-byte colour.
+//! division a row, the depth test `Less` with depth writes, a two-byte colour; and
+//! ([`small_less_as_u16`]) the triangle's set-up before them, from its three corners.
 //! Assembly on ARMv7E-M (the row's state in registers, its constants in one block read
 //! by `LDRD`/`LDM`), beside its portable twin.
 #![allow(unsafe_code)]
@@ -8,9 +9,9 @@ use crate::fixed::SUBPIXEL;
 use crate::num::{div_floor_pair, floor_div32};
 use crate::raster::{Clip, ScreenVertex, DEPTH_BIAS, SMALL};
 
-/// Whether [`rows_less_as_u16`] runs the assembly (ARMv7E-M). Elsewhere it runs the
-/// portable twin, which the rasterizer does not call (its own row loop is the faster
-/// there): the twin is for the tests and the bench's check.
+/// Whether [`small_less_as_u16`] and [`rows_less_as_u16`] run the assembly (ARMv7E-M).
+/// Elsewhere they run the portable twins, which the rasterizer does not call (its own
+/// row loop is the faster there): the twins are for the tests and the bench's check.
 pub(crate) const ROWS_KERNEL: bool = cfg!(all(zraster_thumb, zraster_dsp));
 
 /// One edge in the form of [`EdgeDivide`](crate::raster::EdgeDivide): on each row its
@@ -275,7 +276,8 @@ pub(crate) struct SmallTarget<'z, 'c, C> {
     pub clip: Clip,
 }
 
-// The set-up assembly reads the corners at these offsets.
+// The set-up assembly reads the corners at offsets 0, 4, 8 and has these constants
+// written in.
 const _: () = {
     assert!(core::mem::size_of::<ScreenVertex>() == 12);
     assert!(SMALL == 8192 && SUBPIXEL == 16 && DEPTH_BIAS == 32768);
