@@ -9,8 +9,8 @@
 
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
-use crate::num::kernel::{rows_less_as_u16, two_bytes, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
-use crate::num::kernel::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
+use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
+use crate::num::kernel::{small_less_as_u16, two_bytes, SmallDone, SmallTarget, ROWS_KERNEL};
 use crate::num::{floor_div32, DIVIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
@@ -63,9 +63,11 @@ pub(crate) fn fill_small<C: Copy>(
 }
 
 /// [`fill_small`] with edges of kind `E`; with `kernel`, the depth test `Less` with
-/// depth writes in a two-byte colour goes to [`rows_less_as_u16`], with `walk` to
-/// [`rows_walk_less_as_u16`] (either may refuse: then `None`, and the general path
-/// draws the triangle; with `walk`, `Less` without depth writes is `None` too).
+/// depth writes in a two-byte colour goes to [`small_less_as_u16`] (set-up and rows;
+/// what it leaves goes to the general path); with `walk`, to ARMv6-M's
+/// [`rows_walk_less_as_u16`] after the set-up here (which may refuse: then `None`,
+/// and the general path draws the triangle; with `walk`, `Less` without depth writes
+/// is `None` too).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn fill_small_with<E: SmallEdge, C: Copy>(
@@ -77,6 +79,19 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     kernel: bool,
     walk: bool,
 ) -> Option<(u32, u32)> {
+    if kernel && write && is_less(&pass) && two_bytes::<C>() {
+        let mut t = SmallTarget {
+            z: &mut *b.zdata,
+            c: &mut *b.cdata,
+            width: b.width,
+            first_row: b.first_row,
+            clip: b.clip,
+        };
+        return match small_less_as_u16(&mut t, tri, color) {
+            SmallDone::Drawn(tested, failed) => Some((tested, tested.wrapping_sub(failed))),
+            SmallDone::General => None,
+        };
+    }
     let [p0, p1, p2] = tri;
     let top = by_rows(tri);
     let (xmin, xmax) = (
@@ -97,11 +112,6 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
         return Some((0, 0));
     }
     let (ox, oy) = (xmin & !(SUBPIXEL - 1), ymin & !(SUBPIXEL - 1));
-    if kernel && write && is_less(&pass) && two_bytes::<C>() {
-        // Refused (rows outside the buffers: never with a clip inside them), the
-        // general path draws it: nothing stays live across the kernel for a retry.
-        return small_kernel(b, p0, top, color, (start, end), (ox, oy));
-    }
     let Some((q, r, mid_right)) = small_steps_q(top) else {
         return Some((0, 0));
     };
@@ -228,74 +238,6 @@ fn by_rows(mut v: [&ScreenVertex; 3]) -> [&ScreenVertex; 3] {
         v.swap(0, 1);
     }
     v
-}
-
-/// [`fill_small_with`]'s rows `start..end` by [`rows_less_as_u16`] for the corners
-/// `top` (sorted, [`by_rows`]; `p0` the first given, the depth plane's origin), the
-/// triangle's local origin `(ox, oy)`: its block filled stage by stage (edges, then
-/// depth), so that few values stay live. `None` when the kernel refuses (nothing
-/// drawn).
-#[inline(always)]
-fn small_kernel<C: Copy>(
-    b: &mut Buffers<'_, '_, C>,
-    p0: &ScreenVertex,
-    top: [&ScreenVertex; 3],
-    color: C,
-    (start, end): (i32, i32),
-    (ox, oy): (i32, i32),
-) -> Option<(u32, u32)> {
-    let Some((q, r, mid_right)) = small_steps_q(top) else {
-        return Some((0, 0));
-    };
-    let (px0, py0) = (ox >> SUBPIXEL_BITS, oy >> SUBPIXEL_BITS);
-    let mut block = RowsLess::new(b.clip.x0 - px0, b.clip.x1 - px0);
-    let v = top.map(|p| (p.x() - ox, p.y() - oy));
-    let mid = ((v[1].1 + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS) + py0;
-    let n0 = kernel_edges(&mut block, v, mid_right, (start, mid, end), py0);
-    let [t0, t1, t2] = top;
-    block.depth(
-        q << 4,
-        r << 4,
-        t0.z().min(t1.z()).min(t2.z()) + DEPTH_BIAS,
-        t0.z().max(t1.z()).max(t2.z()) + DEPTH_BIAS,
-    );
-    let z = small_origin(p0.z(), (p0.x() - ox, p0.y() - start * SUBPIXEL), q, r);
-    let at = RowsAt {
-        row0: (start - b.first_row) as usize,
-        width: b.width,
-        px0,
-        n0,
-        z,
-    };
-    let (tested, failed) = rows_less_as_u16(&mut block, at, b.zdata, b.cdata, color)?;
-    Some((tested, tested.wrapping_sub(failed)))
-}
-
-/// The edges of [`fill_small_with`]'s rows for [`rows_less_as_u16`]: vertices `v`
-/// sorted top to bottom (local coordinates), rows `start..end` split at `mid`, in the
-/// [`EdgeDivide`] form. Returns the upper half's row count.
-#[inline(always)]
-fn kernel_edges(
-    rows: &mut RowsLess,
-    [v0, v1, v2]: [(i32, i32); 3],
-    mid_right: bool,
-    (start, mid, end): (i32, i32, i32),
-    py0: i32,
-) -> u32 {
-    let edge = |a: (i32, i32), c: (i32, i32), py: i32| {
-        let e = <EdgeDivide as SmallEdge>::new(a, c, py - py0);
-        DivEdge {
-            t: e.t,
-            dt: e.dt,
-            d: e.d,
-        }
-    };
-    let lower_start = mid.max(start);
-    let (n0, n1) = ((mid.min(end) - start).max(0), (end - lower_start).max(0));
-    // A half with no rows is skipped whatever its edge.
-    let short = [edge(v0, v1, start), edge(v1, v2, lower_start)];
-    rows.edges(edge(v0, v2, start), short, n1 as u32, mid_right);
-    n0 as u32
 }
 
 /// [`fill_small_with`]'s rows through ARMv6-M's loop [`rows_walk_less_as_u16`], edges
@@ -536,7 +478,7 @@ mod tests {
         }
     }
 
-    /// The rows through `rows_less_as_u16` (on the host its portable twin, on ARMv7E-M
+    /// The rows through `small_less_as_u16` (on the host its portable twin, on ARMv7E-M
     /// the assembly) and through `rows_walk_less_as_u16` (its twin; on ARMv6-M the
     /// assembly) give the pixels, depths and counts of the row loop, for random
     /// triangles from 3 to 700 pixels across (from 512 on, neither takes the small

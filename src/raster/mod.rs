@@ -16,11 +16,20 @@ use crate::Error;
 /// The y axis points down (row 0 at the top). Construction checks the ranges documented
 /// in [`fixed`](crate::fixed): `|x|, |y| ≤ GUARD_BAND`, `depth ≤ MAX_DEPTH`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+// x, y, z at offsets 0, 4, 8: the small triangle's assembly set-up reads them in place.
+#[repr(C)]
 pub struct ScreenVertex {
     x: i32,
     y: i32,
     z: u32,
 }
+
+// The layout the set-up assembly reads (`num::kernel::rows`).
+const _: () = {
+    use core::mem::offset_of;
+    assert!(offset_of!(ScreenVertex, x) == 0 && offset_of!(ScreenVertex, y) == 4);
+    assert!(offset_of!(ScreenVertex, z) == 8);
+};
 
 impl ScreenVertex {
     /// The vertex at (0, 0) with depth 0.

@@ -3,9 +3,11 @@
 //! against (`bench/mcu` compares them on the Cortex-M4F and M0+ for every length and
 //! alignment it tries, and fails otherwise). The loops: the frame clear
 //! ([`fill_u16`](fill::fill_u16)) and the depth-tested span of a flat-coloured row ([`span_less_u16`](span::span_less_u16));
-//! the rows of a small flat-coloured triangle ([`rows_less_as_u16`](rows::rows_less_as_u16),
-//! on ARMv7E-M, which runs the span loop's SIMD steps for rows of three pixels or more;
-//! on ARMv6-M [`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16), edges by DDA);
+//! a small flat-coloured triangle, set-up and rows ([`small_less_as_u16`](rows::small_less_as_u16),
+//! on ARMv7E-M, which runs the span loop's SIMD steps for rows of eight pixels or more;
+//! its rows alone are [`rows_less_as_u16`](rows::rows_less_as_u16), checked on their own);
+//! on ARMv6-M the rows of a small triangle ([`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16),
+//! edges by DDA);
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
 //! by `check_cull_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
@@ -32,7 +34,7 @@ pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
-pub(crate) use rows::{rows_less_as_u16, DivEdge, RowsAt, RowsLess, ROWS_KERNEL};
+pub(crate) use rows::{small_less_as_u16, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL};
 pub use rows_v6m::check_rows_walk_kernel;
 pub(crate) use rows_v6m::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
 pub use span::check_span_kernel;

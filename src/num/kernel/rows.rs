@@ -1,12 +1,17 @@
 //! The rows of a small flat-coloured triangle, both halves in one pass: edges by one
-//! division a row, the depth test `Less` with depth writes, a two-byte colour.
+//! division a row, the depth test `Less` with depth writes, a two-byte colour; and
+//! ([`small_less_as_u16`]) the triangle's set-up before them, from its three corners.
 //! Assembly on ARMv7E-M (the row's state in registers, its constants in one block read
 //! by `LDRD`/`LDM`), beside its portable twin.
 #![allow(unsafe_code)]
 
-/// Whether [`rows_less_as_u16`] runs the assembly (ARMv7E-M). Elsewhere it runs the
-/// portable twin, which the rasterizer does not call (its own row loop is the faster
-/// there): the twin is for the tests and the bench's check.
+use crate::fixed::SUBPIXEL;
+use crate::num::{div_floor_pair, floor_div32};
+use crate::raster::{Clip, ScreenVertex, DEPTH_BIAS, SMALL};
+
+/// Whether [`small_less_as_u16`] and [`rows_less_as_u16`] run the assembly (ARMv7E-M).
+/// Elsewhere they run the portable twins, which the rasterizer does not call (its own
+/// row loop is the faster there): the twins are for the tests and the bench's check.
 pub(crate) const ROWS_KERNEL: bool = cfg!(all(zraster_thumb, zraster_dsp));
 
 /// One edge in the form of [`EdgeDivide`](crate::raster::EdgeDivide): on each row its
@@ -287,6 +292,202 @@ pub(super) fn twin_row(
     (xb.wrapping_sub(xa) as u32, failed)
 }
 
+/// What [`small_less_as_u16`] did with a triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SmallDone {
+    /// Drawn (perhaps nothing): pixels tested, pixels failed.
+    Drawn(u32, u32),
+    /// Not drawn: an extent of 512 pixels or more, a colour that is not two bytes, or a
+    /// clip not inside the buffers. The general path's.
+    General,
+}
+
+/// The buffers a small triangle is drawn into by [`small_less_as_u16`]: rows of `width`
+/// pixels, the first of them screen row `first_row`, drawing confined to `clip`.
+pub(crate) struct SmallTarget<'z, 'c, C> {
+    pub z: &'z mut [u16],
+    pub c: &'c mut [C],
+    pub width: usize,
+    pub first_row: i32,
+    pub clip: Clip,
+}
+
+// The set-up assembly reads the corners at offsets 0, 4, 8 and has these constants
+// written in.
+const _: () = {
+    assert!(core::mem::size_of::<ScreenVertex>() == 12);
+    assert!(SMALL == 8192 && SUBPIXEL == 16 && DEPTH_BIAS == 32768);
+};
+
+/// The small flat triangle `tri` in `color` with the depth test `Less` and depth writes,
+/// set-up and rows in one pass: the small path of `fill::small` (the same pixels, depths
+/// and counts), its set-up in the order the assembly does it. [`SmallDone::General`]
+/// when it is not for this path (nothing drawn).
+#[inline(always)]
+pub(crate) fn small_less_as_u16<C: Copy>(
+    t: &mut SmallTarget<'_, '_, C>,
+    tri: [&ScreenVertex; 3],
+    color: C,
+) -> SmallDone {
+    if !two_bytes::<C>() {
+        return SmallDone::General;
+    }
+    // Every row and column of the clip inside both buffers: then so is every pixel the
+    // rows may touch (they lie inside the clip).
+    let len = t.z.len().min(t.c.len());
+    let clip = t.clip;
+    let rows = clip.y1.saturating_sub(t.first_row).max(0) as usize;
+    let inside = i32::try_from(t.width).is_ok_and(|w| clip.x0 >= 0 && clip.x1 <= w)
+        && clip.y0 >= t.first_row
+        && rows.checked_mul(t.width).is_some_and(|n| n <= len);
+    if !inside {
+        return SmallDone::General;
+    }
+    // SAFETY: C is two bytes with alignment two (checked above), so `color`'s bytes
+    // read as a u16 and `c` viewed as `c.len()` u16s covers exactly the same memory; each
+    // element then keeps its bytes or takes `color`'s: a valid C.
+    let (bits, words) = unsafe {
+        (
+            core::mem::transmute_copy::<C, u16>(&color),
+            core::slice::from_raw_parts_mut(t.c.as_mut_ptr().cast::<u16>(), t.c.len()),
+        )
+    };
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    {
+        small_less_dsp(tri, &clip, t.first_row, t.width, t.z, words, bits)
+    }
+    #[cfg(not(all(zraster_thumb, zraster_dsp)))]
+    {
+        small_less_portable(tri, &clip, t.first_row, t.width, t.z, words, bits)
+    }
+}
+
+/// The set-up of [`small_less_as_u16`]: the rows' block, where they start (`at`), or
+/// what to do instead.
+fn small_setup(
+    tri: [&ScreenVertex; 3],
+    clip: &Clip,
+    first_row: i32,
+    width: usize,
+) -> Result<(RowsLess, RowsAt), SmallDone> {
+    let p0 = tri[0];
+    // The corners top to bottom (a stable sort by y).
+    let mut v = tri;
+    if v[1].y() < v[0].y() {
+        v.swap(0, 1);
+    }
+    if v[2].y() < v[1].y() {
+        v.swap(1, 2);
+        if v[1].y() < v[0].y() {
+            v.swap(0, 1);
+        }
+    }
+    let [a, b, c] = v;
+    let xmin = a.x().min(b.x()).min(c.x());
+    let xmax = a.x().max(b.x()).max(c.x());
+    if c.y() - a.y() >= SMALL || xmax - xmin >= SMALL {
+        return Err(SmallDone::General);
+    }
+    // Rows whose centres may be covered, inside the clip; the middle corner's row
+    // between them splits the halves.
+    let centre = |y: i32| (y + 7) >> 4;
+    let (start, end) = (centre(a.y()).max(clip.y0), centre(c.y()).min(clip.y1));
+    if start >= end {
+        return Err(SmallDone::Drawn(0, 0));
+    }
+    let mid = centre(b.y()).max(start).min(end);
+    // Edges: at row py, t = (16py + 8 − a.y)·dx + (a.x − ox + 8)·dy − 1 (the
+    // `EdgeDivide` form around the local origin ox, oy).
+    let (px0, k) = (xmin >> 4, (xmin & !15) - 8);
+    let (dxl, dyl) = (c.x() - a.x(), c.y() - a.y());
+    let (dxs, dys) = (b.x() - a.x(), b.y() - a.y());
+    let edge = |s: i32, x: i32, dx: i32, dy: i32| DivEdge {
+        t: (s * dx + x * dy - 1) as u32,
+        dt: (dx << 4) as u32,
+        d: (dy << 4) as u32,
+    };
+    let (s, xa) = (16 * start + 8 - a.y(), a.x() - k);
+    let long = edge(s, xa, dxl, dyl);
+    let short0 = edge(s, xa, dxs, dys);
+    let short1 = edge(16 * mid + 8 - b.y(), xa + dxs, dxl - dxs, dyl - dys);
+    let area = dxs * dyl - dxl * dys;
+    if area == 0 {
+        return Err(SmallDone::Drawn(0, 0));
+    }
+    let mut r = RowsLess::new(clip.x0 - px0, clip.x1 - px0);
+    r.edges(long, [short0, short1], (end - mid) as u32, area > 0);
+    // Depth: ⌊16a/area⌋ and ⌊16b/area⌋ by one unsigned division each (the numerators
+    // in [−2²⁶, 2²⁶), |area| < 2²⁷), as `fill::small::small_steps_q`.
+    let (za, zb, zc) = (a.z(), b.z(), c.z());
+    let (dz1, dz2) = (
+        (zb >> 4) as i32 - (za >> 4) as i32,
+        (zc >> 4) as i32 - (za >> 4) as i32,
+    );
+    let wide = |x: i32, y: i32| i64::from(x) * i64::from(y);
+    let (na, nb) = (
+        wide(dz1, dyl) - wide(dz2, dys),
+        wide(dz2, dxs) - wide(dz1, dxl),
+    );
+    let fits = |n: i64| (-(1 << 26)..1 << 26).contains(&n);
+    let (q, rq) = if fits(na) && fits(nb) {
+        let m = area >> 31;
+        let d = (area ^ m) - m;
+        let step = |n: i64| floor_div32(((n as i32) << 4 ^ m) - m, d) as u32;
+        (step(na), step(nb))
+    } else {
+        wide_steps(na, nb, area)
+    };
+    r.depth(
+        q << 4,
+        rq << 4,
+        za.min(zb).min(zc) + DEPTH_BIAS,
+        za.max(zb).max(zc) + DEPTH_BIAS,
+    );
+    // The depth at column 0 of row `start` from the first corner given (the plane's
+    // origin): z + DEPTH_BIAS + q·(ox + 8 − x) + r·(16·start + 8 − y).
+    let u = ((px0 << 4) + 8 - p0.x()) as u32;
+    let w = (16 * start + 8 - p0.y()) as u32;
+    let z = (p0.z() + DEPTH_BIAS)
+        .wrapping_add(q.wrapping_mul(u))
+        .wrapping_add(rq.wrapping_mul(w));
+    let at = RowsAt {
+        row0: (start - first_row) as usize,
+        width,
+        px0,
+        n0: (mid - start) as u32,
+        z,
+    };
+    Ok((r, at))
+}
+
+/// ⌊16a/area⌋ and ⌊16b/area⌋ modulo 2³² (`area ≠ 0`; |a|, |b| < 2⁴²): the set-up's
+/// depth steps for numerators beyond its 32-bit division (steep depth, rare).
+fn wide_steps(a: i64, b: i64, area: i32) -> (u32, u32) {
+    let (q, r) = div_floor_pair(a * 16, b * 16, i64::from(area));
+    (q as u32, r as u32)
+}
+
+/// The portable twin of the set-up assembly: [`small_setup`] then
+/// [`rows_less_portable`]. The clip must lie inside the buffers (pixels outside are
+/// skipped).
+pub(crate) fn small_less_portable(
+    tri: [&ScreenVertex; 3],
+    clip: &Clip,
+    first_row: i32,
+    width: usize,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> SmallDone {
+    match small_setup(tri, clip, first_row, width) {
+        Ok((r, at)) => {
+            let (tested, failed) = rows_less_portable(&r, at, z, c, color);
+            SmallDone::Drawn(tested, failed)
+        }
+        Err(done) => done,
+    }
+}
+
 /// One pixel of a short row: depth in r9, address in r10 (`$at`: `[r10]`, or
 /// `[r10, #2]!` to step it first); a failure branches to `$fail`. Clobbers r12 and lr.
 #[cfg(all(zraster_thumb, zraster_dsp))]
@@ -319,7 +520,178 @@ macro_rules! rows_failed {
     };
 }
 
-/// [`rows_less_u16`] for ARMv7E-M. Rows of one and two pixels inline; longer ones by
+/// The rows of [`rows_less_dsp`] from the block in r0, the first row's depth in r3, its
+/// depth address in r4, the first half's row count in r5 (r6 and r7 pushed by the
+/// caller): ends with the pixels tested in r1. Expanded once by `rows_less_dsp` and once
+/// by `small_less_dsp` after its set-up. Clobbers r1–r12, lr and the flags.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! rows_body {
+    () => {
+        concat!(
+            "movs r6, #0\n",
+            // The long and short edges to the left and right.
+            "ldr r12, [r0, #68]\n",
+            "cmp r12, #0\n",
+            "bne 11f\n",
+            "ldrd r1, r2, [r0, #48]\n",
+            "ldrd r7, r8, [r0, #56]\n",
+            "b 12f\n",
+            "11:\n",
+            "ldrd r2, r1, [r0, #48]\n",
+            "ldrd r8, r7, [r0, #56]\n",
+            "ldrd r9, r10, [r0, #20]\n",
+            "strd r10, r9, [r0, #20]\n",
+            "12:\n",
+            "cmp r5, #0\n",
+            "beq 8f\n",
+            // A row: its columns, clamped to the clip.
+            "1:\n",
+            "udiv r10, r1, r7\n",
+            "udiv r11, r2, r8\n",
+            "ldrd r9, r12, [r0, #20]\n",
+            "add r1, r9\n",
+            "add r2, r12\n",
+            "ldrd r9, r12, [r0, #28]\n",
+            // Inside the clip (usually): cx0 ≤ x and x' ≤ cx1; else clamped at 14.
+            "cmp r10, r9\n",
+            "it ge\n",
+            "cmpge r12, r11\n",
+            "blt 14f\n",
+            "15:\n",
+            "subs r11, r11, r10\n",
+            "ble 5f\n",
+            // Its depth at the first column, clamped, and that column's address.
+            "add r6, r11\n",
+            "ldm r0, {{r9, r12, lr}}\n",
+            "mla r9, r10, r9, r3\n",
+            "add r10, r4, r10, lsl #1\n",
+            // Inside lo..=hi (usually); else clamped at 16.
+            "cmp r9, r12\n",
+            "it hs\n",
+            "cmphs lr, r9\n",
+            "blo 16f\n",
+            "17:\n",
+            "cmp r11, #1\n",
+            "bne 3f\n",
+            "lsr r9, r9, #16\n",
+            rows_pixel!("[r10]", "6f"),
+            // The next row.
+            "5:\n",
+            "ldrd r9, r12, [r0, #36]\n",
+            "add r3, r9\n",
+            "add r4, r12\n",
+            "subs r5, #1\n",
+            "bne 1b\n",
+            // The second half, its count cleared so that it runs once: the short edge
+            // replaced, the long one carried on.
+            "8:\n",
+            "ldr r5, [r0, #64]\n",
+            "cmp r5, #0\n",
+            "beq 9f\n",
+            "movs r9, #0\n",
+            "str r9, [r0, #64]\n",
+            "add lr, r0, #72\n",
+            "ldm lr, {{r9, r10, r11}}\n",
+            "ldr r12, [r0, #68]\n",
+            "cmp r12, #0\n",
+            "bne 13f\n",
+            "mov r2, r9\n",
+            "mov r8, r10\n",
+            "str r11, [r0, #24]\n",
+            "b 1b\n",
+            "13:\n",
+            "mov r1, r9\n",
+            "mov r7, r10\n",
+            "str r11, [r0, #20]\n",
+            "b 1b\n",
+            // Two pixels.
+            "3:\n",
+            "cmp r11, #2\n",
+            "bne 4f\n",
+            "ldr r12, [r0]\n",
+            "add r11, r9, r12\n",
+            "lsr r9, r9, #16\n",
+            rows_pixel!("[r10]", "7f"),
+            "2:\n",
+            "lsr r9, r11, #16\n",
+            rows_pixel!("[r10, #2]!", "6f"),
+            "b 5b\n",
+            // The row's columns clamped to the clip.
+            "14:\n",
+            "cmp r10, r9\n",
+            "it lt\n",
+            "movlt r10, r9\n",
+            "cmp r11, r12\n",
+            "it gt\n",
+            "movgt r11, r12\n",
+            "b 15b\n",
+            // The row's first depth clamped to lo..=hi.
+            "16:\n",
+            "cmp r9, r12\n",
+            "it lo\n",
+            "movlo r9, r12\n",
+            "cmp r9, lr\n",
+            "it hi\n",
+            "movhi r9, lr\n",
+            "b 17b\n",
+            "6:\n",
+            rows_failed!("5b"),
+            "7:\n",
+            rows_failed!("2b"),
+            // Eight pixels or more: span_less_dsp's loop, r0–r8 saved meanwhile, when
+            // the colour and depth rows are aligned alike; else (and for three to
+            // seven) one pixel a turn.
+            "4:\n",
+            "cmp r11, #8\n",
+            "blo 40f\n",
+            "ldr r12, [r0, #16]\n",
+            "tst r12, #2\n",
+            "bne 40f\n",
+            "push {{r0-r8}}\n",
+            "ldr r4, [r0]\n",
+            "ldr r1, [r0, #16]\n",
+            "ldr r5, [r0, #12]\n",
+            "orr r5, r5, r5, lsl #16\n",
+            "eor r6, r5, #0x00010001\n",
+            "add r1, r10\n",
+            "mov r0, r10\n",
+            "mov r2, r11\n",
+            "mov r3, r9\n",
+            "movs r7, #0\n",
+            dsp_span!("20", "21", "22", "23", "24", "25"),
+            "pop {{r0-r8}}\n",
+            "ldr r9, [r0, #44]\n",
+            "add r9, r12\n",
+            "str r9, [r0, #44]\n",
+            "b 5b\n",
+            "40:\n",
+            "push {{r1-r3}}\n",
+            "ldr r1, [r0]\n",
+            "ldrd r2, r3, [r0, #12]\n",
+            "41:\n",
+            "lsr lr, r9, #16\n",
+            "ldrh r12, [r10]\n",
+            "add r9, r1\n",
+            "cmp lr, r12\n",
+            "bhs 43f\n",
+            "strh r2, [r10, r3]\n",
+            "strh lr, [r10], #2\n",
+            "42:\n",
+            "subs r11, #1\n",
+            "bne 41b\n",
+            "pop {{r1-r3}}\n",
+            "b 5b\n",
+            "43:\n",
+            "add r10, r10, #2\n",
+            rows_failed!("42b"),
+            "9:\n",
+            "mov r1, r6\n",
+        )
+    };
+}
+
+/// [`rows_less_u16`] for ARMv7E-M. Rows of one and two pixels inline; from eight by
 /// the two-pixel SIMD steps of `span_less_dsp` when `z` and `c` lie at the same
 /// address modulo 4, else one pixel a turn. Registers: r0 the block, r1/r2 the left and
 /// right `t`, r3 the row's depth at local column 0, r4 its depth address, r5 rows left
@@ -352,172 +724,18 @@ fn rows_less_dsp(
     // each half down; a half of 0 rows is skipped), stepping the row address by the
     // pitch, and writes only columns max(x, cx0) .. min(x', cx1) of a row (signed
     // compares, clamped whenever either bound is crossed): inside both buffers (the
-    // colour at the depth address + delta). Rows of three or more pixels run the loop
+    // colour at the depth address + delta). Rows of eight or more pixels run the loop
     // of `span_less_dsp` over exactly that range (its own SAFETY argument: the colour
     // and depth addresses alike modulo 4, tested on `delta`), with r0–r8 pushed around
-    // it and popped after, or (not alike) a loop of exactly that many pixels with
-    // r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as the twin has it).
+    // it and popped after, or (not alike, or three to seven pixels) a loop of exactly
+    // that many pixels with r1–r3 pushed and popped. Quotients come from UDIV (x/0 = 0, as the twin has it).
     // The block is read and written through r0 (`failed`, `dt` reordered, the second
     // half's count). r6 and r7 (not allowed as operands) are pushed and popped; every
     // other register written is declared; the flags (GE included) are scratch.
     unsafe {
         core::arch::asm!(
             "push {{r6, r7}}",
-            "movs r6, #0",
-            // The long and short edges to the left and right.
-            "ldr r12, [r0, #68]",
-            "cmp r12, #0",
-            "bne 11f",
-            "ldrd r1, r2, [r0, #48]",
-            "ldrd r7, r8, [r0, #56]",
-            "b 12f",
-            "11:",
-            "ldrd r2, r1, [r0, #48]",
-            "ldrd r8, r7, [r0, #56]",
-            "ldrd r9, r10, [r0, #20]",
-            "strd r10, r9, [r0, #20]",
-            "12:",
-            "cmp r5, #0",
-            "beq 8f",
-            // A row: its columns, clamped to the clip.
-            "1:",
-            "udiv r10, r1, r7",
-            "udiv r11, r2, r8",
-            "ldrd r9, r12, [r0, #20]",
-            "add r1, r9",
-            "add r2, r12",
-            "ldrd r9, r12, [r0, #28]",
-            // Inside the clip (usually): cx0 ≤ x and x' ≤ cx1; else clamped at 14.
-            "cmp r10, r9",
-            "it ge",
-            "cmpge r12, r11",
-            "blt 14f",
-            "15:",
-            "subs r11, r11, r10",
-            "ble 5f",
-            // Its depth at the first column, clamped, and that column's address.
-            "add r6, r11",
-            "ldm r0, {{r9, r12, lr}}",
-            "mla r9, r10, r9, r3",
-            "add r10, r4, r10, lsl #1",
-            // Inside lo..=hi (usually); else clamped at 16.
-            "cmp r9, r12",
-            "it hs",
-            "cmphs lr, r9",
-            "blo 16f",
-            "17:",
-            "cmp r11, #1",
-            "bne 3f",
-            "lsr r9, r9, #16",
-            rows_pixel!("[r10]", "6f"),
-            // The next row.
-            "5:",
-            "ldrd r9, r12, [r0, #36]",
-            "add r3, r9",
-            "add r4, r12",
-            "subs r5, #1",
-            "bne 1b",
-            // The second half, its count cleared so that it runs once: the short edge
-            // replaced, the long one carried on.
-            "8:",
-            "ldr r5, [r0, #64]",
-            "cmp r5, #0",
-            "beq 9f",
-            "movs r9, #0",
-            "str r9, [r0, #64]",
-            "add lr, r0, #72",
-            "ldm lr, {{r9, r10, r11}}",
-            "ldr r12, [r0, #68]",
-            "cmp r12, #0",
-            "bne 13f",
-            "mov r2, r9",
-            "mov r8, r10",
-            "str r11, [r0, #24]",
-            "b 1b",
-            "13:",
-            "mov r1, r9",
-            "mov r7, r10",
-            "str r11, [r0, #20]",
-            "b 1b",
-            // Two pixels.
-            "3:",
-            "cmp r11, #2",
-            "bne 4f",
-            "ldr r12, [r0]",
-            "add r11, r9, r12",
-            "lsr r9, r9, #16",
-            rows_pixel!("[r10]", "7f"),
-            "2:",
-            "lsr r9, r11, #16",
-            rows_pixel!("[r10, #2]!", "6f"),
-            "b 5b",
-            // The row's columns clamped to the clip.
-            "14:",
-            "cmp r10, r9",
-            "it lt",
-            "movlt r10, r9",
-            "cmp r11, r12",
-            "it gt",
-            "movgt r11, r12",
-            "b 15b",
-            // The row's first depth clamped to lo..=hi.
-            "16:",
-            "cmp r9, r12",
-            "it lo",
-            "movlo r9, r12",
-            "cmp r9, lr",
-            "it hi",
-            "movhi r9, lr",
-            "b 17b",
-            "6:",
-            rows_failed!("5b"),
-            "7:",
-            rows_failed!("2b"),
-            // Three pixels or more: span_less_dsp's loop, r0–r8 saved meanwhile, when
-            // the colour and depth rows are aligned alike; else one pixel a turn.
-            "4:",
-            "ldr r12, [r0, #16]",
-            "tst r12, #2",
-            "bne 40f",
-            "push {{r0-r8}}",
-            "ldr r4, [r0]",
-            "ldr r1, [r0, #16]",
-            "ldr r5, [r0, #12]",
-            "orr r5, r5, r5, lsl #16",
-            "eor r6, r5, #0x00010001",
-            "add r1, r10",
-            "mov r0, r10",
-            "mov r2, r11",
-            "mov r3, r9",
-            "movs r7, #0",
-            dsp_span!("20", "21", "22", "23", "24", "25"),
-            "pop {{r0-r8}}",
-            "ldr r9, [r0, #44]",
-            "add r9, r12",
-            "str r9, [r0, #44]",
-            "b 5b",
-            "40:",
-            "push {{r1-r3}}",
-            "ldr r1, [r0]",
-            "ldrd r2, r3, [r0, #12]",
-            "41:",
-            "lsr lr, r9, #16",
-            "ldrh r12, [r10]",
-            "add r9, r1",
-            "cmp lr, r12",
-            "bhs 43f",
-            "strh lr, [r10]",
-            "strh r2, [r10, r3]",
-            "42:",
-            "add r10, r10, #2",
-            "subs r11, #1",
-            "bne 41b",
-            "pop {{r1-r3}}",
-            "b 5b",
-            "43:",
-            rows_failed!("42b"),
-            "9:",
-            "mov r1, r6",
+            rows_body!(),
             "pop {{r6, r7}}",
             in("r0") r as *mut RowsLess,
             out("r1") tested,
@@ -530,6 +748,320 @@ fn rows_less_dsp(
         );
     }
     (tested, r.failed)
+}
+
+/// [`small_less_as_u16`] for ARMv7E-M: the set-up of [`small_setup`] in registers, its
+/// values stored into the block as they are found, then the rows of [`rows_less_dsp`].
+/// The clip must lie inside both buffers (checked by the caller).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[inline(always)]
+fn small_less_dsp(
+    tri: [&ScreenVertex; 3],
+    clip: &Clip,
+    first_row: i32,
+    width: usize,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> SmallDone {
+    let mut block = core::mem::MaybeUninit::<RowsLess>::uninit();
+    let zaddr = z.as_mut_ptr() as u32;
+    let pitch = (width as u32).wrapping_mul(2);
+    // The address of screen row 0's column 0 in the depth rows (wrapping: a band's rows
+    // start further down); the colour at the depth address + delta.
+    let zrow0 = zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch));
+    let delta = (c.as_mut_ptr() as u32).wrapping_sub(zaddr);
+    let vertex = |p: &ScreenVertex| p as *const ScreenVertex as u32;
+    let (tested, status, failed): (u32, u32, u32);
+    // SAFETY: the set-up reads the three corners through their references (12 bytes
+    // each, `ScreenVertex` is `repr(C)`: x, y, z at 0, 4, 8) and writes only the block
+    // (a local `RowsLess`, word-aligned, every field written before the rows read it)
+    // and, below the stack pointer, 16 bytes of its own (released before the rows).
+    // It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in columns
+    // clamped to clip.x0 − px0 .. clip.x1 − px0 (|px0| ≤ 2²⁰ by the guard band, the
+    // clip's columns inside 0..width: no wrapping, so the loop's signed compares are
+    // exact), at zrow0 + row·pitch + 2·(px0 + column) = the address of that pixel in
+    // `z`: inside `z` and `c` since the clip lies inside both (the caller's check), and
+    // n0 + n1 = end − start, both ≥ 0. The rows are those of `rows_less_dsp` (its
+    // SAFETY argument). Every register written is declared (r6 and r7, not allowed as
+    // operands, are pushed and popped); the flags are scratch.
+    unsafe {
+        core::arch::asm!(
+            "push {{r6, r7}}",
+            "strd lr, r12, [r0, #12]",
+            "movs r12, #0",
+            "strd r11, r12, [r0, #40]",
+            "strd r9, r10, [r0, #28]",
+            "sub sp, #16",
+            "strd r1, r4, [sp]",
+            // The corners top to bottom (r1, r2, r3; their y in r6, r7, r9), stable.
+            "ldr r6, [r1, #4]",
+            "ldr r7, [r2, #4]",
+            "ldr r9, [r3, #4]",
+            "cmp r7, r6",
+            "bge 50f",
+            "mov r10, r1",
+            "mov r1, r2",
+            "mov r2, r10",
+            "mov r10, r6",
+            "mov r6, r7",
+            "mov r7, r10",
+            "50:",
+            "cmp r9, r7",
+            "bge 51f",
+            "mov r10, r2",
+            "mov r2, r3",
+            "mov r3, r10",
+            "mov r10, r7",
+            "mov r7, r9",
+            "mov r9, r10",
+            "cmp r7, r6",
+            "bge 51f",
+            "mov r10, r1",
+            "mov r1, r2",
+            "mov r2, r10",
+            "mov r10, r6",
+            "mov r6, r7",
+            "mov r7, r10",
+            "51:",
+            // Extents below 8192 (512 pixels), else the general path's; x in r10-r12,
+            // the smallest in r4.
+            "sub r10, r9, r6",
+            "cmp r10, #8192",
+            "bge 90f",
+            "ldr r10, [r1]",
+            "ldr r11, [r2]",
+            "ldr r12, [r3]",
+            "mov r4, r10",
+            "mov lr, r10",
+            "cmp r11, r10",
+            "ite lt",
+            "movlt r4, r11",
+            "movge lr, r11",
+            "cmp r12, r4",
+            "it lt",
+            "movlt r4, r12",
+            "cmp r12, lr",
+            "it gt",
+            "movgt lr, r12",
+            "sub lr, lr, r4",
+            "cmp lr, #8192",
+            "bge 90f",
+            // Rows start (r5) .. end (r8) inside the clip; none: drawn, nothing.
+            "add lr, r6, #7",
+            "cmp r5, lr, asr #4",
+            "it lt",
+            "asrlt r5, lr, #4",
+            "add lr, r9, #7",
+            "cmp r8, lr, asr #4",
+            "it gt",
+            "asrgt r8, lr, #4",
+            "cmp r5, r8",
+            "bge 91f",
+            // The middle row (lr) between them; n1 into the block, n0 kept.
+            "add lr, r7, #7",
+            "asr lr, lr, #4",
+            "cmp lr, r5",
+            "it lt",
+            "movlt lr, r5",
+            "cmp lr, r8",
+            "it gt",
+            "movgt lr, r8",
+            "sub r8, r8, lr",
+            "str r8, [r0, #64]",
+            "sub r8, lr, r5",
+            "str r8, [sp, #8]",
+            // Edges: t = s·dx + (x − k)·dy − 1, k = ox − 8, s = 16·row + 8 − y.
+            "sub r12, r12, r10",
+            "sub r11, r11, r10",
+            "sub r9, r9, r6",
+            "sub r7, r7, r6",
+            "rsb r6, r6, #8",
+            "add lr, r6, lr, lsl #4",
+            "sub lr, lr, r7",
+            "add r6, r6, r5, lsl #4",
+            "bic r8, r4, #15",
+            "sub r8, r8, #8",
+            "sub r10, r10, r8",
+            "asr r4, r4, #4",
+            "mul r8, r6, r12",
+            "mla r8, r10, r9, r8",
+            "sub r8, r8, #1",
+            "str r8, [r0, #48]",
+            "mul r8, r6, r11",
+            "mla r8, r10, r7, r8",
+            "sub r8, r8, #1",
+            "str r8, [r0, #52]",
+            "add r10, r10, r11",
+            "sub r6, r12, r11",
+            "sub r8, r9, r7",
+            "mul lr, lr, r6",
+            "mla lr, r10, r8, lr",
+            "sub lr, lr, #1",
+            "lsl r8, r8, #4",
+            "lsl r6, r6, #4",
+            "str lr, [r0, #72]",
+            "strd r8, r6, [r0, #76]",
+            "lsl r6, r12, #4",
+            "lsl r8, r11, #4",
+            "strd r6, r8, [r0, #20]",
+            "lsl r6, r9, #4",
+            "lsl r8, r7, #4",
+            "strd r6, r8, [r0, #56]",
+            // The area (r6; 0: nothing drawn), its sign the side, the clip's columns
+            // local.
+            "mul r6, r11, r9",
+            "mls r6, r12, r7, r6",
+            "cmp r6, #0",
+            "beq 91f",
+            "lsr r8, r6, #31",
+            "str r8, [r0, #68]",
+            "ldrd r8, r10, [r0, #28]",
+            "sub r8, r8, r4",
+            "sub r10, r10, r4",
+            "strd r8, r10, [r0, #28]",
+            // Depth: the clamp, then the numerators a (r1:r2) and b (r3:r8).
+            "ldr r8, [r1, #8]",
+            "ldr r10, [r2, #8]",
+            "ldr lr, [r3, #8]",
+            "mov r1, r8",
+            "mov r2, r8",
+            "cmp r10, r8",
+            "ite lo",
+            "movlo r1, r10",
+            "movhs r2, r10",
+            "cmp lr, r1",
+            "it lo",
+            "movlo r1, lr",
+            "cmp lr, r2",
+            "it hi",
+            "movhi r2, lr",
+            "add r1, r1, #32768",
+            "add r2, r2, #32768",
+            "strd r1, r2, [r0, #4]",
+            "lsr r8, r8, #4",
+            "rsb r10, r8, r10, lsr #4",
+            "rsb lr, r8, lr, lsr #4",
+            "smull r1, r2, r10, r9",
+            "rsb r7, r7, #0",
+            "smlal r1, r2, lr, r7",
+            "smull r3, r8, lr, r11",
+            "rsb r12, r12, #0",
+            "smlal r3, r8, r10, r12",
+            // Both in [−2²⁶, 2²⁶) (the usual), else the steps by `wide_steps` at 92.
+            "cmp r2, r1, asr #31",
+            "bne 92f",
+            "add r12, r1, #0x4000000",
+            "cmp r12, #0x8000000",
+            "bhs 92f",
+            "cmp r8, r3, asr #31",
+            "bne 92f",
+            "add r12, r3, #0x4000000",
+            "cmp r12, #0x8000000",
+            "bhs 92f",
+            // q = ⌊16a/area⌋ (r1), r = ⌊16b/area⌋ (r3): the sign folded in, one UDIV of
+            // n or !n each.
+            "eor r10, r6, r6, asr #31",
+            "sub r10, r10, r6, asr #31",
+            "asr r6, r6, #31",
+            "eor r1, r6, r1, lsl #4",
+            "sub r1, r1, r6",
+            "eor r2, r1, r1, asr #31",
+            "udiv r2, r2, r10",
+            "eor r1, r2, r1, asr #31",
+            "eor r3, r6, r3, lsl #4",
+            "sub r3, r3, r6",
+            "eor r2, r3, r3, asr #31",
+            "udiv r2, r2, r10",
+            "eor r3, r2, r3, asr #31",
+            "93:",
+            "lsl r2, r1, #4",
+            "str r2, [r0]",
+            "lsl r2, r3, #4",
+            "str r2, [r0, #36]",
+            // The first row's depth at column 0 (r3) from the first corner given, its
+            // address (r4), the first half's rows (r5).
+            "ldr lr, [sp]",
+            "ldm lr, {{r6, r7, r8}}",
+            "rsb r6, r6, #8",
+            "add r6, r6, r4, lsl #4",
+            "rsb r7, r7, #8",
+            "add r7, r7, r5, lsl #4",
+            "add r8, r8, #32768",
+            "mla r8, r1, r6, r8",
+            "mla r3, r3, r7, r8",
+            "ldr r2, [r0, #40]",
+            "ldr r1, [sp, #4]",
+            "mla r1, r5, r2, r1",
+            "add r4, r1, r4, lsl #1",
+            "ldr r5, [sp, #8]",
+            "add sp, #16",
+            rows_body!(),
+            "ldr r3, [r0, #44]",
+            "movs r2, #0",
+            "b 99f",
+            "90:",
+            "movs r2, #1",
+            "b 98f",
+            // Steep depth: q and r by a call (AAPCS: a in r0:r1, b in r2:r3, the area
+            // on the stack; q, r back in r0, r1), the block kept beside the area.
+            "92:",
+            "strd r6, r0, [sp, #-8]!",
+            "mov r0, r1",
+            "mov r1, r2",
+            "mov r2, r3",
+            "mov r3, r8",
+            "bl {wide}",
+            "mov r3, r1",
+            "mov r1, r0",
+            "ldr r0, [sp, #4]",
+            "add sp, #8",
+            "b 93b",
+            "91:",
+            "movs r2, #0",
+            "98:",
+            "add sp, #16",
+            "movs r1, #0",
+            "movs r3, #0",
+            "99:",
+            "pop {{r6, r7}}",
+            in("r0") block.as_mut_ptr(),
+            inout("r1") vertex(tri[0]) => tested,
+            inout("r2") vertex(tri[1]) => status,
+            inout("r3") vertex(tri[2]) => failed,
+            inout("r4") zrow0 => _,
+            inout("r5") clip.y0 => _,
+            inout("r8") clip.y1 => _,
+            inout("r9") clip.x0 => _,
+            inout("r10") clip.x1 => _,
+            inout("r11") pitch => _,
+            inout("r12") delta => _,
+            inout("lr") u32::from(color) => _,
+            wide = sym wide_steps_c,
+            // The call's: the caller-saved floating-point registers, where there are any
+            // (its core ones are all operands above).
+            #[cfg(not(zraster_soft_float))] out("d0") _,
+            #[cfg(not(zraster_soft_float))] out("d1") _,
+            #[cfg(not(zraster_soft_float))] out("d2") _,
+            #[cfg(not(zraster_soft_float))] out("d3") _,
+            #[cfg(not(zraster_soft_float))] out("d4") _,
+            #[cfg(not(zraster_soft_float))] out("d5") _,
+            #[cfg(not(zraster_soft_float))] out("d6") _,
+            #[cfg(not(zraster_soft_float))] out("d7") _,
+        );
+    }
+    if status == 0 {
+        SmallDone::Drawn(tested, failed)
+    } else {
+        SmallDone::General
+    }
+}
+
+/// [`wide_steps`] for the set-up assembly, which calls it.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+extern "C" fn wide_steps_c(a: i64, b: i64, area: i32) -> u64 {
+    let (q, r) = wide_steps(a, b, area);
+    u64::from(q) | u64::from(r) << 32
 }
 
 /// The xorshift32 generator of the rows kernels' checks.
@@ -678,15 +1210,100 @@ pub(super) fn check_cases<R>(
     bad
 }
 
+/// The set-up kernel's cases of [`check_rows_kernel`]: random triangles (from a pixel
+/// to the buffer across, some 512 pixels or more, flat, of steep depth; clips inside
+/// the buffers, some narrower) through `small_less_as_u16` and `small_less_portable`
+/// into copies of the same buffers (a depth and a colour buffer of 48 × 16 each in
+/// `mine` and `twin`), compared. Returns the number of cases that differ.
+fn check_small_setup(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize {
+    const W: usize = 48;
+    const H: usize = 16;
+    let (z1, c1) = mine.split_at_mut(W * H);
+    let (z2, c2) = twin.split_at_mut(W * H);
+    let mut bad = 0;
+    for case in 0..1200u32 {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (next(seed) as u16 | 0x8000 >> (case % 3), next(seed) as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        // Colour rows at the depth rows' address modulo 4, or not (one row fewer).
+        let off = (case / 2 % 2) as usize;
+        let first_row = (next(seed) % 5) as i32 - 2;
+        let rows = (H - off) as i32;
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((next(seed) % 20) as i32, (next(seed) % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (next(seed) % 30) as i32,
+                y1: first_row + y0 + (next(seed) % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + rows,
+            }
+        };
+        let span = 40 << (case % 4 * 3 / 2); // 40, 80, 320, 640
+        let z0 = next(seed) >> 1;
+        let spread = 1u32 << (10 + case / 4 % 4 * 7); // 2¹⁰, 2¹⁷, 2²⁴, 2³¹
+                                                      // Corners near a random point of the buffer (1/16 pixel), one far on some.
+        let (bx, by) = (
+            (next(seed) % (W as u32 * 16)) as i32 - 40,
+            (next(seed) % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        let mut vertex = |k: u32| {
+            let far = if case % 29 == 0 && k == 1 { 9000 } else { 0 };
+            let x = (next(seed) % span) as i32 + bx - span as i32 / 2 + far;
+            let y = (next(seed) % span) as i32 + by - span as i32 / 2;
+            let z = z0
+                .saturating_add(next(seed) % spread)
+                .min(crate::fixed::MAX_DEPTH);
+            ScreenVertex::new(x, y, z).unwrap_or(ScreenVertex::ORIGIN)
+        };
+        let mut tri = [vertex(0), vertex(1), vertex(2)];
+        if case % 7 == 0 {
+            tri[2] = tri[1];
+        }
+        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
+            return usize::MAX;
+        };
+        let color = next(seed) as u16;
+        let mut t = SmallTarget {
+            z: &mut z1[..],
+            c: ca,
+            width: W,
+            first_row,
+            clip,
+        };
+        let got = small_less_as_u16(&mut t, tri.each_ref(), color);
+        let want = small_less_portable(tri.each_ref(), &clip, first_row, W, z2, cb, color);
+        if got != want || z1 != z2 || c1 != c2 {
+            bad += 1;
+        }
+    }
+    bad
+}
+
 /// On-target check of the rows assembly against its twin, for the bench firmware
 /// (`check_cases`): random triangles' rows (edges, depths, clip columns, both
 /// halves, rows of every length from empty to 40 pixels) through `rows_less_as_u16`
-/// and `rows_less_portable`. Returns the number of cases that differ (where there is
-/// no assembly, the twin against itself). Out of line: its frame is not the bench's.
+/// and `rows_less_portable`, then whole small triangles, set-up and rows, through
+/// `small_less_as_u16` and its twin ([`check_small_setup`]). Returns the number of
+/// cases that differ (where there is no assembly, the twin against itself). Out of
+/// line: its frame is not the bench's.
 #[inline(never)]
 pub fn check_rows_kernel(buf: &mut [u16]) -> usize {
     let kernel = rows_less_as_u16::<u16>;
-    check_cases(buf, 0x2545_f491, check_case, kernel, rows_less_portable)
+    let bad = check_cases(buf, 0x2545_f491, check_case, kernel, rows_less_portable);
+    let Some(buf) = buf.get_mut(..4 * CHECK_W * 16) else {
+        return usize::MAX;
+    };
+    let (mine, twin) = buf.split_at_mut(2 * CHECK_W * 16);
+    bad.saturating_add(check_small_setup(&mut 0x9e37_79b9, mine, twin))
 }
 
 #[cfg(test)]
