@@ -219,8 +219,10 @@ pub(crate) fn udivrem(n: u32, d: u32) -> (u32, u32) {
 #[inline(never)]
 pub(crate) fn udivrem_wide(n: u128, d: u128) -> (u128, u128) {
     let (mut q, mut r, mut steps) = (n, 0u128, 128);
-    // Each zero word at the top of n leaves r at 0 and adds 32 zero quotient bits.
-    while steps > 0 && q >> 96 == 0 {
+    // A word of n at a time while r stays below d: 32 zero quotient bits each (the
+    // bit loop then runs about as many times as the quotient has bits).
+    while steps > 0 && r >> 96 == 0 && (r << 32 | q >> 96) < d {
+        r = r << 32 | q >> 96;
         q <<= 32;
         steps -= 32;
     }
