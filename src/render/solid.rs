@@ -267,7 +267,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         };
         // A band drawn without bins skips the triangles off its rows.
         let rows = (!first).then(|| clip.subpixel_rows());
-        let walk = CachedWalk::drawing(indices, faces, cache, self.options.cull);
+        let walk = CachedWalk::new(indices, faces, cache, self.options.cull);
+        // The scan's operands apart from the walk, where the scan reads them.
         let operands = walk.operands();
         let mut walk = walk.reading(&operands);
         let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);

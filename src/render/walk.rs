@@ -105,12 +105,7 @@ pub(crate) fn decide<V: Corner>([a, b, c]: [&V; 3], rows: Option<(i32, i32)>, cu
 /// the cull mode's range of dropped areas ([`DropRange`]). It counts only the rare
 /// outcomes and the drawn faces (the culled ones, most of them, are what is left over),
 /// so the compiler keeps its few values in registers.
-///
-/// `DRAW`: whether it is the draw loop's walk ([`CachedWalk::drawing`]), which on
-/// ARMv6-M goes by the assembly scan too (it pays there, where the Rust scan spills,
-/// but not in band binning's loop, [`CachedWalk::new`]) and on ARMv7E-M reads the
-/// scan's operands from a copy kept apart ([`CachedWalk::reading`]).
-pub(crate) struct CachedWalk<'a, const DRAW: bool = false> {
+pub(crate) struct CachedWalk<'a> {
     faces: core::slice::Iter<'a, [u16; 3]>,
     /// The number of the first face.
     first: usize,
@@ -124,7 +119,7 @@ pub(crate) struct CachedWalk<'a, const DRAW: bool = false> {
     /// `faces` (which it leaves alone).
     scan: CullScan<'a, CachedVertex>,
     pos: usize,
-    /// The copy of the scan's operands the draw loop's walk reads.
+    /// A copy of the scan's operands to read them from ([`CachedWalk::reading`]).
     operands: Option<&'a ScanRegs<'a>>,
 }
 
@@ -187,55 +182,6 @@ impl<'a> CachedWalk<'a> {
         cache: &'a [CachedVertex],
         cull: Cull,
     ) -> Self {
-        Self::with(indices, faces, cache, cull)
-    }
-}
-
-impl<'a> CachedWalk<'a, true> {
-    /// [`CachedWalk::new`] for the draw loop (see `DRAW`), to be given its operands'
-    /// copy by [`reading`](CachedWalk::reading).
-    #[inline(always)]
-    pub(crate) fn drawing(
-        indices: &'a [[u16; 3]],
-        faces: core::ops::Range<usize>,
-        cache: &'a [CachedVertex],
-        cull: Cull,
-    ) -> Self {
-        Self::with(indices, faces, cache, cull)
-    }
-
-    /// A copy of the scan's operands, which the caller keeps (apart from the walk) for
-    /// [`reading`](CachedWalk::reading).
-    #[inline(always)]
-    pub(crate) fn operands(&self) -> ScanRegs<'a> {
-        self.scan.operands()
-    }
-
-    /// The walk reading the scan's operands from `operands` (its own, copied).
-    #[inline(always)]
-    pub(crate) fn reading<'b>(self, operands: &'b ScanRegs<'b>) -> CachedWalk<'b, true>
-    where
-        'a: 'b,
-    {
-        let walk: CachedWalk<'b, true> = self;
-        CachedWalk {
-            operands: Some(operands),
-            ..walk
-        }
-    }
-}
-
-impl<'a, const DRAW: bool> CachedWalk<'a, DRAW> {
-    /// Whether the walk goes by [`skip_culled`].
-    const SCANNED: bool = CULL_KERNEL && (DRAW || !crate::num::ARMV6M);
-
-    #[inline(always)]
-    fn with(
-        indices: &'a [[u16; 3]],
-        faces: core::ops::Range<usize>,
-        cache: &'a [CachedVertex],
-        cull: Cull,
-    ) -> Self {
         let first = faces.start;
         let faces = indices.get(faces).unwrap_or(&[]);
         let drop = DropRange::of(cull);
@@ -249,6 +195,28 @@ impl<'a, const DRAW: bool> CachedWalk<'a, DRAW> {
             scan: CullScan::new(faces, cache, XY_AT, CachedVertex::xy, drop.lo, drop.span),
             pos: 0,
             operands: None,
+        }
+    }
+
+    /// A copy of the scan's operands, which the caller keeps (apart from the walk) for
+    /// [`reading`](CachedWalk::reading).
+    #[inline(always)]
+    pub(crate) fn operands(&self) -> ScanRegs<'a> {
+        self.scan.operands()
+    }
+
+    /// The walk reading the scan's operands from `operands`, its own copied (on
+    /// ARMv7E-M by one LDM a call, see [`skip_culled_by`]), which the caller keeps
+    /// apart from the walk.
+    #[inline(always)]
+    pub(crate) fn reading<'b>(self, operands: &'b ScanRegs<'b>) -> CachedWalk<'b>
+    where
+        'a: 'b,
+    {
+        let walk: CachedWalk<'b> = self;
+        CachedWalk {
+            operands: Some(operands),
+            ..walk
         }
     }
 
@@ -267,12 +235,12 @@ impl<'a, const DRAW: bool> CachedWalk<'a, DRAW> {
     }
 }
 
-impl<'a, const DRAW: bool> Iterator for CachedWalk<'a, DRAW> {
+impl<'a> Iterator for CachedWalk<'a> {
     type Item = Result<(usize, Option<[&'a CachedVertex; 3]>), Error>;
 
     #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
-        if Self::SCANNED {
+        if CULL_KERNEL {
             return self.next_scanned();
         }
         let (cache, drop) = (self.cache, self.drop);
@@ -303,7 +271,7 @@ impl<'a, const DRAW: bool> Iterator for CachedWalk<'a, DRAW> {
     }
 }
 
-impl<'a, const DRAW: bool> CachedWalk<'a, DRAW> {
+impl<'a> CachedWalk<'a> {
     /// [`Iterator::next`] past the dropped faces in assembly ([`skip_culled`]), to the
     /// next face to look at: a face it finds drawn comes with its corners, any other
     /// takes the decisions of the Rust scan.
@@ -474,10 +442,10 @@ mod tests {
     }
 
     /// The walk through the assembly scan's twin (`next_scanned`, on hosts the portable
-    /// scan of `num::kernel`), also as the draw loop's (operands read from a copy),
-    /// yields the faces, errors and counts of the Rust walk, over
-    /// random caches (unplaced corners, outside ones, extremes) and faces (bad indices,
-    /// degenerate triangles), for every cull mode.
+    /// scan of `num::kernel`), also reading the scan's operands from a copy, yields the
+    /// faces, errors and counts of the Rust walk, over random caches (unplaced corners,
+    /// outside ones, extremes) and faces (bad indices, degenerate triangles), for every
+    /// cull mode.
     #[test]
     fn the_scanned_walk_is_the_rust_walk() {
         let mut seed = 0x1234_5679_u32;
@@ -510,7 +478,7 @@ mod tests {
             let range = start..faces.len().max(start);
             let mut rust = CachedWalk::new(&faces, range.clone(), &cache, cull);
             let mut scanned = CachedWalk::new(&faces, range.clone(), &cache, cull);
-            let drawing = CachedWalk::drawing(&faces, range, &cache, cull);
+            let drawing = CachedWalk::new(&faces, range, &cache, cull);
             let operands = drawing.operands();
             let mut drawing = drawing.reading(&operands);
             type Item<'a> = <CachedWalk<'a> as Iterator>::Item;
