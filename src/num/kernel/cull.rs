@@ -494,7 +494,7 @@ fn skip_culled_v6m<'a, T>(pos: &mut usize, scan: &CullScan<'a, T>) -> Option<[&'
 /// caches of up to 24 entries (both layouts: x at byte 0 and at byte 4), with unplaced
 /// corners, indices out of range, degenerate and extreme triangles (corners at
 /// ±(2¹⁴ − 1)), for the three cull modes and random ranges, with the operands in
-/// registers and read from a copy ([`skip_culled_by`]). Returns the number of runs
+/// registers and read from a copy (`skip_culled_by`). Returns the number of runs
 /// where either stops at a different face than the twin or differs on whether that face
 /// is drawn.
 #[inline(never)] // its arrays stay out of the caller's frame (the bench's stack figure)
