@@ -27,24 +27,38 @@ impl<'a, T> CullScan<'a, T> {
     pub(crate) fn faces(&self) -> &'a [[u16; 3]] {
         self.faces
     }
+
+    /// The x and y of the corners of face `t`, `None` for an index past the cache.
+    #[inline(always)]
+    pub(crate) fn corners(&self, t: &[u16; 3]) -> Option<[(i32, i32); 3]> {
+        let get = |i: u16| self.cache.get(usize::from(i)).map(self.xy);
+        Some([get(t[0])?, get(t[1])?, get(t[2])?])
+    }
+
+    /// The assembly loop's operands (for the binning scan's loop, `bin`).
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    #[inline(always)]
+    pub(super) fn regs(&self) -> &ScanRegs<'a> {
+        &self.regs
+    }
 }
 
 /// The assembly loop's operands (r0, r2–r5, r12, lr), handed over in registers: an
 /// address of them taken in the walk would keep the walk's fields in memory. Read by
 /// the ARMv7E-M loop only (the twin reads `span`).
 #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
-struct ScanRegs<'a> {
-    faces: *const [u16; 3],
+pub(super) struct ScanRegs<'a> {
+    pub(super) faces: *const [u16; 3],
     /// The address of the first entry's x.
-    xy: *const u8,
+    pub(super) xy: *const u8,
     /// The entries the loop may read: `cache.len()`, or 0 when the entries are not
     /// laid out as the loop expects.
-    len: usize,
-    neg_lo: i32,
-    span: u32,
+    pub(super) len: usize,
+    pub(super) neg_lo: i32,
+    pub(super) span: u32,
     /// −2¹⁴ · 2¹⁶: the marks' bound for x in a word's high half.
-    mark: i32,
-    faces_len: usize,
+    pub(super) mark: i32,
+    pub(super) faces_len: usize,
     cache: PhantomData<&'a [u8]>,
 }
 

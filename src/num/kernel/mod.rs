@@ -6,13 +6,16 @@
 //! the rows of a small flat-coloured triangle ([`rows_less_as_u16`](rows::rows_less_as_u16),
 //! on ARMv7E-M, which runs the span loop's SIMD steps for rows of three pixels or more);
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
-//! by `check_cull_kernel`);
+//! by `check_cull_kernel`), and the same scan binning the drawn faces of a banded frame
+//! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `cull`, `mac` and `texel`, each with `#![allow(unsafe_code)]`).
+//! (`fill`, `span`, `rows`, `cull`, `bin`, `mac` and `texel`, each with
+//! `#![allow(unsafe_code)]`).
 
+mod bin;
 mod cull;
 mod fill;
 mod mac;
@@ -22,6 +25,8 @@ mod span;
 mod rows;
 mod texel;
 
+pub use bin::check_bin_kernel;
+pub(crate) use bin::{append, bin_scan, chain_of, end_chains, BinChains, BIN_KERNEL};
 pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, CullScan, CULL_KERNEL};
 pub use fill::check_fill_kernel;
