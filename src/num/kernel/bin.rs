@@ -220,12 +220,13 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
     // them): 2⌊top/rows⌋ + 1 and 2⌊bottom/rows⌋ for 0 ≤ top ≤ bottom ≤ last_row =
     // height − 1 are below 2 · bands + 1 (rows ≥ 1, so UDIV never divides by 0), and
     // `tall` is the last.
-    // r6 (not allowed as an operand) is pushed and popped with r8–r11; the flags are
-    // scratch.
+    // r6 and r7 (not allowed as operands) are pushed and popped with r8–r11 (r7 counts
+    // the drawn faces, stored back at the end); the flags are scratch.
     unsafe {
         core::arch::asm!(
-            "push {{r6, r8-r11}}",
+            "push {{r6-r11}}",
             "mov r6, {consts}",
+            "ldr r7, [r6, #8]", // the drawn faces so far
             "add r0, r0, r1, lsl #1",
             "add r0, r0, r1, lsl #2", // the face at `pos`
             "subs r1, lr, r1",        // the faces left
@@ -257,7 +258,8 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "bne 2b",
             "3:", // a bad index or an unplaced corner, or none left
             "sub r1, lr, r1", // the face it stopped at (`pos` if none was left)
-            "pop {{r6, r8-r11}}",
+            "str r7, [r6, #8]",
+            "pop {{r6-r11}}",
             "b 9f",
             // Drawn: its rows top..=bottom from the corners' y (y0 and the differences).
             "4:",
@@ -283,9 +285,7 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "cmp r9, r10",
             "it gt",
             "movgt r9, r10", // bottom, at most last_row
-            "ldr r10, [r6, #8]",
-            "adds r10, #1",
-            "str r10, [r6, #8]", // one more drawn
+            "adds r7, #1", // one more drawn
             "cmp r8, r9",
             "bgt 5b", // no row
             "udiv r8, r8, r11",
