@@ -325,8 +325,9 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
 /// the bench firmware: `cases` random runs as `check_cull_kernel` makes them (faces with
 /// unplaced corners, bad indices, degenerate and extreme triangles, every cull mode),
 /// binned for random screen heights (up to 128 rows, some faces above or below it) and
-/// band heights, the chains in `scratch` (at least 600 entries). Returns the number of
-/// runs where the two stop at different faces, count different drawn faces, or leave
+/// band heights, the chains in `scratch` (two sets of up to 2 · 257 + 12 entries: every
+/// case counts as differing when it holds fewer than 1,052). Returns the number of runs
+/// where the two stop at different faces, count different drawn faces, or leave
 /// different chains.
 #[inline(never)] // its arrays stay out of the caller's frame (the bench's stack figure)
 pub fn check_bin_kernel(scratch: &mut [u16], cases: usize) -> usize {
@@ -345,6 +346,9 @@ pub fn check_bin_kernel(scratch: &mut [u16], cases: usize) -> usize {
     };
     let m = (1 << 14) - 1;
     let mut bad = 0;
+    if scratch.len() < 2 * (2 * 257 + 12) {
+        return cases;
+    }
     let (mine, twin) = scratch.split_at_mut(scratch.len() / 2);
     for case in 0..cases {
         let k = (case & 1) * 2;
