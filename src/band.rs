@@ -15,6 +15,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 use crate::buffer::bins_for;
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
+use crate::num::kernel::{append, chain_of, end_chains, BinChains, BIN_KERNEL};
 use crate::raster::Clip;
 use crate::render::{
     cached_triangle, outside_rows, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
@@ -245,7 +246,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let nt = indices.len();
         let nb = height.div_ceil(rows) as usize;
         let needed = bins_for(nt, height, rows);
-        let (rows, height) = (rows as i32, height as i32);
         let Some(cache) = self.cache.as_deref() else {
             return off(self, Unbinned::NoCache);
         };
@@ -267,56 +267,59 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         for (c, t) in tails.iter_mut().enumerate() {
             *t = (nt + c) as u16;
         }
-        // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
-        // shift there when `rows` is a power of two.
-        let shift = rows.trailing_zeros();
-        let pow2 = crate::num::ARMV6M && rows.count_ones() == 1;
-        let band_of = |row: i32| if pow2 { row >> shift } else { row / rows };
-        let mut append = |c: usize, f: usize| {
-            if let Some(tail) = tails.get_mut(c) {
-                if let Some(slot) = slots.get_mut(usize::from(*tail)) {
-                    *slot = f as u16;
-                }
-                *tail = f as u16;
-            }
-        };
         let mut walk = CachedWalk::new(indices, 0..nt, cache, self.options.cull);
         let mut clipped = FrameStats::default();
-        for next in walk.by_ref() {
-            let (f, tri) = next?;
-            let Some([p, q, r]) = tri else {
-                // Near a clip plane: drawn by the general path in every band; counted
-                // now by that path, as the whole frame counts it.
-                let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
-                clipped.add_geometry(&g);
-                append(chains - 1, f);
-                continue;
+        let tall = chains - 1;
+        if BIN_KERNEL {
+            // The scan bins the drawn faces itself; it leaves the others to the walk's
+            // decisions, and so to this loop.
+            let Some(mut bins) = BinChains::new(tails, slots, height, rows) else {
+                return off(self, Unbinned::BinsTooShort);
             };
-            // The screen rows whose pixel centres the triangle may cover: top..=bottom,
-            // none when top > bottom.
-            // (Rounding each y before the minimum and maximum keeps them 32-bit: of
-            // 16-bit values LLVM takes them in 16 bits and extends them again.)
-            let (ya, yb, yc) = (p.xy().1 + 7, q.xy().1 + 7, r.xy().1 + 7);
-            let top = (ya.min(yb).min(yc) >> 4).max(0);
-            let bottom = ((ya.max(yb).max(yc) >> 4) - 1).min(height - 1);
-            if top > bottom {
-                continue;
+            while let Some(next) = walk.next_binned(&mut bins) {
+                let (f, tri) = next?;
+                let Some([p, q, r]) = tri else {
+                    // Near a clip plane: as below.
+                    let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
+                    clipped.add_geometry(&g);
+                    bins.append(tall, f);
+                    continue;
+                };
+                bins.bin(f, [p.xy().1, q.xy().1, r.xy().1]);
             }
-            let (tb, bb) = (band_of(top), band_of(bottom));
-            match bb - tb {
-                0 => append(2 * tb as usize + 1, f),
-                1 => append(2 * tb as usize, f),
-                _ => append(chains - 1, f),
+            bins.end_chains(END);
+        } else {
+            // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
+            // shift there when `rows` is a power of two.
+            let shift = rows.trailing_zeros();
+            let pow2 = crate::num::ARMV6M && rows.count_ones() == 1;
+            let band_of = |row: i32| {
+                if pow2 {
+                    row >> shift
+                } else {
+                    row / rows as i32
+                }
+            };
+            let last_row = height as i32 - 1;
+            for next in walk.by_ref() {
+                let (f, tri) = next?;
+                let Some([p, q, r]) = tri else {
+                    // Near a clip plane: drawn by the general path in every band (the
+                    // last chain); counted now by that path, as the whole frame counts it.
+                    let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
+                    clipped.add_geometry(&g);
+                    append(tails, slots, tall, f);
+                    continue;
+                };
+                let ys = [p.xy().1, q.xy().1, r.xy().1];
+                if let Some(c) = chain_of(ys, last_row, tall, band_of) {
+                    append(tails, slots, c, f);
+                }
             }
+            end_chains(tails, slots, END);
         }
         let mut st = walk.stats();
         st.add_geometry(&clipped);
-        // End every chain: after its last triangle, or at its head when empty.
-        for c in 0..chains {
-            if let Some(slot) = tails.get(c).and_then(|&t| slots.get_mut(usize::from(t))) {
-                *slot = END;
-            }
-        }
         self.count(st);
         Ok(Some(nt))
     }
@@ -427,7 +430,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
 struct BandFaces<'a> {
     links: &'a [u16],
     /// The next face of each chain, [`END`] (larger than any face) when done, shifted
-    /// left by two above the chain's number: the least of them names both.
+    /// left by two above the chain's number, in increasing order: the first names the
+    /// band's next face and its chain.
     heads: [u32; 4],
 }
 
@@ -444,19 +448,32 @@ impl<'a> BandFaces<'a> {
         // reaching the next band, the others), and the tall or clipped ones.
         let above = if k > 0 { head(2 * k - 2) } else { END };
         let at = |f: u16, c: u32| u32::from(f) << 2 | c;
+        let [mut a, mut b, mut c, mut d] = [
+            at(above, 0),
+            at(head(2 * k), 1),
+            at(head(2 * k + 1), 2),
+            at(head(chains - 1), 3),
+        ];
+        // In increasing order (no two are equal: each names its chain), by a sorting
+        // network of five compare-exchanges.
+        let order = |x: &mut u32, y: &mut u32| {
+            if *x > *y {
+                core::mem::swap(x, y);
+            }
+        };
+        order(&mut a, &mut b);
+        order(&mut c, &mut d);
+        order(&mut a, &mut c);
+        order(&mut b, &mut d);
+        order(&mut b, &mut c);
         BandFaces {
             links,
-            heads: [
-                at(above, 0),
-                at(head(2 * k), 1),
-                at(head(2 * k + 1), 2),
-                at(head(chains - 1), 3),
-            ],
+            heads: [a, b, c, d],
         }
     }
 
     fn is_empty(&self) -> bool {
-        self.heads.iter().all(|&h| h >> 2 == u32::from(END))
+        self.heads[0] >> 2 == u32::from(END)
     }
 
     /// The faces with their corners' indices, from the mesh's `indices`.
@@ -481,9 +498,8 @@ impl<'m> Iterator for BandTriangles<'_, 'm> {
     #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         let BandFaces { links, heads } = &mut self.faces;
-        // The chain with the lowest next face (no two chains hold the same face).
-        let [a, b, c, d] = *heads;
-        let least = a.min(b).min(c.min(d));
+        // The first head names the next face and its chain.
+        let least = heads[0];
         let (f, k) = ((least >> 2) as usize, least & 3);
         // Both lookups are in bounds below `n`; END (more than any face) is not.
         let n = links.len().min(self.indices.len());
@@ -493,8 +509,22 @@ impl<'m> Iterator for BandTriangles<'_, 'm> {
         let (Some(&link), Some(t)) = (links.get(f), self.indices.get(f)) else {
             return None;
         };
-        if let Some(head) = heads.get_mut(k as usize) {
-            *head = u32::from(link) << 2 | k;
+        // The chain's next face takes the first head's place, moved down past the
+        // heads below it (it stays first about half the time in bunny-320: a band's
+        // faces come in runs from one chain).
+        let next = u32::from(link) << 2 | k;
+        let mut i = 0;
+        while let Some(&h) = heads.get(i + 1) {
+            if next < h {
+                break;
+            }
+            if let Some(slot) = heads.get_mut(i) {
+                *slot = h;
+            }
+            i += 1;
+        }
+        if let Some(slot) = heads.get_mut(i) {
+            *slot = next;
         }
         Some((f, t, Carry::of_chain(k)))
     }

@@ -397,6 +397,8 @@ pub use render::{TexturedTarget, Texturing, UvMode};
 pub use scene::Scene;
 
 #[doc(hidden)]
+pub use num::kernel::check_bin_kernel;
+#[doc(hidden)]
 pub use num::kernel::check_cull_kernel;
 /// For the bench firmware: check the assembly fill and span loops against their
 /// portable twins on the target (the number of differing cases; see

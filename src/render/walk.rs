@@ -5,7 +5,8 @@
 //! any mesh, which also clips), band binning, depth sorting and hidden-line.
 
 use super::*;
-use crate::num::kernel::{skip_culled, skip_culled_by, CullScan, ScanRegs, CULL_KERNEL};
+use crate::num::kernel::{bin_scan, skip_culled, skip_culled_by, BinChains, CullScan};
+use crate::num::kernel::{ScanRegs, BIN_KERNEL, CULL_KERNEL};
 
 /// Whether `tri` lies wholly above or below rows `row0..row1` (in 1/16 pixel): later
 /// passes (bands) skip such triangles before anything else.
@@ -272,6 +273,23 @@ impl<'a> Iterator for CachedWalk<'a> {
 }
 
 impl<'a> CachedWalk<'a> {
+    /// [`Iterator::next`] for a banded frame's binning: on ARMv7E-M the drawn faces the
+    /// assembly scan finds on the way are binned into `chains` there ([`bin_scan`]) and
+    /// counted, not returned; every other face comes back as `next` returns it (and on
+    /// other targets every face).
+    #[inline(always)]
+    pub(crate) fn next_binned(
+        &mut self,
+        chains: &mut BinChains<'_>,
+    ) -> Option<<Self as Iterator>::Item> {
+        if BIN_KERNEL {
+            let before = chains.drawn();
+            bin_scan(&mut self.pos, &self.scan, chains);
+            self.tally[2] += chains.drawn() - before;
+        }
+        self.next()
+    }
+
     /// [`Iterator::next`] past the dropped faces in assembly ([`skip_culled`]), to the
     /// next face to look at: a face it finds drawn comes with its corners, any other
     /// takes the decisions of the Rust scan.

@@ -157,6 +157,9 @@ fn main() -> ! {
     // The assembly cull scan likewise: random runs of faces over random caches.
     let bad = zraster::check_cull_kernel(20_000);
     hprintln!("cull kernel cases differing from the portable twin: {}", bad);
+    // The cull scan binning a banded frame's faces likewise.
+    let bad = zraster::check_bin_kernel(&mut depth[..1200], 20_000);
+    hprintln!("bin kernel cases differing from the portable twin: {}", bad);
 
     // ---- bunny-320, full frame.
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();

@@ -88,6 +88,20 @@ impl<'a, T> CullScan<'a, T> {
     pub(crate) fn faces(&self) -> &'a [[u16; 3]] {
         self.faces
     }
+
+    /// The x and y of the corners of face `t`, `None` for an index past the cache.
+    #[inline(always)]
+    pub(crate) fn corners(&self, t: &[u16; 3]) -> Option<[(i32, i32); 3]> {
+        let get = |i: u16| self.cache.get(usize::from(i)).map(self.xy);
+        Some([get(t[0])?, get(t[1])?, get(t[2])?])
+    }
+
+    /// The assembly loop's operands (for the binning scan's loop, `bin`).
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    #[inline(always)]
+    pub(super) fn regs(&self) -> &ScanRegs<'a> {
+        &self.regs
+    }
 }
 
 /// The assembly loops' operands, handed over in registers (ARMv7E-M: r0, r2–r5, r12,
@@ -100,21 +114,21 @@ impl<'a, T> CullScan<'a, T> {
 #[derive(Clone, Copy)]
 #[repr(C)]
 pub(crate) struct ScanRegs<'a> {
-    faces: *const [u16; 3],
+    pub(super) faces: *const [u16; 3],
     /// The address of the first entry's x.
-    xy: *const u8,
+    pub(super) xy: *const u8,
     /// The entries the loop may read: `cache.len()`, or 0 when the entries are not
     /// laid out as the loop expects.
-    len: usize,
-    neg_lo: i32,
-    span: u32,
+    pub(super) len: usize,
+    pub(super) neg_lo: i32,
+    pub(super) span: u32,
     /// −2¹⁴ · 2¹⁶: the marks' bound for x in a word's high half (ARMv7E-M).
     #[cfg_attr(not(zraster_dsp), allow(dead_code))]
-    mark: i32,
-    faces_len: usize,
+    pub(super) mark: i32,
+    pub(super) faces_len: usize,
     /// One past the last face (ARMv6-M).
     #[cfg_attr(not(zraster_armv6m), allow(dead_code))]
-    end: *const [u16; 3],
+    pub(super) end: *const [u16; 3],
     cache: PhantomData<&'a [u8]>,
 }
 

@@ -9,14 +9,16 @@
 //! on ARMv6-M the rows of a small triangle ([`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16),
 //! edges by DDA);
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
-//! by `check_cull_kernel`);
+//! by `check_cull_kernel`), and the same scan binning the drawn faces of a banded frame
+//! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
+mod bin;
 mod cull;
 mod fill;
 mod mac;
@@ -27,6 +29,8 @@ mod rows;
 mod rows_v6m;
 mod texel;
 
+pub use bin::check_bin_kernel;
+pub(crate) use bin::{append, bin_scan, chain_of, end_chains, BinChains, BIN_KERNEL};
 pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
 pub use fill::check_fill_kernel;
