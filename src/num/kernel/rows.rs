@@ -1292,7 +1292,7 @@ fn check_small_setup(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usiz
 /// (`check_cases`): random triangles' rows (edges, depths, clip columns, both
 /// halves, rows of every length from empty to 40 pixels) through `rows_less_as_u16`
 /// and `rows_less_portable`, then whole small triangles, set-up and rows, through
-/// `small_less_as_u16` and its twin ([`check_small_setup`]). Returns the number of
+/// `small_less_as_u16` and its twin (`check_small_setup`). Returns the number of
 /// cases that differ (where there is no assembly, the twin against itself). Out of
 /// line: its frame is not the bench's.
 #[inline(never)]
