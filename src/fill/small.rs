@@ -11,7 +11,7 @@ use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
 use crate::num::kernel::{small_less_as_u16, two_bytes, SmallDone, SmallTarget, ROWS_KERNEL};
-use crate::num::{floor_div32, DIVIDE};
+use crate::num::{floor_div32, floor_div32_pair_small, ARMV6M, DIVIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
 };
@@ -328,8 +328,50 @@ fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, bool)> {
             ));
         }
     }
+    if ARMV6M {
+        if let Some((q, r)) = steps_narrow([p0, p1, p2], [dx1, dy1, dx2, dy2], area) {
+            return Some((q, r, mid_right));
+        }
+    }
     let (sx, sy) = small_steps([p0, p1, p2])?;
     Some(((sx >> 4) as u32, (sy >> 4) as u32, mid_right))
+}
+
+/// [`small_steps_q`]'s quotients without a divide instruction (ARMv6-M) for the usual
+/// small triangle: `|area| < 2¹⁶` and numerators `a`, `b` inside ±(2²⁷ − 1), which
+/// then come out of 32-bit products and take one reciprocal of |area| between them
+/// ([`floor_div32_pair_small`]); `None` otherwise.
+///
+/// `a = dz₁·dy₂ − dz₂·dy₁` is worked out modulo 2³² (wrapping products) and, to tell
+/// whether that is `a` itself, over 2¹⁶: with `dz = h·2¹⁶ + l` (`0 ≤ l < 2¹⁶`, `|h| ≤
+/// 2¹²`) and every `|dx|`, `|dy|` below 2¹³, `a = (h₁·dy₂ − h₂·dy₁)·2¹⁶ + L` with
+/// `|L| < 2³⁰`; a high part inside ±2¹² puts `|a|` below 2²⁸ + 2³⁰ < 2³¹, where the
+/// wrapped value is exact (likewise `b`). Then `16a` fits `i32`, and so does its
+/// negation.
+#[inline(always)]
+fn steps_narrow(
+    [p0, p1, p2]: [&ScreenVertex; 3],
+    [dx1, dy1, dx2, dy2]: [i32; 4],
+    area: i32,
+) -> Option<(u32, u32)> {
+    let d = area.unsigned_abs();
+    if d >= 1 << 16 {
+        return None;
+    }
+    let zq = |p: &ScreenVertex| (p.z() >> 4) as i32; // < 2²⁸
+    let (dz1, dz2) = (zq(p1) - zq(p0), zq(p2) - zq(p0));
+    let cross = |a: i32, b: i32, c: i32, d: i32| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
+    let (a, b) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
+    let (h1, h2) = (dz1 >> 16, dz2 >> 16);
+    let (ah, bh) = (cross(h1, dy2, h2, dy1), cross(h2, dx1, h1, dx2));
+    let within = |v: i32, lim: i32| (v.wrapping_add(lim - 1) as u32) < (2 * lim - 1) as u32;
+    if !(within(ah, 1 << 12) && within(bh, 1 << 12) && within(a, 1 << 27) && within(b, 1 << 27)) {
+        return None;
+    }
+    let m = area >> 31;
+    let fold = |n: i32| ((n << 4) ^ m) - m;
+    let (q, r) = floor_div32_pair_small(fold(a), fold(b), d);
+    Some((q as u32, r as u32))
 }
 
 /// The biased depth, modulo 2³², at the centre of a pixel whose top-left corner lies
@@ -437,11 +479,13 @@ mod tests {
     /// `small_steps_q` and `small_origin` give the steps and depths of `small_steps`
     /// and `plane_origin` (modulo 2³²) on random small triangles: depths across the
     /// whole range and a few units apart, extents from 1 to 511 pixels, both windings,
-    /// the area's and the numerators' 32-bit limits on either side.
+    /// the area's and the numerators' 32-bit limits on either side; so does ARMv6-M's
+    /// `steps_narrow` wherever it takes the triangle.
     #[test]
     fn small_depth_matches_the_plane_origin() {
         use crate::raster::plane_origin;
         let mut rnd = crate::testing::xorshift32(0x5eed_1234);
+        let mut narrow_cases = 0;
         for i in 0..200_000u32 {
             let mut r = |m: u32| rnd() % m;
             let span = [40, 160, 2048, SMALL as u32][(i % 4) as usize];
@@ -469,6 +513,13 @@ mod tests {
             let area = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
             assert_eq!(mid_right, area > 0, "{tri:?}");
             assert_eq!((q << 4, r0 << 4), (sx as u32, sy as u32), "{tri:?}");
+            // ARMv6-M's narrow form, where it takes the triangle.
+            let [d0, d1, d2] = by_rows(t).map(|p| (p.x(), p.y()));
+            let d = [d1.0 - d0.0, d1.1 - d0.1, d2.0 - d0.0, d2.1 - d0.1];
+            if let Some(narrow) = steps_narrow(by_rows(t), d, area) {
+                assert_eq!(narrow, (q, r0), "{tri:?}");
+                narrow_cases += 1;
+            }
             let (cx, cy) = (r(64) as i32 + 10, r(64) as i32 - 20);
             let z00 = plane_origin(&tri[0], sx, sy)
                 .wrapping_add((cx as u32).wrapping_mul(sx as u32))
@@ -476,6 +527,7 @@ mod tests {
             let at = (tri[0].x() - cx * SUBPIXEL, tri[0].y() - cy * SUBPIXEL);
             assert_eq!(small_origin(tri[0].z(), at, q, r0), z00, "{tri:?}");
         }
+        assert!(narrow_cases > 50_000, "{narrow_cases} narrow cases");
     }
 
     /// The rows through `small_less_as_u16` (on the host its portable twin, on ARMv7E-M

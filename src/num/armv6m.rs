@@ -32,6 +32,20 @@ pub(crate) fn div_floor_pair_recip(n1: i64, n2: i64, d: i64) -> Option<(i64, i64
     Some((one(n1, m1), one(n2, m2)))
 }
 
+/// `(⌊n₁/d⌋, ⌊n₂/d⌋)` for `0 < d < 2¹⁶` and `|n| < 2³¹`, by one reciprocal of `d`
+/// ([`recip32_small`]) and a multiply each: a negative `n` by the flip
+/// `⌊n/d⌋ = !⌊!n/d⌋` (`!n = −n − 1 ≥ 0`), so every quotient is unsigned and needs no
+/// remainder test.
+#[inline(always)]
+pub(crate) fn floor_div32_pair_small(n1: i32, n2: i32, d: u32) -> (i32, i32) {
+    let r = recip32_small(d);
+    let one = |n: i32| {
+        let s = n >> 31;
+        (divrem_by_recip((n ^ s) as u32, d, r).0 as i32) ^ s
+    };
+    (one(n1), one(n2))
+}
+
 /// ⌊(2³² − 1)/d⌋ for 1 ≤ d < 2¹⁶ without a division instruction (on ARMv6-M the
 /// library division costs about 200 instructions, this about 60): d normalised to
 /// dn = d·2^s in [2¹⁵, 2¹⁶) (s from a table of leading zeros: ARMv6-M has no CLZ), a

@@ -14,9 +14,9 @@ mod armv7m;
 pub(crate) mod kernel;
 
 pub(crate) use armv6m::{
-    bits_beyond_31_parts, div_floor_pair_recip, div_floor_wide_soft, floor_div32_soft,
-    mul_narrow_parts, mul_small_parts, mul_wide_parts, scaled_ratio_parts, shl64_parts,
-    shr64_parts, udivrem_call,
+    bits_beyond_31_parts, div_floor_pair_recip, div_floor_wide_soft, floor_div32_pair_small,
+    floor_div32_soft, mul_narrow_parts, mul_small_parts, mul_wide_parts, scaled_ratio_parts,
+    shl64_parts, shr64_parts, udivrem_call,
 };
 use armv7m::floor_div32_flip;
 

@@ -1,6 +1,6 @@
 //! Each backend form against the plain operation it replaces, on the host.
 
-use super::armv6m::{recip32_small, udivrem};
+use super::armv6m::{floor_div32_pair_small, recip32_small, udivrem};
 use super::*;
 
 #[test]
@@ -264,6 +264,39 @@ fn reciprocal_pair_division_is_div_floor() {
     assert_eq!(div_floor_pair_recip(1 << 48, 1, 3), None);
     assert_eq!(div_floor_pair_recip(1, -(1 << 48), 3), None);
     assert_eq!(div_floor_pair_recip(1, 1, 0), None);
+}
+
+/// The one-reciprocal pair is floor division for every divisor below 2¹⁶, numerators
+/// at both ends of `i32` (but `i32::MIN`) and random ones.
+#[test]
+fn small_reciprocal_pair_is_floor_division() {
+    let ns = [
+        0,
+        1,
+        -1,
+        2,
+        -2,
+        65535,
+        -65536,
+        i32::MAX,
+        -i32::MAX,
+        i32::MAX - 1,
+    ];
+    let mut next = crate::testing::xorshift32(0x1357_9bdf);
+    for d in 1..1u32 << 16 {
+        let di = d as i32;
+        let check = |n1: i32, n2: i32| {
+            let want = (n1.div_euclid(di), n2.div_euclid(di));
+            assert_eq!(floor_div32_pair_small(n1, n2, d), want, "{n1} {n2} / {d}");
+        };
+        for &n in &ns {
+            check(n, -n);
+        }
+        for _ in 0..8 {
+            let n = |v: u32| (v as i32 >> (v % 31)).max(-i32::MAX);
+            check(n(next()), n(next()));
+        }
+    }
 }
 
 #[test]
