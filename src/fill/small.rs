@@ -345,7 +345,7 @@ fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, bool)> {
 /// `a = dz₁·dy₂ − dz₂·dy₁` is worked out modulo 2³² (wrapping products) and, to tell
 /// whether that is `a` itself, over 2¹⁶: with `dz = h·2¹⁶ + l` (`0 ≤ l < 2¹⁶`, `|h| ≤
 /// 2¹²`) and every `|dx|`, `|dy|` below 2¹³, `a = (h₁·dy₂ − h₂·dy₁)·2¹⁶ + L` with
-/// `|L| < 2³⁰`; a high part inside ±2¹² puts `|a|` below 2²⁸ + 2³⁰ < 2³¹, where the
+/// `|L| < 2³⁰`; a high part in [−2¹², 2¹²) puts `|a|` below 2²⁸ + 2³⁰ < 2³¹, where the
 /// wrapped value is exact (likewise `b`). Then `16a` fits `i32`, and so does its
 /// negation.
 #[inline(always)]
@@ -365,7 +365,9 @@ fn steps_narrow(
     let (h1, h2) = (dz1 >> 16, dz2 >> 16);
     let (ah, bh) = (cross(h1, dy2, h2, dy1), cross(h2, dx1, h1, dx2));
     let within = |v: i32, lim: i32| (v.wrapping_add(lim - 1) as u32) < (2 * lim - 1) as u32;
-    if !(within(ah, 1 << 12) && within(bh, 1 << 12) && within(a, 1 << 27) && within(b, 1 << 27)) {
+    // Both high parts in [−2¹², 2¹²) by one test.
+    let high = (ah.wrapping_add(1 << 12) | bh.wrapping_add(1 << 12)) as u32;
+    if !(high < 1 << 13 && within(a, 1 << 27) && within(b, 1 << 27)) {
         return None;
     }
     let m = area >> 31;
