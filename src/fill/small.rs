@@ -329,12 +329,20 @@ fn small_steps_q([p0, p1, p2]: [&ScreenVertex; 3]) -> Option<(u32, u32, bool)> {
         }
     }
     if ARMV6M {
-        if let Some((q, r)) = steps_narrow([p0, p1, p2], [dx1, dy1, dx2, dy2], area) {
-            return Some((q, r, mid_right));
-        }
+        let (q, r) = steps_narrow([p0, p1, p2], [dx1, dy1, dx2, dy2], area)
+            .unwrap_or_else(|| steps_wide([p0, p1, p2]));
+        return Some((q, r, mid_right));
     }
     let (sx, sy) = small_steps([p0, p1, p2])?;
     Some(((sx >> 4) as u32, (sy >> 4) as u32, mid_right))
+}
+
+/// [`small_steps`] over 16 for a triangle of non-zero area, out of line: on ARMv6-M
+/// the rare triangle [`steps_narrow`] leaves.
+#[inline(never)]
+fn steps_wide(tri: [&ScreenVertex; 3]) -> (u32, u32) {
+    let (sx, sy) = small_steps(tri).unwrap_or((0, 0));
+    ((sx >> 4) as u32, (sy >> 4) as u32)
 }
 
 /// [`small_steps_q`]'s quotients without a divide instruction (ARMv6-M) for the usual
@@ -482,7 +490,7 @@ mod tests {
     /// and `plane_origin` (modulo 2³²) on random small triangles: depths across the
     /// whole range and a few units apart, extents from 1 to 511 pixels, both windings,
     /// the area's and the numerators' 32-bit limits on either side; so does ARMv6-M's
-    /// `steps_narrow` wherever it takes the triangle.
+    /// `steps_narrow` wherever it takes the triangle, and `steps_wide` everywhere.
     #[test]
     fn small_depth_matches_the_plane_origin() {
         use crate::raster::plane_origin;
@@ -515,7 +523,8 @@ mod tests {
             let area = (v1.0 - v0.0) * (v2.1 - v0.1) - (v2.0 - v0.0) * (v1.1 - v0.1);
             assert_eq!(mid_right, area > 0, "{tri:?}");
             assert_eq!((q << 4, r0 << 4), (sx as u32, sy as u32), "{tri:?}");
-            // ARMv6-M's narrow form, where it takes the triangle.
+            // ARMv6-M's narrow form, where it takes the triangle, and its fallback.
+            assert_eq!(steps_wide(by_rows(t)), (q, r0), "{tri:?}");
             let [d0, d1, d2] = by_rows(t).map(|p| (p.x(), p.y()));
             let d = [d1.0 - d0.0, d1.1 - d0.1, d2.0 - d0.0, d2.1 - d0.1];
             if let Some(narrow) = steps_narrow(by_rows(t), d, area) {
