@@ -273,16 +273,16 @@ impl<'a> Iterator for CachedWalk<'a> {
 }
 
 impl<'a> CachedWalk<'a> {
-    /// [`Iterator::next`] for a banded frame's binning: on ARMv7E-M the drawn faces the
-    /// assembly scan finds on the way are binned into `chains` there ([`bin_scan`]) and
-    /// counted, not returned; every other face comes back as `next` returns it (and on
-    /// other targets every face).
+    /// [`Iterator::next`] for a banded frame's binning: where there is an assembly
+    /// binning scan ([`BIN_KERNEL`], [`BinChains::scans`]) the drawn faces it finds on
+    /// the way are binned into `chains` there ([`bin_scan`]) and counted, not returned;
+    /// every other face comes back as `next` returns it (and elsewhere every face).
     #[inline(always)]
     pub(crate) fn next_binned(
         &mut self,
         chains: &mut BinChains<'_>,
     ) -> Option<<Self as Iterator>::Item> {
-        if BIN_KERNEL {
+        if BIN_KERNEL && chains.scans() {
             let before = chains.drawn();
             bin_scan(&mut self.pos, &self.scan, chains);
             self.tally[2] += chains.drawn() - before;

@@ -97,7 +97,7 @@ impl<'a, T> CullScan<'a, T> {
     }
 
     /// The assembly loop's operands (for the binning scan's loop, `bin`).
-    #[cfg(all(zraster_thumb, zraster_dsp))]
+    #[cfg(zraster_thumb)]
     #[inline(always)]
     pub(super) fn regs(&self) -> &ScanRegs<'a> {
         &self.regs
