@@ -297,17 +297,14 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "pop {{r6-r11}}",
             "b 9f",
             // Drawn: its rows top..=bottom from the corners' y (y0 and the differences,
-            // the high halves of r8, r9, r10: the words compare as their high halves,
-            // and the shifts take them out).
+            // the high halves of r8, r9, r10: SSUB16 sets GE[3:2] where dy1 ≥ dy2, and
+            // SEL takes the high halves by them; the shifts take them out).
             "4:",
             "asr r11, r8, #16",
             "add r11, r11, #7",
-            "cmp r9, r10",
-            "ite lt",
-            "movlt r8, r9",
-            "movge r8, r10",
-            "it lt",
-            "movlt r9, r10",
+            "ssub16 r8, r9, r10",
+            "sel r8, r10, r9", // min(dy1, dy2) in the high half
+            "sel r9, r9, r10", // max(dy1, dy2)
             "and r8, r8, r8, asr #31", // min(dy1, dy2, 0)
             "bic r9, r9, r9, asr #31", // max(dy1, dy2, 0)
             "add r8, r11, r8, asr #16",
