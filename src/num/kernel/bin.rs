@@ -186,7 +186,8 @@ pub(crate) fn end_chains(tails: &[u16], slots: &mut [u16], end: u16) {
 /// Advance `pos` past the faces of `scan` from `pos` on that are dropped or drawn,
 /// appending each drawn one to its chain in `chains` ([`BinChains::bin`]) and counting
 /// it there: it stops at the end or at a face with a bad index or an unplaced corner
-/// (which the caller decides on). Dropped and drawn are as [`skip_culled`](super::skip_culled)
+/// (which the caller decides on). On ARMv6-M, where its kernel does not apply (not
+/// [`BinChains::scans`]), it leaves `pos` as it is. Dropped and drawn are as [`skip_culled`](super::skip_culled)
 /// has them.
 ///
 /// On ARMv7E-M the cull scan's assembly loop, with a drawn face binned in 44
@@ -201,10 +202,16 @@ pub(crate) fn bin_scan<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut 
     if fits {
         return bin_scan_dsp(pos, scan, chains);
     }
+    // ARMv6-M leaves every face to the caller where its kernel does not apply (so the
+    // twin, a Rust scan, is not built into the draw path there).
     #[cfg(all(zraster_thumb, zraster_armv6m))]
-    if fits && chains.consts.rows.is_power_of_two() {
-        return bin_scan_v6m(pos, scan, chains);
+    {
+        if fits && chains.scans() {
+            bin_scan_v6m(pos, scan, chains);
+        }
+        return;
     }
+    #[allow(unreachable_code)]
     let _ = fits;
     bin_scan_portable(pos, scan, chains)
 }
@@ -541,8 +548,9 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
 /// the bench firmware: `cases` random runs as `check_cull_kernel` makes them (faces with
 /// unplaced corners, bad indices, degenerate and extreme triangles, every cull mode),
 /// binned for random screen heights (up to 128 rows, some faces above or below it) and
-/// band heights (half of them a power of two), the chains in `scratch` (two sets of up to 2 · 257 + 12 entries: every
-/// case counts as differing when it holds fewer than 1,052). Returns the number of runs
+/// band heights (half of them a power of two; on ARMv6-M the others must leave
+/// everything as it was), the chains in `scratch` (two sets of up to 2 · 257 + 12
+/// entries: every case counts as differing when it holds fewer than 1,052). Returns the number of runs
 /// where the two stop at different faces, count different drawn faces, or leave
 /// different chains.
 #[inline(never)] // its arrays stay out of the caller's frame (the bench's stack figure)
@@ -636,7 +644,7 @@ pub fn check_bin_kernel(scratch: &mut [u16], cases: usize) -> usize {
                 Some(mut b) => {
                     if kernel {
                         bin_scan(&mut pos, &scan, &mut b);
-                    } else {
+                    } else if b.scans() {
                         bin_scan_portable(&mut pos, &scan, &mut b);
                     }
                     b.drawn()
