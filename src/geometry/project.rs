@@ -3,14 +3,16 @@
 // Indexing here is into fixed 4-element arrays by constants below 4: it cannot panic.
 #![allow(clippy::indexing_slicing)]
 
-use super::transform::Clip4;
+use super::transform::{Clip4, FixedTransform};
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
+use crate::num::kernel::{place_run, PlaceBlock, PLACE_KERNEL};
 use crate::num::{
     bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
     scaled_ratio_parts, shr64, ARMV6M, INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
+use crate::render::CachedVertex;
 
 /// How far outside the screen (in screen widths) a vertex may project before the
 /// triangle is clipped: |x|, |y| ≤ GUARD·w. With viewports of at most 8192 pixels the
@@ -453,6 +455,67 @@ impl ScreenMap {
         Some(ScreenVertex::from_raw(sx, sy, sz))
     }
 
+    /// The vertex kernel's operands ([`PlaceBlock`]) for `fixed` and this mapping:
+    /// `None` unless x and y's scale is 2^e with 0 ≤ e ≤ 20 and the kernel's screen
+    /// range (±1024 pixels) lies inside the guard band with room (a point placed
+    /// within it is inside the band however the steps round).
+    pub(crate) fn place_block(&self, fixed: &FixedTransform) -> Option<PlaceBlock> {
+        let (rows, s) = fixed.words();
+        let bits = s.to_bits();
+        let e = (bits >> 23) as i32 - 127;
+        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) {
+            return None;
+        }
+        // x·s·inv·sx = (x·inv')·(sx·s·2⁻¹⁴) with inv' = 2¹⁴·inv: powers of two, exact.
+        let f = f32::from_bits(((e - 14 + 127) as u32) << 23);
+        let room = |scale: f32, offset: f32| (16384.0 + offset.abs()) <= 63.0 * scale.abs();
+        if !(room(self.sx, self.ox) && room(self.sy, self.oy)) {
+            return None;
+        }
+        Some(PlaceBlock {
+            rows,
+            consts: [
+                1.0,
+                self.sx * f,
+                self.ox,
+                self.sy * f,
+                self.oy,
+                DEPTH_HALF,
+                0.5,
+            ],
+        })
+    }
+
+    /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
+    /// the vertex kernel, `entry` giving each one it does not place; `false` (nothing
+    /// written) where the kernel does not run ([`place_block`](ScreenMap::place_block)).
+    /// Out of line: its operands stay off the stack of the renderer's set-up.
+    #[inline(never)]
+    pub(crate) fn place_all(
+        &self,
+        fixed: &FixedTransform,
+        positions: &[[i16; 3]],
+        cache: &mut [CachedVertex],
+        mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
+    ) -> bool {
+        if !PLACE_KERNEL {
+            return false;
+        }
+        let Some(block) = self.place_block(fixed) else {
+            return false;
+        };
+        let mut at = 0;
+        while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
+            at += place_run(&block, p, c);
+            let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
+                break;
+            };
+            *e = entry(p);
+            at += 1;
+        }
+        true
+    }
+
     /// Project a clip-space point inside the guard band and depth range (outcode 0).
     #[inline]
     pub(crate) fn project(&self, c: &[f32; 4]) -> Option<ScreenVertex> {
@@ -470,7 +533,6 @@ impl ScreenMap {
 
 #[cfg(test)]
 mod tests {
-    use super::super::transform::FixedTransform;
     use super::*;
     use crate::camera::{Camera, Viewport};
     use crate::math::{radians, Mat4, Vec3};
@@ -801,6 +863,61 @@ mod tests {
                 "{x} {y} {z}"
             );
         }
+    }
+
+    /// The vertex kernel's twin places no vertex otherwise than the `f32` path
+    /// (`project_float_inside`, then `CachedVertex::placing`), and places nearly every
+    /// vertex that path places: cameras from inside the model to far away, turned,
+    /// fields of view from narrow to wide, viewports large and small, off the origin.
+    #[test]
+    fn place_kernel_twin_is_the_float_path() {
+        use crate::num::kernel::place_portable;
+        let mut next = crate::testing::xorshift32(0x7f4a_7c15);
+        let (mut usual, mut placed, mut blocks) = (0u64, 0u64, 0);
+        let per = crate::num::tests::fast_cases() / 400;
+        for case in 0..400u32 {
+            let (w, h) = [(320, 240), (240, 240), (16, 9), (2048, 1536), (1, 1)][case as usize % 5];
+            let vp =
+                Viewport::at((case % 7) as i32 * 301 - 900, (case % 3) as i32 * 50, w, h).unwrap();
+            let dist = [1.6, 0.9, 3.0, 40.0, 0.3, 2.2, 0.05][case as usize % 7];
+            let fov = [60.0, 10.0, 120.0, 45.0][case as usize % 4];
+            let cam = Camera::look_at(Vec3::new(0.2, -0.1, dist), Vec3::default(), Vec3::Y)
+                .unwrap()
+                .perspective(radians(fov), 0.1, 10.0, vp)
+                .unwrap()
+                .with_model(
+                    Mat4::rotation_y(radians(case as f32 * 13.7))
+                        * Mat4::rotation_x(radians(case as f32 * 5.3)),
+                );
+            let scale = [1.0 / 32767.0, 1.0 / 1000.0, 3.0 / 32767.0][case as usize % 3];
+            let fixed = FixedTransform::new(&cam.model_view_projection(), scale).unwrap();
+            let map = ScreenMap::new(&vp);
+            let Some(block) = map.place_block(&fixed) else {
+                continue;
+            };
+            blocks += 1;
+            for i in 0..per {
+                let r = next();
+                let p = match i % 4 {
+                    0 => [r as i16, next() as i16, next() as i16],
+                    _ => [(r as i16) >> 2, (next() as i16) >> 2, (next() as i16) >> 2],
+                };
+                let want = map
+                    .project_float_inside(fixed.apply(&p).to_f32())
+                    .and_then(CachedVertex::placing);
+                let got = place_portable(&block, &p);
+                if got.is_some() {
+                    assert_eq!(got, want, "{p:?} case {case}");
+                }
+                usual += u64::from(want.is_some());
+                placed += u64::from(got.is_some());
+            }
+        }
+        assert!(blocks > 200, "{blocks}");
+        assert!(
+            placed >= usual - usual / 50 && placed > 0,
+            "{placed} of {usual}"
+        );
     }
 
     #[test]

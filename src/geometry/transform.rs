@@ -195,6 +195,15 @@ impl FixedTransform {
         }
     }
 
+    /// The rows x, y, z high, w high, z low, w low as words (`c₀c₁` packed, `c₂`, `t`
+    /// each), and the scale `s` of x and y to z and w: the vertex kernel's operands.
+    pub(crate) fn words(&self) -> ([[u32; 3]; 6], f32) {
+        let [x, y] = self.xy;
+        let ([zh, wh], [zl, wl]) = (self.hi, self.lo);
+        let words = |r: Row| [r.c01, r.c2 as u32, r.t as u32];
+        ([x, y, zh, wh, zl, wl].map(words), self.s)
+    }
+
     /// Transform one position to clip space.
     #[inline]
     pub(crate) fn apply(&self, p: &[i16; 3]) -> Clip4 {

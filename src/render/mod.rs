@@ -376,6 +376,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut r = Self::new(mesh, xf, options)?;
         let n = mesh.positions.len();
         let cache = crate::error::prefix_mut(cache, n)?;
+        // The usual vertex by the vertex kernel, any other out of line.
+        if r.map
+            .place_all(&r.fixed, mesh.positions, cache, |p| r.cache_entry(p))
+        {
+            r.cache = Some(cache);
+            return Ok(r);
+        }
         // w's bits beyond 31 at the previous vertex, for the next (project_fast).
         let mut sh_hint = W_SHIFT_HINT;
         for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {

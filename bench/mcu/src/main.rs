@@ -160,6 +160,7 @@ fn main() -> ! {
     // The cull scan binning a banded frame's faces likewise.
     let bad = zraster::check_bin_kernel(&mut depth[..1200], 20_000);
     hprintln!("bin kernel cases differing from the portable twin: {}", bad);
+    check_place();
 
     // ---- bunny-320, full frame.
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
@@ -241,4 +242,13 @@ fn bins_band() -> &'static mut [u16] {
 fn pixels_band() -> (&'static mut [Rgb565], ()) {
     // SAFETY: borrowed once.
     (unsafe { &mut *addr_of_mut!(BAND_PIXELS) }, ())
+}
+
+/// The assembly vertex loop against its portable twin (random transforms and
+/// positions; bench/mcu.sh fails unless none differ). Out of line: main's frame stays
+/// as it was.
+#[inline(never)]
+fn check_place() {
+    let bad = zraster::check_place_kernel(800);
+    hprintln!("place kernel cases differing from the portable twin: {}", bad);
 }

@@ -22,6 +22,7 @@ mod bin;
 mod cull;
 mod fill;
 mod mac;
+mod place;
 // Before `rows`, which uses its SIMD pixel macros.
 #[macro_use]
 mod span;
@@ -36,6 +37,10 @@ pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, C
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub(crate) use mac::smlad;
+pub use place::check_place_kernel;
+#[cfg(test)]
+pub(crate) use place::place_portable;
+pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{small_less_as_u16, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL};
