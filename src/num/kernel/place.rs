@@ -96,38 +96,40 @@ pub(crate) fn place_run(b: &PlaceBlock, positions: &[[i16; 3]], out: &mut [Cache
         // 72) and, for n ≥ 1 turns at most, one position a turn (`[i16; 3]`, 6 bytes,
         // from `positions`' start: LDR and LDRSH, unaligned word loads being allowed
         // on ARMv7-M) and writes one entry a turn with STRD (8 bytes, from `out`'s
-        // start, 4-byte aligned as `CachedVertex` is); n is below both lengths, and a
+        // start, 4-byte aligned as `CachedVertex` is); n is at most either length, and a
         // turn that stops writes nothing. `CachedVertex` is `repr(C)`: the depth word,
-        // then the x/y word (x in the low half: `XyWord`), any bits valid. r4–r11 are
-        // pushed first and popped last; s0–s5 and s8–s14 and the flags are clobbered.
+        // then the x/y word (x in the low half: `XyWord`), any bits valid. r4–r11 and lr
+        // are pushed first and popped last (r12 and lr hold the second and third pairs of
+        // rows' address); s0–s5, s8–s14 and the flags are clobbered.
         //
-        // A turn: the six rows (three LDM of two rows, one MLA and one SMLAD a row, as
-        // `Row::at`), w's test on its high sum, the conversions (the low sums with 14
-        // fraction bits), one VDIV, the screen coordinates doubled and truncated, the
+        // A turn: the six rows (three LDM of two rows, from r0, r12 and lr; one MLA and
+        // one SMLAD a row, as `Row::at`), w's test on its high sum, the conversions (the
+        // low sums with 14 fraction bits), one VDIV, the screen coordinates doubled and truncated, the
         // depth, the range tests, the halves rounded by one SHADD16 and the entry.
         unsafe {
             core::arch::asm!(
-                "push {{r4-r11}}",
+                "push {{r4-r11, lr}}",
                 "add r12, r0, #72",
                 "vldm r12, {{s8-s14}}",
+                "add r12, r0, #24",
+                "add lr, r0, #48",
                 "2:",
                 "ldr r10, [r1], #6",
                 "ldrsh r11, [r1, #-2]",
-                "ldm r0!, {{r4-r9}}",
+                "ldm r0, {{r4-r9}}",
                 "mla r6, r5, r11, r6",
                 "smlad r6, r10, r4, r6",
                 "mla r9, r8, r11, r9",
                 "smlad r9, r10, r7, r9",
                 "vmov s0, s1, r6, r9",
-                "ldm r0!, {{r4-r9}}",
+                "ldm r12, {{r4-r9}}",
                 "mla r6, r5, r11, r6",
                 "smlad r6, r10, r4, r6",
                 "mla r9, r8, r11, r9",
                 "smlad r9, r10, r7, r9",
                 "cmp r9, #0x40000",
                 "vmov s2, s3, r6, r9",
-                "ldm r0, {{r4-r9}}",
-                "sub.w r0, r0, #48",
+                "ldm lr, {{r4-r9}}",
                 "mla r6, r5, r11, r6",
                 "smlad r6, r10, r4, r6",
                 "mla r9, r8, r11, r9",
@@ -175,7 +177,7 @@ pub(crate) fn place_run(b: &PlaceBlock, positions: &[[i16; 3]], out: &mut [Cache
                 "subs r3, r3, #1",
                 "bne 2b",
                 "3:",
-                "pop {{r4-r11}}",
+                "pop {{r4-r11, lr}}",
                 inout("r0") b as *const PlaceBlock => _,
                 inout("r1") positions.as_ptr() => _,
                 inout("r2") out.as_mut_ptr() => _,
