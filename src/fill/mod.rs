@@ -251,9 +251,28 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
         }
     }
 
+    /// [`fill`](FlatTarget::fill) inlined into the caller: in a loop where the target
+    /// is a local whose address is never taken, what it works out from the target
+    /// alone (the clip's inside-ness, the kernel's operands) is worked out once.
+    #[inline(always)]
+    pub(crate) fn fill_inline(&mut self, tri: [&ScreenVertex; 3], color: C) -> SpanStats {
+        let Filled { tested, written } = self.counted(tri, color);
+        SpanStats {
+            pixels_tested: tested,
+            pixels_written: written,
+            runs: 0,
+        }
+    }
+
     /// [`fill`](FlatTarget::fill) returning the two counts it has (a fill into buffers
     /// emits no runs), in registers rather than through memory.
     fn fill_counted(&mut self, tri: [&ScreenVertex; 3], color: C) -> Filled {
+        self.counted(tri, color)
+    }
+
+    /// The body of [`fill_counted`](FlatTarget::fill_counted).
+    #[inline(always)]
+    fn counted(&mut self, tri: [&ScreenVertex; 3], color: C) -> Filled {
         let s = match self {
             // The corners stay where they are: no copy of the triangle a call.
             FlatTarget::Fused { b, test, write, .. } => {

@@ -130,6 +130,20 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         {
             return self.draw_buffer_triangles(frame, zbuf, indices, materials, 0..indices.len());
         }
+        self.draw_fused_general(frame, zbuf)
+    }
+
+    /// [`draw_fused`](Renderer::draw_fused) face by face through the general path.
+    #[inline(never)]
+    fn draw_fused_general<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+    ) -> Result<(), Error>
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
         let clip = clip_of(frame, zbuf);
         let mut pixels = FrameStats::default();
         let first = !self.counted;
@@ -223,7 +237,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// one tight loop over the triangles, instantiated for each way of colouring a face
     /// (one colour; one material, lit; a material per face), so that the loop does not
     /// ask which it is for every face. Faces near the clip planes go through the general
-    /// path.
+    /// path. Out of line, as is the rest of `draw_fused`, so that neither frame is
+    /// stacked on the other.
+    #[inline(never)]
     pub(crate) fn draw_buffer_triangles<C>(
         &mut self,
         frame: &mut ColorBuffer<'_, C>,
@@ -271,31 +287,42 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // The scan's operands apart from the walk, where the scan reads them.
         let operands = walk.operands();
         let mut walk = walk.reading(&operands);
-        let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
         let mut clipped = FrameStats::default();
         // The drawn faces' pixels in u32 registers, into `px` once at the end.
         let mut counts = FillCounts::default();
-        for next in walk.by_ref() {
-            match next? {
-                (f, Some([a, b, c])) => {
-                    if self.see_through_face::<C>(f) {
-                        continue; // drawn after the opaque faces
-                    }
-                    let tri = [a.placed(), b.placed(), c.placed()];
-                    if let Some((row0, row1)) = rows {
-                        if outside_rows(&tri, row0, row1) {
-                            continue;
+        // The target of the fills is a local never borrowed beyond them (a face to clip
+        // ends the run and gets a target of its own), so that what the fills work out
+        // from it alone is worked out once a run.
+        loop {
+            let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+            let mut to_clip = None;
+            for next in walk.by_ref() {
+                match next? {
+                    (f, Some([a, b, c])) => {
+                        if self.see_through_face::<C>(f) {
+                            continue; // drawn after the opaque faces
                         }
+                        let tri = [a.placed(), b.placed(), c.placed()];
+                        if let Some((row0, row1)) = rows {
+                            if outside_rows(&tri, row0, row1) {
+                                continue;
+                            }
+                        }
+                        counts.add(target.fill_inline(tri.each_ref(), shade(f)?), &mut px);
                     }
-                    counts.add(target.fill(tri.each_ref(), shade(f)?), &mut px);
-                }
-                // Across a clip plane or far outside the screen: the general path (rare).
-                (f, None) => {
-                    let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
-                    clipped.add_geometry(&g);
-                    px.add_pixels(more);
+                    // Across a clip plane or far outside the screen (rare).
+                    (f, None) => {
+                        to_clip = Some(f);
+                        break;
+                    }
                 }
             }
+            let Some(f) = to_clip else { break };
+            // The general path.
+            let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+            let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
+            clipped.add_geometry(&g);
+            px.add_pixels(more);
         }
         counts.flush(&mut px);
         let mut st = walk.stats();
