@@ -198,6 +198,8 @@ pub(crate) enum FlatTarget<'a, 'z, 'c, C, S, const SPLIT: bool = true> {
         b: Buffers<'a, 'a, C>,
         test: DepthTest,
         write: bool,
+        /// `test` is `Less` with depth writes (the small triangles' kernel's case).
+        less: bool,
         /// The render state fixing the depth test, if it does.
         state: core::marker::PhantomData<S>,
     },
@@ -236,6 +238,7 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
             },
             test,
             write,
+            less: test == DepthTest::Less && write,
             state: core::marker::PhantomData,
         }
     }
@@ -254,8 +257,13 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
     /// [`fill`](FlatTarget::fill) inlined into the caller: in a loop where the target
     /// is a local whose address is never taken, what it works out from the target
     /// alone (the clip's inside-ness, the kernel's operands) is worked out once.
+    /// The usual depth test (`Less` with writes) is one test of a flag there, not a
+    /// choice among the tests.
     #[inline(always)]
     pub(crate) fn fill_inline(&mut self, tri: [&ScreenVertex; 3], color: C) -> SpanStats {
+        if let FlatTarget::Fused { b, less: true, .. } = self {
+            return fill_fused::<S, C>(b, DepthTest::Less, true, tri, color);
+        }
         let Filled { tested, written } = self.counted(tri, color);
         SpanStats {
             pixels_tested: tested,
