@@ -55,8 +55,14 @@ pub(crate) fn fill_small<C: Copy>(
     write: bool,
     pass: impl Fn(u16, u16) -> bool + Copy,
 ) -> Option<(u32, u32)> {
-    if crate::num::DIVIDE {
-        fill_small_with::<EdgeDivide, C>(b, tri, color, write, pass, ROWS_KERNEL, false)
+    if ROWS_KERNEL && write && is_less(&pass) && two_bytes::<C>() {
+        fill_small_with::<EdgeDivide, C>(b, tri, color, write, pass, true, false)
+    } else if crate::num::DIVIDE {
+        if write {
+            fill_small_divide::<C, true>(b, tri, color, pass)
+        } else {
+            fill_small_divide::<C, false>(b, tri, color, pass)
+        }
     } else {
         fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, WALK_KERNEL)
     }
@@ -224,6 +230,188 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
     }
     Some((row.tested, row.tested - row.failed))
 }
+
+/// [`fill_small`] on cores with a divide instruction and no assembly for the case
+/// (x86-64, RISC-V, ARMv7-M; ARMv7E-M's other depth tests): what
+/// [`fill_small_with`] does with [`EdgeDivide`] edges, its rows through
+/// [`rows_divide`] with the depth write `WRITE` fixed.
+#[inline(always)]
+fn fill_small_divide<C: Copy, const WRITE: bool>(
+    b: &mut Buffers<'_, '_, C>,
+    tri: [&ScreenVertex; 3],
+    color: C,
+    pass: impl Fn(u16, u16) -> bool + Copy,
+) -> Option<(u32, u32)> {
+    let p0 = tri[0];
+    let [a, m, c] = by_rows(tri);
+    let xmin = a.x().min(m.x()).min(c.x());
+    let xmax = a.x().max(m.x()).max(c.x());
+    if c.y() - a.y() >= SMALL || xmax - xmin >= SMALL {
+        return None;
+    }
+    // Rows whose centres may be covered, inside the clip; the middle corner's row
+    // between them splits the halves.
+    let centre = |y: i32| (y + (SUBPIXEL / 2 - 1)) >> SUBPIXEL_BITS;
+    let clip = b.clip;
+    let (start, end) = (centre(a.y()).max(clip.y0), centre(c.y()).min(clip.y1));
+    if start >= end {
+        return Some((0, 0));
+    }
+    let mid = centre(m.y()).max(start).min(end);
+    let (dxl, dyl) = (c.x() - a.x(), c.y() - a.y());
+    let (dxs, dys) = (m.x() - a.x(), m.y() - a.y());
+    let area = dxs * dyl - dxl * dys; // |·| < 2²⁷
+    if area == 0 {
+        return Some((0, 0));
+    }
+    let (q, r) = steps_q([a, m, c], (dxs, dys), (dxl, dyl), area);
+    let depth = Depth {
+        sx: q << 4,
+        sy: r << 4,
+        lo: a.z().min(m.z()).min(c.z()) + DEPTH_BIAS,
+        hi: a.z().max(m.z()).max(c.z()) + DEPTH_BIAS,
+    };
+    // Columns local to px0, the pixel column of the leftmost corner: an edge's `t` at
+    // row y is (16y + 8 − a.y)·dx + (a.x − 16px0 + 8)·dy − 1, as `EdgeDivide::new`.
+    let px0 = xmin >> SUBPIXEL_BITS;
+    let edge = |s: i32, x: i32, dx: i32, dy: i32| EdgeDivide {
+        t: (s * dx + x * dy - 1) as u32,
+        dt: (dx * SUBPIXEL) as u32,
+        d: (dy * SUBPIXEL) as u32,
+    };
+    let (s, xa) = (
+        SUBPIXEL * start + SUBPIXEL / 2 - a.y(),
+        a.x() - SUBPIXEL * px0 + SUBPIXEL / 2,
+    );
+    let mut long = edge(s, xa, dxl, dyl);
+    // The depth at local column 0 of row `start`, from the first corner given.
+    let at = (p0.x() - SUBPIXEL * px0, p0.y() - SUBPIXEL * start);
+    let mut row = Row {
+        z: small_origin(p0.z(), at, q, r),
+        base: ((start - b.first_row) as usize * b.width).wrapping_add(px0 as usize),
+        tested: 0,
+        failed: 0,
+    };
+    // Both buffers cut to one length: a row's one bounds test then serves both.
+    let len = b.zdata.len().min(b.cdata.len());
+    let (Some(zw), Some(cw)) = (b.zdata.get_mut(..len), b.cdata.get_mut(..len)) else {
+        return None;
+    };
+    let (width, cx) = (b.width, (clip.x0 - px0, clip.x1 - px0));
+    let mut run = |left: &mut EdgeDivide, right: &mut EdgeDivide, n: i32, row: &mut Row| {
+        rows_divide::<C, WRITE>(zw, cw, width, left, right, n, row, depth, cx, color, pass)
+    };
+    let mid_right = area > 0;
+    if start < mid {
+        let mut short = edge(s, xa, dxs, dys);
+        if mid_right {
+            run(&mut long, &mut short, mid - start, &mut row);
+        } else {
+            run(&mut short, &mut long, mid - start, &mut row);
+        }
+    }
+    if mid < end {
+        let s1 = SUBPIXEL * mid + SUBPIXEL / 2 - m.y();
+        let mut short = edge(s1, xa + dxs, dxl - dxs, dyl - dys);
+        if mid_right {
+            run(&mut long, &mut short, end - mid, &mut row);
+        } else {
+            run(&mut short, &mut long, end - mid, &mut row);
+        }
+    }
+    Some((row.tested, row.tested - row.failed))
+}
+
+/// [`small_steps_q`]'s steps for corners sorted top to bottom whose offsets from the
+/// first, (`dxs`, `dys`) and (`dxl`, `dyl`), and non-zero area are already known.
+#[inline(always)]
+fn steps_q(
+    [a, m, c]: [&ScreenVertex; 3],
+    (dxs, dys): (i32, i32),
+    (dxl, dyl): (i32, i32),
+    area: i32,
+) -> (u32, u32) {
+    let zq = |p: &ScreenVertex| (p.z() >> 4) as i32; // < 2²⁸
+    let (dz1, dz2) = (zq(m) - zq(a), zq(c) - zq(a));
+    let cross =
+        |a: i32, b: i32, c: i32, d: i32| i64::from(a) * i64::from(b) - i64::from(c) * i64::from(d);
+    let (na, nb) = (cross(dz1, dyl, dz2, dys), cross(dz2, dxs, dz1, dxl));
+    // In [−2²⁶, 2²⁶): 16n and the area's sign folded in stay inside i32.
+    let fits = |n: i64| i64::from((n as i32) << 5 >> 5) == n;
+    if fits(na) && fits(nb) {
+        let m = area >> 31;
+        let fold = |n: i64| (((n as i32) << 4) ^ m) - m;
+        let d = (area ^ m) - m;
+        (
+            floor_div32(fold(na), d) as u32,
+            floor_div32(fold(nb), d) as u32,
+        )
+    } else {
+        let (sx, sy) = small_steps([a, m, c]).unwrap_or_default();
+        ((sx >> 4) as u32, (sy >> 4) as u32)
+    }
+}
+
+/// [`rows`] for [`fill_small_divide`]: buffers `z`, `c` of one length, rows `width`
+/// apart, the depth write `WRITE`, every span inline but the long ones.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn rows_divide<C: Copy, const WRITE: bool>(
+    z: &mut [u16],
+    c: &mut [C],
+    width: usize,
+    left: &mut EdgeDivide,
+    right: &mut EdgeDivide,
+    n: i32,
+    row: &mut Row,
+    d: Depth,
+    (cx0, cx1): (i32, i32),
+    color: C,
+    pass: impl Fn(u16, u16) -> bool,
+) {
+    let (mut zrow, mut base) = (row.z, row.base);
+    let (mut tested, mut failed) = (row.tested, row.failed);
+    for _ in 0..n {
+        let (xa, xb) = (left.x().max(cx0), right.x().min(cx1));
+        left.advance();
+        right.advance();
+        if xa < xb {
+            let mut acc = zrow
+                .wrapping_add((xa as u32).wrapping_mul(d.sx))
+                .max(d.lo)
+                .min(d.hi);
+            let (s, e) = (
+                base.wrapping_add(xa as usize),
+                base.wrapping_add(xb as usize),
+            );
+            if let (Some(zr), Some(cr)) = (z.get_mut(s..e), c.get_mut(s..e)) {
+                tested += (xb - xa) as u32;
+                if zr.len() >= LONG {
+                    failed += super::flat_span(zr, cr, acc, d.sx, color, WRITE, &pass);
+                } else {
+                    for (zp, cp) in zr.iter_mut().zip(cr) {
+                        let v = (acc >> 16) as u16;
+                        acc = acc.wrapping_add(d.sx);
+                        if pass(v, *zp) {
+                            if WRITE {
+                                *zp = v;
+                            }
+                            *cp = color;
+                        } else {
+                            failed += 1;
+                        }
+                    }
+                }
+            }
+        }
+        zrow = zrow.wrapping_add(d.sy);
+        base = base.wrapping_add(width);
+    }
+    (row.z, row.base, row.tested, row.failed) = (zrow, base, tested, failed);
+}
+
+/// Spans from this length on leave [`rows_divide`] for [`flat_span`](super::flat_span).
+const LONG: usize = 8;
 
 /// The vertices of `tri` top to bottom (a stable sort by y).
 #[inline(always)]
@@ -601,6 +789,50 @@ mod tests {
                 (done, zdata, cdata)
             };
             let want = run(None, true);
+            // The divide path's own row loop, with and without depth writes, and
+            // with another depth test.
+            let divide = |write: bool, pass: fn(u16, u16) -> bool| {
+                let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
+                let mut b = Buffers {
+                    zdata: &mut zdata,
+                    cdata: &mut cdata,
+                    width: W,
+                    first_row: 3,
+                    clip,
+                };
+                let t = tri.each_ref();
+                let done = if write {
+                    fill_small_divide::<u16, true>(&mut b, t, 7, pass)
+                } else {
+                    fill_small_divide::<u16, false>(&mut b, t, 7, pass)
+                };
+                (done, zdata, cdata)
+            };
+            assert!(
+                want == divide(true, less),
+                "triangle {i}: {tri:?} in {clip:?}"
+            );
+            let reference = |write: bool, pass: fn(u16, u16) -> bool| {
+                let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
+                let mut b = Buffers {
+                    zdata: &mut zdata,
+                    cdata: &mut cdata,
+                    width: W,
+                    first_row: 3,
+                    clip,
+                };
+                let t = tri.each_ref();
+                let done =
+                    fill_small_with::<EdgeDivide, u16>(&mut b, t, 7, write, pass, false, false);
+                (done, zdata, cdata)
+            };
+            let greater_equal: fn(u16, u16) -> bool = |a, b| a >= b;
+            for (write, pass) in [(false, less as fn(u16, u16) -> bool), (true, greater_equal)] {
+                assert!(
+                    reference(write, pass) == divide(write, pass),
+                    "triangle {i}: {tri:?} in {clip:?}, write {write}"
+                );
+            }
             for kernel in [false, true] {
                 assert!(
                     want == run(Some(kernel), true),
