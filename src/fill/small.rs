@@ -11,7 +11,7 @@ use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
 use crate::num::kernel::{small_less_as_u16, two_bytes, SmallDone, SmallTarget, ROWS_KERNEL};
-use crate::num::{floor_div32, floor_div32_pair_small, ARMV6M, DIVIDE};
+use crate::num::{div_floor_pair, floor_div32, floor_div32_pair_small, ARMV6M, DIVIDE, WIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
 };
@@ -336,6 +336,11 @@ fn steps_q(
     let cross =
         |a: i32, b: i32, c: i32, d: i32| i64::from(a) * i64::from(b) - i64::from(c) * i64::from(d);
     let (na, nb) = (cross(dz1, dyl, dz2, dys), cross(dz2, dxs, dz1, dxl));
+    if WIDE {
+        // A 64-bit divide instruction: |16n| < 2⁴⁶, no range to test.
+        let (q, r) = div_floor_pair(na * 16, nb * 16, i64::from(area));
+        return (q as u32, r as u32);
+    }
     // In [−2²⁶, 2²⁶): 16n and the area's sign folded in stay inside i32.
     let fits = |n: i64| i64::from((n as i32) << 5 >> 5) == n;
     if fits(na) && fits(nb) {
@@ -389,6 +394,7 @@ fn rows_divide<C: Copy, const WRITE: bool>(
                 if zr.len() >= LONG {
                     failed += super::flat_span(zr, cr, acc, d.sx, color, WRITE, &pass);
                 } else {
+                    // A failure out of line: the loop then stays rolled.
                     for (zp, cp) in zr.iter_mut().zip(cr) {
                         let v = (acc >> 16) as u16;
                         acc = acc.wrapping_add(d.sx);
@@ -398,7 +404,7 @@ fn rows_divide<C: Copy, const WRITE: bool>(
                             }
                             *cp = color;
                         } else {
-                            failed += 1;
+                            super::span::one_failed(&mut failed);
                         }
                     }
                 }
@@ -719,6 +725,13 @@ mod tests {
                 assert_eq!(narrow, (q, r0), "{tri:?}");
                 narrow_cases += 1;
             }
+            // `fill_small_divide`'s form, from the sorted corners' offsets.
+            let [a, m, c] = by_rows(t);
+            let (s, l) = (
+                (m.x() - a.x(), m.y() - a.y()),
+                (c.x() - a.x(), c.y() - a.y()),
+            );
+            assert_eq!(steps_q([a, m, c], s, l, area), (q, r0), "{tri:?}");
             let (cx, cy) = (r(64) as i32 + 10, r(64) as i32 - 20);
             let z00 = plane_origin(&tri[0], sx, sy)
                 .wrapping_add((cx as u32).wrapping_mul(sx as u32))
