@@ -376,7 +376,9 @@ fn rows_divide<C: Copy, const WRITE: bool>(
 ) {
     let (mut zrow, mut base) = (row.z, row.base);
     let (mut tested, mut failed) = (row.tested, row.failed);
-    for _ in 0..n {
+    let mut n = n;
+    while n > 0 {
+        n -= 1;
         let (xa, xb) = (left.x().max(cx0), right.x().min(cx1));
         left.advance();
         right.advance();
