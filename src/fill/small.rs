@@ -55,7 +55,9 @@ pub(crate) fn fill_small<C: Copy>(
     write: bool,
     pass: impl Fn(u16, u16) -> bool + Copy,
 ) -> Option<(u32, u32)> {
-    if ROWS_KERNEL && write && is_less(&pass) && two_bytes::<C>() {
+    if ROWS_KERNEL {
+        // ARMv7E-M: the kernel for `Less` with depth writes; the other tests keep the
+        // general row loop (fill_small_divide's there moves the kernel's caller).
         fill_small_with::<EdgeDivide, C>(b, tri, color, write, pass, true, false)
     } else if crate::num::DIVIDE {
         if write {
@@ -232,7 +234,7 @@ fn fill_small_with<E: SmallEdge, C: Copy>(
 }
 
 /// [`fill_small`] on cores with a divide instruction and no assembly for the case
-/// (x86-64, RISC-V, ARMv7-M; ARMv7E-M's other depth tests): what
+/// (x86-64, AArch64, RISC-V, ARMv7-M): what
 /// [`fill_small_with`] does with [`EdgeDivide`] edges, its rows through
 /// [`rows_divide`] with the depth write `WRITE` fixed.
 #[inline(always)]
