@@ -57,7 +57,7 @@ pub(crate) fn fill_small<C: Copy>(
 ) -> Option<(u32, u32)> {
     if ROWS_KERNEL {
         // ARMv7E-M: the kernel for `Less` with depth writes; the other tests keep the
-        // general row loop (fill_small_divide's there moves the kernel's caller).
+        // general row loop.
         fill_small_with::<EdgeDivide, C>(b, tri, color, write, pass, true, false)
     } else if crate::num::DIVIDE {
         if write {

@@ -129,6 +129,11 @@ pub struct CachedVertex {
     xy: XyWord,
 }
 
+// The place kernel (`num::kernel::place`) stores an entry as two words: depth, then x/y.
+const _: () = assert!(
+    core::mem::offset_of!(CachedVertex, z) == 0 && core::mem::offset_of!(CachedVertex, xy) == 4
+);
+
 impl CachedVertex {
     /// `x` of a vertex the entry does not place.
     const MARK: i16 = i16::MIN;

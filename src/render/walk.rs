@@ -208,15 +208,17 @@ impl<'a> CachedWalk<'a> {
 
     /// The walk reading the scan's operands from `operands`, its own copied (on
     /// ARMv7E-M by one LDM a call, see [`skip_culled_by`]), which the caller keeps
-    /// apart from the walk.
+    /// apart from the walk. Any other operands are ignored: the scan trusts their
+    /// lengths to index its own faces and cache.
     #[inline(always)]
     pub(crate) fn reading<'b>(self, operands: &'b ScanRegs<'b>) -> CachedWalk<'b>
     where
         'a: 'b,
     {
         let walk: CachedWalk<'b> = self;
+        let own = *operands == walk.scan.operands();
         CachedWalk {
-            operands: Some(operands),
+            operands: own.then_some(operands),
             ..walk
         }
     }

@@ -111,7 +111,7 @@ impl<'a, T> CullScan<'a, T> {
 /// ([`skip_culled_by`]; hence `repr(C)` and the order of the first seven words). The
 /// twin reads `span`.
 #[cfg_attr(not(zraster_thumb), allow(dead_code))]
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(crate) struct ScanRegs<'a> {
     pub(super) faces: *const [u16; 3],
@@ -131,6 +131,16 @@ pub(crate) struct ScanRegs<'a> {
     pub(super) end: *const [u16; 3],
     cache: PhantomData<&'a [u8]>,
 }
+
+// The ARMv7E-M loop reads the first seven words by one LDM, in this order.
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::offset_of;
+    type R = ScanRegs<'static>;
+    assert!(offset_of!(R, faces) == 0 && offset_of!(R, xy) == 4 && offset_of!(R, len) == 8);
+    assert!(offset_of!(R, neg_lo) == 12 && offset_of!(R, span) == 16);
+    assert!(offset_of!(R, mark) == 20 && offset_of!(R, faces_len) == 24);
+};
 
 impl<'a, T> CullScan<'a, T> {
     /// The scan of `faces` over `cache`, whose entries hold x at byte `xy_at` and y
@@ -320,7 +330,8 @@ fn skip_culled_dsp<'a, T, const BY_LDM: bool>(
     // entry's word at `xy + 8 i` only for indices `i` it has found below `regs.len`,
     // which is the cache's length for a cache of 8-byte entries whose word at `xy_at`
     // (0 or 4) is aligned, or 0 (`CullScan::new`), so only inside the cache (`regs` is
-    // the scan's own operands or a copy of them, `CullScan::operands`; LDM reads its
+    // the scan's own operands or a copy of them, `CullScan::operands`: the only ones
+    // `CachedWalk::reading` keeps; LDM reads its
     // first seven words, `repr(C)`). The registers it takes beyond its operands
     // (r8–r11) are pushed first and popped last. For a drawn face it returns the three
     // indices it found below `regs.len` in r3–r5.

@@ -10,12 +10,14 @@
 //! edges by DDA);
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
 //! by `check_cull_kernel`), and the same scan binning the drawn faces of a banded frame
-//! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`);
+//! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`); the vertex cache's
+//! usual vertex, transform, projection and entry ([`place_run`](place::place_run),
+//! ARMv7E-M with an FPU, checked by `check_place_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
 mod bin;

@@ -34,6 +34,9 @@ pub(crate) struct PlaceBlock {
     pub(crate) consts: [f32; 7],
 }
 
+// The loop reads the constants at byte 72 (after the 18 words of rows).
+const _: () = assert!(core::mem::offset_of!(PlaceBlock, consts) == 72);
+
 /// The entry of position `p`, or `None` where the loop stops: the portable twin of one
 /// turn of [`place_run`]'s loop (every operation the same, in the same order).
 #[inline(always)]

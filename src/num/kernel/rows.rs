@@ -776,7 +776,7 @@ fn small_less_dsp(
     // SAFETY: the set-up reads the three corners through their references (12 bytes
     // each, `ScreenVertex` is `repr(C)`: x, y, z at 0, 4, 8) and writes only the block
     // (a local `RowsLess`, word-aligned, every field written before the rows read it)
-    // and, below the stack pointer, 16 bytes of its own (released before the rows).
+    // and 16 bytes of stack it reserves itself (released before the rows).
     // It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in columns
     // clamped to clip.x0 − px0 .. clip.x1 − px0 (|px0| ≤ 2²⁰ by the guard band, the
     // clip's columns inside 0..width: no wrapping, so the loop's signed compares are
