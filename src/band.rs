@@ -15,7 +15,7 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 use crate::buffer::bins_for;
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
-use crate::num::kernel::{append, chain_of, end_chains, BinChains, BIN_KERNEL};
+use crate::num::kernel::BinChains;
 use crate::raster::Clip;
 use crate::render::{
     cached_triangle, outside_rows, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
@@ -270,54 +270,25 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut walk = CachedWalk::new(indices, 0..nt, cache, self.options.cull);
         let mut clipped = FrameStats::default();
         let tall = chains - 1;
-        if BIN_KERNEL {
-            // The scan bins the drawn faces itself; it leaves the others to the walk's
-            // decisions, and so to this loop.
-            let Some(mut bins) = BinChains::new(tails, slots, height, rows) else {
-                return off(self, Unbinned::BinsTooShort);
+        // The scan bins the drawn faces itself where it is assembly (`BIN_KERNEL`); it
+        // leaves the others to the walk's decisions, and so to this loop. Elsewhere the
+        // walk yields every face and the loop bins each.
+        let Some(mut bins) = BinChains::new(tails, slots, height, rows) else {
+            return off(self, Unbinned::BinsTooShort);
+        };
+        while let Some(next) = walk.next_binned(&mut bins) {
+            let (f, tri) = next?;
+            let Some([p, q, r]) = tri else {
+                // Near a clip plane: drawn by the general path in every band (the last
+                // chain); counted now by that path, as the whole frame counts it.
+                let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
+                clipped.add_geometry(&g);
+                bins.append(tall, f);
+                continue;
             };
-            while let Some(next) = walk.next_binned(&mut bins) {
-                let (f, tri) = next?;
-                let Some([p, q, r]) = tri else {
-                    // Near a clip plane: as below.
-                    let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
-                    clipped.add_geometry(&g);
-                    bins.append(tall, f);
-                    continue;
-                };
-                bins.bin(f, [p.xy().1, q.xy().1, r.xy().1]);
-            }
-            bins.end_chains(END);
-        } else {
-            // The band of a row (0 ≤ row < height). ARMv6-M divides by a library call: a
-            // shift there when `rows` is a power of two.
-            let shift = rows.trailing_zeros();
-            let pow2 = crate::num::ARMV6M && rows.count_ones() == 1;
-            let band_of = |row: i32| {
-                if pow2 {
-                    row >> shift
-                } else {
-                    row / rows as i32
-                }
-            };
-            let last_row = height as i32 - 1;
-            for next in walk.by_ref() {
-                let (f, tri) = next?;
-                let Some([p, q, r]) = tri else {
-                    // Near a clip plane: drawn by the general path in every band (the
-                    // last chain); counted now by that path, as the whole frame counts it.
-                    let (g, _) = self.draw_clipped_face(counter, &NOWHERE, true, f)?;
-                    clipped.add_geometry(&g);
-                    append(tails, slots, tall, f);
-                    continue;
-                };
-                let ys = [p.xy().1, q.xy().1, r.xy().1];
-                if let Some(c) = chain_of(ys, last_row, tall, band_of) {
-                    append(tails, slots, c, f);
-                }
-            }
-            end_chains(tails, slots, END);
+            bins.bin(f, [p.xy().1, q.xy().1, r.xy().1]);
         }
+        bins.end_chains(END);
         let mut st = walk.stats();
         st.add_geometry(&clipped);
         self.count(st);

@@ -137,7 +137,7 @@ impl<'b> BinChains<'b> {
 /// row (`2b + 1` when it stays in band `b`, `2b` when it reaches band `b + 1`), or
 /// `tall` when it reaches further; `None` when it covers no row's pixel centre.
 #[inline(always)]
-pub(crate) fn chain_of(
+fn chain_of(
     ys: [i32; 3],
     last_row: i32,
     tall: usize,
@@ -163,7 +163,7 @@ pub(crate) fn chain_of(
 /// Append face `f` to chain `c` of the chains whose tails are `tails` (see
 /// [`BinChains`]).
 #[inline(always)]
-pub(crate) fn append(tails: &mut [u16], slots: &mut [u16], c: usize, f: usize) {
+fn append(tails: &mut [u16], slots: &mut [u16], c: usize, f: usize) {
     if let Some(tail) = tails.get_mut(c) {
         if let Some(slot) = slots.get_mut(usize::from(*tail)) {
             *slot = f as u16;
@@ -175,7 +175,7 @@ pub(crate) fn append(tails: &mut [u16], slots: &mut [u16], c: usize, f: usize) {
 /// End every chain of `tails` with `end`: after its last face, or at its head when
 /// empty.
 #[inline(always)]
-pub(crate) fn end_chains(tails: &[u16], slots: &mut [u16], end: u16) {
+fn end_chains(tails: &[u16], slots: &mut [u16], end: u16) {
     for c in 0..tails.len() {
         if let Some(slot) = tails.get(c).and_then(|&t| slots.get_mut(usize::from(t))) {
             *slot = end;

@@ -33,7 +33,7 @@ mod rows_v6m;
 mod texel;
 
 pub use bin::check_bin_kernel;
-pub(crate) use bin::{append, bin_scan, chain_of, end_chains, BinChains, BIN_KERNEL};
+pub(crate) use bin::{bin_scan, BinChains, BIN_KERNEL};
 pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
 pub use fill::check_fill_kernel;
