@@ -468,13 +468,7 @@ mod tests {
     /// cull mode.
     #[test]
     fn the_scanned_walk_is_the_rust_walk() {
-        let mut seed = 0x1234_5679_u32;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        };
+        let mut rnd = crate::num::kernel::xorshift32(0x1234_5679_u32);
         let m = (1 << 14) - 1;
         for case in 0..3000 {
             let cache: std::vec::Vec<CachedVertex> = (0..rnd() % 12)
@@ -485,7 +479,11 @@ mod tests {
                         1 => -m,
                         _ => (r >> 3) as i32 % (2 * m + 1) - m,
                     };
-                    let code = if r % 8 == 0 { 1 << ((r >> 3) % 3) } else { 0 };
+                    let code = if r.is_multiple_of(8) {
+                        1 << ((r >> 3) % 3)
+                    } else {
+                        0
+                    };
                     let (x, y) = (c(rnd()), c(rnd()));
                     CachedVertex::new(code, ScreenVertex::from_raw(x, y, rnd()))
                 })

@@ -561,13 +561,7 @@ pub fn check_bin_kernel(scratch: &mut [u16], cases: usize) -> usize {
     struct Entry {
         w: [i16; 4],
     }
-    let mut seed = 0x7f4a_7c15_u32;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed
-    };
+    let mut rnd = super::xorshift32(0x7f4a_7c15_u32);
     let m = (1 << 14) - 1;
     let mut bad = 0;
     if scratch.len() < 2 * (2 * 257 + 12) {
@@ -588,7 +582,7 @@ pub fn check_bin_kernel(scratch: &mut [u16], cases: usize) -> usize {
                 3 | 4 => (r >> 3) as i32 % 2400 - 200,
                 _ => (r >> 3) as i32 % (2 * m + 1) - m,
             };
-            let (x, y) = if r % 16 == 0 {
+            let (x, y) = if r.is_multiple_of(16) {
                 (i32::from(i16::MIN), (r >> 4) as i32 % 64) // unplaced: the mark, a code
             } else {
                 (coord(rnd()), coord(rnd()))
@@ -601,7 +595,7 @@ pub fn check_bin_kernel(scratch: &mut [u16], cases: usize) -> usize {
         for t in faces.iter_mut() {
             for i in t.iter_mut() {
                 *i = (rnd() % span_of) as u16;
-                if rnd() % 64 == 0 {
+                if rnd().is_multiple_of(64) {
                     *i = (len as u32 + rnd() % 4) as u16; // out of range
                 }
             }
@@ -671,18 +665,16 @@ mod tests {
     #[test]
     fn the_twin_bins_the_drawn_faces_and_stops_where_the_walk_decides() {
         assert_eq!(check_bin_kernel(&mut [0; 1200], 3000), 0);
-        let mut seed = 0x0bad_5eed_u32;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
-            seed
-        };
+        let mut rnd = crate::num::kernel::xorshift32(0x0bad_5eed_u32);
         for _ in 0..3000 {
             let cache: std::vec::Vec<[i16; 4]> = (0..rnd() % 10)
                 .map(|_| {
                     let c = |r: u32| (r % 3000) as i16 - 500;
-                    let x = if rnd() % 12 == 0 { i16::MIN } else { c(rnd()) };
+                    let x = if rnd().is_multiple_of(12) {
+                        i16::MIN
+                    } else {
+                        c(rnd())
+                    };
                     [x, c(rnd()), 0, 0]
                 })
                 .collect();

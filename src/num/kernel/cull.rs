@@ -530,13 +530,7 @@ pub fn check_cull_kernel(cases: usize) -> usize {
     struct Entry {
         w: [i16; 4],
     }
-    let mut seed = 0x2545_f491_u32;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed
-    };
+    let mut rnd = super::xorshift32(0x2545_f491_u32);
     let m = (1 << 14) - 1;
     let mut bad = 0;
     for case in 0..cases {
@@ -551,7 +545,7 @@ pub fn check_cull_kernel(cases: usize) -> usize {
                 2 => 0,
                 _ => (r >> 3) as i32 % (2 * m + 1) - m,
             };
-            let (x, y) = if r % 16 == 0 {
+            let (x, y) = if r.is_multiple_of(16) {
                 (i32::from(i16::MIN), (r >> 4) as i32 % 64) // unplaced: the mark, a code
             } else {
                 (coord(rnd()), coord(rnd()))
@@ -565,7 +559,7 @@ pub fn check_cull_kernel(cases: usize) -> usize {
         for t in faces.iter_mut() {
             for i in t.iter_mut() {
                 *i = (rnd() % span_of) as u16;
-                if rnd() % 64 == 0 {
+                if rnd().is_multiple_of(64) {
                     *i = (len as u32 + rnd() % 4) as u16; // out of range
                 }
             }

@@ -63,13 +63,7 @@ pub fn check_mac_kernel(n: usize) -> usize {
             }
         }
     }
-    let mut seed = 0x2545_f491_u32;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed
-    };
+    let mut rnd = super::xorshift32(0x2545_f491_u32);
     for _ in 0..n {
         let (a, b, acc) = (rnd(), rnd(), rnd() as i32);
         case(a, b, acc);

@@ -20,6 +20,20 @@
 //! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
+/// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
+/// also returns. The reproducible inputs of the kernels' checks, on target as in tests.
+pub(crate) fn xorshift_next(seed: &mut u32) -> u32 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 17;
+    *seed ^= *seed << 5;
+    *seed
+}
+
+/// [`xorshift_next`] as a generator from `seed` (non-zero).
+pub(crate) fn xorshift32(mut seed: u32) -> impl FnMut() -> u32 {
+    move || xorshift_next(&mut seed)
+}
+
 mod bin;
 mod cull;
 mod fill;

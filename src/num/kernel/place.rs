@@ -234,13 +234,7 @@ pub fn check_place_kernel(n: usize) -> usize {
 
 /// [`check_place_kernel`]'s cases: the differences, the entries placed and the stops.
 fn place_check(n: usize) -> (usize, usize, usize) {
-    let mut seed = 0x9e37_79b9_u32;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed
-    };
+    let mut rnd = super::xorshift32(0x9e37_79b9_u32);
     let (mut bad, mut placed, mut stops) = (0, 0, 0);
     let mut positions = [[0i16; 3]; 4];
     let mut got = [CachedVertex::EMPTY; 4];

@@ -1064,13 +1064,8 @@ extern "C" fn wide_steps_c(a: i64, b: i64, area: i32) -> u64 {
     u64::from(q) | u64::from(r) << 32
 }
 
-/// The xorshift32 generator of the rows kernels' checks.
-pub(super) fn next(seed: &mut u32) -> u32 {
-    *seed ^= *seed << 13;
-    *seed ^= *seed >> 17;
-    *seed ^= *seed << 5;
-    *seed
-}
+/// The generator of the rows kernels' checks.
+pub(super) use super::xorshift_next as next;
 
 /// An edge starting near column `x0` of [`check_rows_kernel`]'s rows, stepping up to
 /// three columns a row.

@@ -381,13 +381,7 @@ pub fn check_span_kernel(buf: &mut [u16], max: usize) -> usize {
     let (mine, twin) = buf.split_at_mut(2 * q);
     let (z1, c1) = mine.split_at_mut(q);
     let (z2, c2) = twin.split_at_mut(q);
-    let mut seed = 0x9e37_79b9_u32;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed
-    };
+    let mut rnd = super::xorshift32(0x9e37_79b9_u32);
     let mut bad = 0;
     for mode in 0..8u32 {
         for (zo, co) in [(0, 0), (1, 1), (0, 1), (1, 0), (2, 0), (3, 0)] {

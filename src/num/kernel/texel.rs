@@ -306,13 +306,7 @@ pub fn check_texel_kernel(buf: &mut [u16], cases: usize) -> usize {
         return usize::MAX;
     };
     let (texels, rows) = buf.split_at_mut(4096);
-    let mut seed = 0x1234_5679_u32;
-    let mut rnd = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 17;
-        seed ^= seed << 5;
-        seed
-    };
+    let mut rnd = super::xorshift32(0x1234_5679_u32);
     for t in texels.iter_mut() {
         *t = rnd() as u16;
     }
