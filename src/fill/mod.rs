@@ -11,6 +11,7 @@ use embedded_graphics::{
     primitives::Rectangle,
 };
 
+use crate::num::kernel::CachedVertex;
 use crate::raster::{Clip, DepthRows, Plane, ScreenVertex, Setup, SpanStats};
 use crate::shade::{Intensity, Material};
 pub(crate) mod blend;
@@ -19,7 +20,7 @@ mod span;
 
 use crate::state::{Dynamic, RenderState};
 use crate::{ColorBuffer, DepthTest, DrawError, ZBuffer};
-use small::{fill_small, Buffers};
+use small::{fill_small, fill_small_cached, Buffers};
 pub(crate) use span::flat_span;
 
 /// `$body` with `$pass` bound to the comparison of depth test `$test`, in one arm per
@@ -270,6 +271,24 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
             pixels_written: written,
             runs: 0,
         }
+    }
+
+    /// [`fill_inline`](FlatTarget::fill_inline) with the corners as the vertex cache
+    /// holds them (unmarked entries): read in place by the small triangles' kernel where
+    /// it runs, else (and for what it leaves) placed as screen vertices first.
+    #[inline(always)]
+    pub(crate) fn fill_cached(&mut self, tri: [&CachedVertex; 3], color: C) -> SpanStats {
+        if let FlatTarget::Fused { b, less: true, .. } = self {
+            if let Some((tested, written)) = fill_small_cached(b, tri, color) {
+                return SpanStats {
+                    pixels_tested: tested,
+                    pixels_written: written,
+                    runs: 0,
+                };
+            }
+        }
+        let [p, q, r] = tri.map(CachedVertex::placed);
+        self.fill_inline([&p, &q, &r], color)
     }
 
     /// [`fill`](FlatTarget::fill) returning the two counts it has (a fill into buffers

@@ -10,7 +10,8 @@
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
-use crate::num::kernel::{small_less_as_u16, two_bytes, SmallDone, SmallTarget, ROWS_KERNEL};
+use crate::num::kernel::{small_less_as_u16, small_less_cached, two_bytes, CachedVertex};
+use crate::num::kernel::{SmallDone, SmallTarget, ROWS_KERNEL};
 use crate::num::{div_floor_pair, floor_div32, floor_div32_pair_small, ARMV6M, DIVIDE, WIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
@@ -67,6 +68,32 @@ pub(crate) fn fill_small<C: Copy>(
         }
     } else {
         fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, WALK_KERNEL)
+    }
+}
+
+/// [`fill_small`] for the depth test `Less` with depth writes where the small
+/// triangles' kernel runs ([`ROWS_KERNEL`]), the corners read in place from the vertex
+/// cache ([`small_less_cached`]); `None` as [`fill_small`] has it (then also for a
+/// colour that is not two bytes, or without the kernel).
+#[inline(always)]
+pub(crate) fn fill_small_cached<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    tri: [&CachedVertex; 3],
+    color: C,
+) -> Option<(u32, u32)> {
+    if !ROWS_KERNEL {
+        return None;
+    }
+    let mut t = SmallTarget {
+        z: &mut *b.zdata,
+        c: &mut *b.cdata,
+        width: b.width,
+        first_row: b.first_row,
+        clip: b.clip,
+    };
+    match small_less_cached(&mut t, tri, color) {
+        SmallDone::Drawn(tested, failed) => Some((tested, tested.wrapping_sub(failed))),
+        SmallDone::General => None,
     }
 }
 

@@ -302,13 +302,12 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         if self.see_through_face::<C>(f) {
                             continue; // drawn after the opaque faces
                         }
-                        let tri = [a.placed(), b.placed(), c.placed()];
                         if let Some((row0, row1)) = rows {
-                            if outside_rows(&tri, row0, row1) {
+                            if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
                                 continue;
                             }
                         }
-                        counts.add(target.fill_inline(tri.each_ref(), shade(f)?), &mut px);
+                        counts.add(target.fill_cached([a, b, c], shade(f)?), &mut px);
                     }
                     // Across a clip plane or far outside the screen (rare).
                     (f, None) => {

@@ -59,7 +59,10 @@ pub(crate) use place::place_portable;
 pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
-pub(crate) use rows::{small_less_as_u16, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL};
+pub use rows::CachedVertex;
+pub(crate) use rows::{
+    small_less_as_u16, small_less_cached, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL,
+};
 pub use rows_v6m::check_rows_walk_kernel;
 pub(crate) use rows_v6m::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
 pub use span::check_span_kernel;

@@ -5,9 +5,38 @@
 //! by `LDRD`/`LDM`), beside its portable twin.
 #![allow(unsafe_code)]
 
+use super::XyWord;
 use crate::fixed::SUBPIXEL;
 use crate::num::{div_floor_pair, floor_div32};
 use crate::raster::{Clip, ScreenVertex, DEPTH_BIAS, SMALL};
+
+/// A vertex transformed and projected once per frame (8 bytes), so that every band
+/// and every face sharing it reuses the work. See [`Renderer::with_cache`](crate::Renderer::with_cache).
+///
+/// It holds the screen position of a vertex inside the view volume within ±1024 pixels
+/// of the origin (x and y in 1/16 pixel below 2¹⁴ in magnitude, so that the cull pass
+/// works out areas in `i32`; depth in 16.16). Any other vertex is marked and
+/// holds its outcode: faces using it take the general path, which clips them or
+/// projects that vertex again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)]
+pub struct CachedVertex {
+    /// Depth in 16.16.
+    pub(crate) z: u32,
+    /// x and y as one word, x in the low half (the cull scans read the word): x in
+    /// 1/16 pixel, or [`CachedVertex::MARK`]; y in 1/16 pixel, or the outcode when
+    /// marked.
+    pub(crate) xy: XyWord,
+}
+
+// The place kernel (`num::kernel::place`) stores an entry as two words, depth then x/y,
+// and the set-up kernel ([`small_less_cached`]) reads them in place.
+const _: () = assert!(
+    core::mem::offset_of!(CachedVertex, z) == 0
+        && core::mem::offset_of!(CachedVertex, xy) == 4
+        && core::mem::size_of::<CachedVertex>() == 8
+        && core::mem::align_of::<CachedVertex>() >= 4
+);
 
 /// Whether [`small_less_as_u16`] and [`rows_less_as_u16`] run the assembly (ARMv7E-M).
 /// Elsewhere they run the portable twins, which the rasterizer does not call (its own
@@ -329,36 +358,88 @@ pub(crate) fn small_less_as_u16<C: Copy>(
     tri: [&ScreenVertex; 3],
     color: C,
 ) -> SmallDone {
-    if !two_bytes::<C>() {
-        return SmallDone::General;
-    }
-    // Every row and column of the clip inside both buffers: then so is every pixel the
-    // rows may touch (they lie inside the clip).
-    let len = t.z.len().min(t.c.len());
     let clip = t.clip;
-    let rows = clip.y1.saturating_sub(t.first_row).max(0) as usize;
-    let inside = i32::try_from(t.width).is_ok_and(|w| clip.x0 >= 0 && clip.x1 <= w)
-        && clip.y0 >= t.first_row
-        && rows.checked_mul(t.width).is_some_and(|n| n <= len);
-    if !inside {
+    let (first_row, width) = (t.first_row, t.width);
+    let Some((z, c, bits)) = t.kernel_buffers(color) else {
         return SmallDone::General;
-    }
-    // SAFETY: C is two bytes with alignment two (checked above), so `color`'s bytes
-    // read as a u16 and `c` viewed as `c.len()` u16s covers exactly the same memory; each
-    // element then keeps its bytes or takes `color`'s: a valid C.
-    let (bits, words) = unsafe {
-        (
-            core::mem::transmute_copy::<C, u16>(&color),
-            core::slice::from_raw_parts_mut(t.c.as_mut_ptr().cast::<u16>(), t.c.len()),
-        )
     };
     #[cfg(all(zraster_thumb, zraster_dsp))]
     {
-        small_less_dsp(tri, &clip, t.first_row, t.width, t.z, words, bits)
+        small_less_dsp(tri, &clip, first_row, width, z, c, bits)
     }
     #[cfg(not(all(zraster_thumb, zraster_dsp)))]
     {
-        small_less_portable(tri, &clip, t.first_row, t.width, t.z, words, bits)
+        small_less_portable(tri, &clip, first_row, width, z, c, bits)
+    }
+}
+
+/// [`small_less_as_u16`] with the corners read in place from the vertex cache.
+#[inline(always)]
+pub(crate) fn small_less_cached<C: Copy>(
+    t: &mut SmallTarget<'_, '_, C>,
+    tri: [&CachedVertex; 3],
+    color: C,
+) -> SmallDone {
+    let clip = t.clip;
+    let (first_row, width) = (t.first_row, t.width);
+    let Some((z, c, bits)) = t.kernel_buffers(color) else {
+        return SmallDone::General;
+    };
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    {
+        small_less_dsp(tri, &clip, first_row, width, z, c, bits)
+    }
+    #[cfg(not(all(zraster_thumb, zraster_dsp)))]
+    {
+        let [p, q, r] = tri.map(cached_corner);
+        small_less_portable([&p, &q, &r], &clip, first_row, width, z, c, bits)
+    }
+}
+
+/// The two corner types the set-up assembly reads in place, by their layout.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+pub(crate) trait Corner {
+    /// A [`CachedVertex`] (else a [`ScreenVertex`]).
+    const CACHED: bool;
+}
+
+#[cfg(all(zraster_thumb, zraster_dsp))]
+impl Corner for ScreenVertex {
+    const CACHED: bool = false;
+}
+
+#[cfg(all(zraster_thumb, zraster_dsp))]
+impl Corner for CachedVertex {
+    const CACHED: bool = true;
+}
+
+/// The screen position an unmarked cache entry holds (a marked one's x and y as they
+/// lie in it): what the set-up kernel reads from it.
+#[cfg(not(all(zraster_thumb, zraster_dsp)))]
+fn cached_corner(p: &CachedVertex) -> ScreenVertex {
+    ScreenVertex::from_raw(i32::from(p.xy.x()), i32::from(p.xy.y()), p.z)
+}
+
+impl<C: Copy> SmallTarget<'_, '_, C> {
+    /// The depth rows, the colour rows as `u16`s and `color`'s bits, when `C` is two
+    /// bytes and every row and column of the clip lies inside both buffers (then so does
+    /// every pixel the rows may touch: they lie inside the clip); else `None`.
+    #[inline(always)]
+    fn kernel_buffers(&mut self, color: C) -> Option<(&mut [u16], &mut [u16], u16)> {
+        if !two_bytes::<C>() {
+            return None;
+        }
+        let len = self.z.len().min(self.c.len());
+        let clip = self.clip;
+        let rows = clip.y1.saturating_sub(self.first_row).max(0) as usize;
+        let inside = i32::try_from(self.width).is_ok_and(|w| clip.x0 >= 0 && clip.x1 <= w)
+            && clip.y0 >= self.first_row
+            && rows.checked_mul(self.width).is_some_and(|n| n <= len);
+        if !inside {
+            return None;
+        }
+        let (words, bits) = as_u16(self.c, color)?;
+        Some((&mut *self.z, words, bits))
     }
 }
 
@@ -750,13 +831,263 @@ fn rows_less_dsp(
     (tested, r.failed)
 }
 
+/// The set-up and rows of [`small_less_dsp`] (the assembly template), for corners whose
+/// y and x are read by `$ly`/`$lx` at byte offsets `$oy`/`$ox` and z at `$oz`; `$p0` loads
+/// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! small_body {
+    ($ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
+        concat!(
+            "push {{r6, r7}}\n",
+            "strd lr, r12, [r0, #12]\n",
+            "movs r12, #0\n",
+            "strd r11, r12, [r0, #40]\n",
+            "strd r9, r10, [r0, #28]\n",
+            "sub sp, #16\n",
+            "strd r1, r4, [sp]\n",
+            // The corners top to bottom (r1, r2, r3; their y in r6, r7, r9), stable.
+            concat!($ly, " r6, [r1, #", $oy, "]\n"),
+            concat!($ly, " r7, [r2, #", $oy, "]\n"),
+            concat!($ly, " r9, [r3, #", $oy, "]\n"),
+            "cmp r7, r6\n",
+            "bge 50f\n",
+            "mov r10, r1\n",
+            "mov r1, r2\n",
+            "mov r2, r10\n",
+            "mov r10, r6\n",
+            "mov r6, r7\n",
+            "mov r7, r10\n",
+            "50:\n",
+            "cmp r9, r7\n",
+            "bge 51f\n",
+            "mov r10, r2\n",
+            "mov r2, r3\n",
+            "mov r3, r10\n",
+            "mov r10, r7\n",
+            "mov r7, r9\n",
+            "mov r9, r10\n",
+            "cmp r7, r6\n",
+            "bge 51f\n",
+            "mov r10, r1\n",
+            "mov r1, r2\n",
+            "mov r2, r10\n",
+            "mov r10, r6\n",
+            "mov r6, r7\n",
+            "mov r7, r10\n",
+            "51:\n",
+            // Extents below 8192 (512 pixels), else the general path's; x in r10-r12,
+            // the smallest in r4.
+            "sub r10, r9, r6\n",
+            "cmp r10, #8192\n",
+            "bge 90f\n",
+            concat!($lx, " r10, [r1, #", $ox, "]\n"),
+            concat!($lx, " r11, [r2, #", $ox, "]\n"),
+            concat!($lx, " r12, [r3, #", $ox, "]\n"),
+            "mov r4, r10\n",
+            "mov lr, r10\n",
+            "cmp r11, r10\n",
+            "ite lt\n",
+            "movlt r4, r11\n",
+            "movge lr, r11\n",
+            "cmp r12, r4\n",
+            "it lt\n",
+            "movlt r4, r12\n",
+            "cmp r12, lr\n",
+            "it gt\n",
+            "movgt lr, r12\n",
+            "sub lr, lr, r4\n",
+            "cmp lr, #8192\n",
+            "bge 90f\n",
+            // Rows start (r5) .. end (r8) inside the clip; none: drawn, nothing.
+            "add lr, r6, #7\n",
+            "cmp r5, lr, asr #4\n",
+            "it lt\n",
+            "asrlt r5, lr, #4\n",
+            "add lr, r9, #7\n",
+            "cmp r8, lr, asr #4\n",
+            "it gt\n",
+            "asrgt r8, lr, #4\n",
+            "cmp r5, r8\n",
+            "bge 91f\n",
+            // The middle row (lr) between them; n1 into the block, n0 kept.
+            "add lr, r7, #7\n",
+            "asr lr, lr, #4\n",
+            "cmp lr, r5\n",
+            "it lt\n",
+            "movlt lr, r5\n",
+            "cmp lr, r8\n",
+            "it gt\n",
+            "movgt lr, r8\n",
+            "sub r8, r8, lr\n",
+            "str r8, [r0, #64]\n",
+            "sub r8, lr, r5\n",
+            "str r8, [sp, #8]\n",
+            // Edges: t = s·dx + (x − k)·dy − 1, k = ox − 8, s = 16·row + 8 − y.
+            "sub r12, r12, r10\n",
+            "sub r11, r11, r10\n",
+            "sub r9, r9, r6\n",
+            "sub r7, r7, r6\n",
+            "rsb r6, r6, #8\n",
+            "add lr, r6, lr, lsl #4\n",
+            "sub lr, lr, r7\n",
+            "add r6, r6, r5, lsl #4\n",
+            "bic r8, r4, #15\n",
+            "sub r8, r8, #8\n",
+            "sub r10, r10, r8\n",
+            "asr r4, r4, #4\n",
+            "mul r8, r6, r12\n",
+            "mla r8, r10, r9, r8\n",
+            "sub r8, r8, #1\n",
+            "str r8, [r0, #48]\n",
+            "mul r8, r6, r11\n",
+            "mla r8, r10, r7, r8\n",
+            "sub r8, r8, #1\n",
+            "str r8, [r0, #52]\n",
+            "add r10, r10, r11\n",
+            "sub r6, r12, r11\n",
+            "sub r8, r9, r7\n",
+            "mul lr, lr, r6\n",
+            "mla lr, r10, r8, lr\n",
+            "sub lr, lr, #1\n",
+            "lsl r8, r8, #4\n",
+            "lsl r6, r6, #4\n",
+            "str lr, [r0, #72]\n",
+            "strd r8, r6, [r0, #76]\n",
+            "lsl r6, r12, #4\n",
+            "lsl r8, r11, #4\n",
+            "strd r6, r8, [r0, #20]\n",
+            "lsl r6, r9, #4\n",
+            "lsl r8, r7, #4\n",
+            "strd r6, r8, [r0, #56]\n",
+            // The area (r6; 0: nothing drawn), its sign the side, the clip's columns
+            // local.
+            "mul r6, r11, r9\n",
+            "mls r6, r12, r7, r6\n",
+            "cmp r6, #0\n",
+            "beq 91f\n",
+            "lsr r8, r6, #31\n",
+            "str r8, [r0, #68]\n",
+            "ldrd r8, r10, [r0, #28]\n",
+            "sub r8, r8, r4\n",
+            "sub r10, r10, r4\n",
+            "strd r8, r10, [r0, #28]\n",
+            // Depth: the clamp, then the numerators a (r1:r2) and b (r3:r8).
+            concat!("ldr r8, [r1, #", $oz, "]\n"),
+            concat!("ldr r10, [r2, #", $oz, "]\n"),
+            concat!("ldr lr, [r3, #", $oz, "]\n"),
+            "mov r1, r8\n",
+            "mov r2, r8\n",
+            "cmp r10, r8\n",
+            "ite lo\n",
+            "movlo r1, r10\n",
+            "movhs r2, r10\n",
+            "cmp lr, r1\n",
+            "it lo\n",
+            "movlo r1, lr\n",
+            "cmp lr, r2\n",
+            "it hi\n",
+            "movhi r2, lr\n",
+            "add r1, r1, #32768\n",
+            "add r2, r2, #32768\n",
+            "strd r1, r2, [r0, #4]\n",
+            "lsr r8, r8, #4\n",
+            "rsb r10, r8, r10, lsr #4\n",
+            "rsb lr, r8, lr, lsr #4\n",
+            "smull r1, r2, r10, r9\n",
+            "rsb r7, r7, #0\n",
+            "smlal r1, r2, lr, r7\n",
+            "smull r3, r8, lr, r11\n",
+            "rsb r12, r12, #0\n",
+            "smlal r3, r8, r10, r12\n",
+            // Both in [−2²⁶, 2²⁶) (the usual), else the steps by `wide_steps` at 92.
+            "cmp r2, r1, asr #31\n",
+            "bne 92f\n",
+            "add r12, r1, #0x4000000\n",
+            "cmp r12, #0x8000000\n",
+            "bhs 92f\n",
+            "cmp r8, r3, asr #31\n",
+            "bne 92f\n",
+            "add r12, r3, #0x4000000\n",
+            "cmp r12, #0x8000000\n",
+            "bhs 92f\n",
+            // q = ⌊16a/area⌋ (r1), r = ⌊16b/area⌋ (r3): the sign folded in, one UDIV of
+            // n or !n each.
+            "eor r10, r6, r6, asr #31\n",
+            "sub r10, r10, r6, asr #31\n",
+            "asr r6, r6, #31\n",
+            "eor r1, r6, r1, lsl #4\n",
+            "sub r1, r1, r6\n",
+            "eor r2, r1, r1, asr #31\n",
+            "udiv r2, r2, r10\n",
+            "eor r1, r2, r1, asr #31\n",
+            "eor r3, r6, r3, lsl #4\n",
+            "sub r3, r3, r6\n",
+            "eor r2, r3, r3, asr #31\n",
+            "udiv r2, r2, r10\n",
+            "eor r3, r2, r3, asr #31\n",
+            "93:\n",
+            "lsl r2, r1, #4\n",
+            "str r2, [r0]\n",
+            "lsl r2, r3, #4\n",
+            "str r2, [r0, #36]\n",
+            // The first row's depth at column 0 (r3) from the first corner given, its
+            // address (r4), the first half's rows (r5).
+            "ldr lr, [sp]\n",
+            $p0,
+            "rsb r6, r6, #8\n",
+            "add r6, r6, r4, lsl #4\n",
+            "rsb r7, r7, #8\n",
+            "add r7, r7, r5, lsl #4\n",
+            "add r8, r8, #32768\n",
+            "mla r8, r1, r6, r8\n",
+            "mla r3, r3, r7, r8\n",
+            "ldr r2, [r0, #40]\n",
+            "ldr r1, [sp, #4]\n",
+            "mla r1, r5, r2, r1\n",
+            "add r4, r1, r4, lsl #1\n",
+            "ldr r5, [sp, #8]\n",
+            "add sp, #16\n",
+            rows_body!(),
+            "ldr r3, [r0, #44]\n",
+            "movs r2, #0\n",
+            "b 99f\n",
+            "90:\n",
+            "movs r2, #1\n",
+            "b 98f\n",
+            // Steep depth: q and r by a call (AAPCS: a in r0:r1, b in r2:r3, the area
+            // on the stack; q, r back in r0, r1), the block kept beside the area.
+            "92:\n",
+            "strd r6, r0, [sp, #-8]!\n",
+            "mov r0, r1\n",
+            "mov r1, r2\n",
+            "mov r2, r3\n",
+            "mov r3, r8\n",
+            "bl {wide}\n",
+            "mov r3, r1\n",
+            "mov r1, r0\n",
+            "ldr r0, [sp, #4]\n",
+            "add sp, #8\n",
+            "b 93b\n",
+            "91:\n",
+            "movs r2, #0\n",
+            "98:\n",
+            "add sp, #16\n",
+            "movs r1, #0\n",
+            "movs r3, #0\n",
+            "99:\n",
+            "pop {{r6, r7}}\n",
+        )
+    };
+}
+
 /// [`small_less_as_u16`] for ARMv7E-M: the set-up of [`small_setup`] in registers, its
 /// values stored into the block as they are found, then the rows of [`rows_less_dsp`].
 /// The clip must lie inside both buffers (checked by the caller).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[inline(always)]
-fn small_less_dsp(
-    tri: [&ScreenVertex; 3],
+fn small_less_dsp<T: Corner>(
+    tri: [&T; 3],
     clip: &Clip,
     first_row: i32,
     width: usize,
@@ -771,10 +1102,13 @@ fn small_less_dsp(
     // start further down); the colour at the depth address + delta.
     let zrow0 = zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch));
     let delta = (c.as_mut_ptr() as u32).wrapping_sub(zaddr);
-    let vertex = |p: &ScreenVertex| p as *const ScreenVertex as u32;
+    let vertex = |p: &T| core::ptr::from_ref(p) as u32;
     let (tested, status, failed): (u32, u32, u32);
-    // SAFETY: the set-up reads the three corners through their references (12 bytes
-    // each, `ScreenVertex` is `repr(C)`: x, y, z at 0, 4, 8) and writes only the block
+    // SAFETY: the set-up reads the three corners through their references, at the
+    // offsets of their type's fields (`Corner::CACHED`: a `CachedVertex`, `repr(C)` and
+    // 8 bytes, z at 0 and x, y the i16 halves at 4 and 6; else a `ScreenVertex`,
+    // `repr(C)` and 12 bytes, x, y, z at 0, 4, 8: both pinned by const assertions) and
+    // writes only the block
     // (a local `RowsLess`, word-aligned, every field written before the rows read it)
     // and 16 bytes of stack it reserves itself (released before the rows).
     // It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in columns
@@ -785,270 +1119,50 @@ fn small_less_dsp(
     // n0 + n1 = end − start, both ≥ 0. The rows are those of `rows_less_dsp` (its
     // SAFETY argument). Every register written is declared (r6 and r7, not allowed as
     // operands, are pushed and popped); the flags are scratch.
+    // The template for the corners' layout, the operands alike.
+    macro_rules! setup_and_rows {
+        ($($layout:tt)*) => {
+            core::arch::asm!(
+                small_body!($($layout)*),
+                in("r0") block.as_mut_ptr(),
+                inout("r1") vertex(tri[0]) => tested,
+                inout("r2") vertex(tri[1]) => status,
+                inout("r3") vertex(tri[2]) => failed,
+                inout("r4") zrow0 => _,
+                inout("r5") clip.y0 => _,
+                inout("r8") clip.y1 => _,
+                inout("r9") clip.x0 => _,
+                inout("r10") clip.x1 => _,
+                inout("r11") pitch => _,
+                inout("r12") delta => _,
+                inout("lr") u32::from(color) => _,
+                wide = sym wide_steps_c,
+                // The call's: the caller-saved floating-point registers, where there are any
+                // (its core ones are all operands above).
+                #[cfg(not(zraster_soft_float))] out("d0") _,
+                #[cfg(not(zraster_soft_float))] out("d1") _,
+                #[cfg(not(zraster_soft_float))] out("d2") _,
+                #[cfg(not(zraster_soft_float))] out("d3") _,
+                #[cfg(not(zraster_soft_float))] out("d4") _,
+                #[cfg(not(zraster_soft_float))] out("d5") _,
+                #[cfg(not(zraster_soft_float))] out("d6") _,
+                #[cfg(not(zraster_soft_float))] out("d7") _,
+            )
+        };
+    }
     unsafe {
-        core::arch::asm!(
-            "push {{r6, r7}}",
-            "strd lr, r12, [r0, #12]",
-            "movs r12, #0",
-            "strd r11, r12, [r0, #40]",
-            "strd r9, r10, [r0, #28]",
-            "sub sp, #16",
-            "strd r1, r4, [sp]",
-            // The corners top to bottom (r1, r2, r3; their y in r6, r7, r9), stable.
-            "ldr r6, [r1, #4]",
-            "ldr r7, [r2, #4]",
-            "ldr r9, [r3, #4]",
-            "cmp r7, r6",
-            "bge 50f",
-            "mov r10, r1",
-            "mov r1, r2",
-            "mov r2, r10",
-            "mov r10, r6",
-            "mov r6, r7",
-            "mov r7, r10",
-            "50:",
-            "cmp r9, r7",
-            "bge 51f",
-            "mov r10, r2",
-            "mov r2, r3",
-            "mov r3, r10",
-            "mov r10, r7",
-            "mov r7, r9",
-            "mov r9, r10",
-            "cmp r7, r6",
-            "bge 51f",
-            "mov r10, r1",
-            "mov r1, r2",
-            "mov r2, r10",
-            "mov r10, r6",
-            "mov r6, r7",
-            "mov r7, r10",
-            "51:",
-            // Extents below 8192 (512 pixels), else the general path's; x in r10-r12,
-            // the smallest in r4.
-            "sub r10, r9, r6",
-            "cmp r10, #8192",
-            "bge 90f",
-            "ldr r10, [r1]",
-            "ldr r11, [r2]",
-            "ldr r12, [r3]",
-            "mov r4, r10",
-            "mov lr, r10",
-            "cmp r11, r10",
-            "ite lt",
-            "movlt r4, r11",
-            "movge lr, r11",
-            "cmp r12, r4",
-            "it lt",
-            "movlt r4, r12",
-            "cmp r12, lr",
-            "it gt",
-            "movgt lr, r12",
-            "sub lr, lr, r4",
-            "cmp lr, #8192",
-            "bge 90f",
-            // Rows start (r5) .. end (r8) inside the clip; none: drawn, nothing.
-            "add lr, r6, #7",
-            "cmp r5, lr, asr #4",
-            "it lt",
-            "asrlt r5, lr, #4",
-            "add lr, r9, #7",
-            "cmp r8, lr, asr #4",
-            "it gt",
-            "asrgt r8, lr, #4",
-            "cmp r5, r8",
-            "bge 91f",
-            // The middle row (lr) between them; n1 into the block, n0 kept.
-            "add lr, r7, #7",
-            "asr lr, lr, #4",
-            "cmp lr, r5",
-            "it lt",
-            "movlt lr, r5",
-            "cmp lr, r8",
-            "it gt",
-            "movgt lr, r8",
-            "sub r8, r8, lr",
-            "str r8, [r0, #64]",
-            "sub r8, lr, r5",
-            "str r8, [sp, #8]",
-            // Edges: t = s·dx + (x − k)·dy − 1, k = ox − 8, s = 16·row + 8 − y.
-            "sub r12, r12, r10",
-            "sub r11, r11, r10",
-            "sub r9, r9, r6",
-            "sub r7, r7, r6",
-            "rsb r6, r6, #8",
-            "add lr, r6, lr, lsl #4",
-            "sub lr, lr, r7",
-            "add r6, r6, r5, lsl #4",
-            "bic r8, r4, #15",
-            "sub r8, r8, #8",
-            "sub r10, r10, r8",
-            "asr r4, r4, #4",
-            "mul r8, r6, r12",
-            "mla r8, r10, r9, r8",
-            "sub r8, r8, #1",
-            "str r8, [r0, #48]",
-            "mul r8, r6, r11",
-            "mla r8, r10, r7, r8",
-            "sub r8, r8, #1",
-            "str r8, [r0, #52]",
-            "add r10, r10, r11",
-            "sub r6, r12, r11",
-            "sub r8, r9, r7",
-            "mul lr, lr, r6",
-            "mla lr, r10, r8, lr",
-            "sub lr, lr, #1",
-            "lsl r8, r8, #4",
-            "lsl r6, r6, #4",
-            "str lr, [r0, #72]",
-            "strd r8, r6, [r0, #76]",
-            "lsl r6, r12, #4",
-            "lsl r8, r11, #4",
-            "strd r6, r8, [r0, #20]",
-            "lsl r6, r9, #4",
-            "lsl r8, r7, #4",
-            "strd r6, r8, [r0, #56]",
-            // The area (r6; 0: nothing drawn), its sign the side, the clip's columns
-            // local.
-            "mul r6, r11, r9",
-            "mls r6, r12, r7, r6",
-            "cmp r6, #0",
-            "beq 91f",
-            "lsr r8, r6, #31",
-            "str r8, [r0, #68]",
-            "ldrd r8, r10, [r0, #28]",
-            "sub r8, r8, r4",
-            "sub r10, r10, r4",
-            "strd r8, r10, [r0, #28]",
-            // Depth: the clamp, then the numerators a (r1:r2) and b (r3:r8).
-            "ldr r8, [r1, #8]",
-            "ldr r10, [r2, #8]",
-            "ldr lr, [r3, #8]",
-            "mov r1, r8",
-            "mov r2, r8",
-            "cmp r10, r8",
-            "ite lo",
-            "movlo r1, r10",
-            "movhs r2, r10",
-            "cmp lr, r1",
-            "it lo",
-            "movlo r1, lr",
-            "cmp lr, r2",
-            "it hi",
-            "movhi r2, lr",
-            "add r1, r1, #32768",
-            "add r2, r2, #32768",
-            "strd r1, r2, [r0, #4]",
-            "lsr r8, r8, #4",
-            "rsb r10, r8, r10, lsr #4",
-            "rsb lr, r8, lr, lsr #4",
-            "smull r1, r2, r10, r9",
-            "rsb r7, r7, #0",
-            "smlal r1, r2, lr, r7",
-            "smull r3, r8, lr, r11",
-            "rsb r12, r12, #0",
-            "smlal r3, r8, r10, r12",
-            // Both in [−2²⁶, 2²⁶) (the usual), else the steps by `wide_steps` at 92.
-            "cmp r2, r1, asr #31",
-            "bne 92f",
-            "add r12, r1, #0x4000000",
-            "cmp r12, #0x8000000",
-            "bhs 92f",
-            "cmp r8, r3, asr #31",
-            "bne 92f",
-            "add r12, r3, #0x4000000",
-            "cmp r12, #0x8000000",
-            "bhs 92f",
-            // q = ⌊16a/area⌋ (r1), r = ⌊16b/area⌋ (r3): the sign folded in, one UDIV of
-            // n or !n each.
-            "eor r10, r6, r6, asr #31",
-            "sub r10, r10, r6, asr #31",
-            "asr r6, r6, #31",
-            "eor r1, r6, r1, lsl #4",
-            "sub r1, r1, r6",
-            "eor r2, r1, r1, asr #31",
-            "udiv r2, r2, r10",
-            "eor r1, r2, r1, asr #31",
-            "eor r3, r6, r3, lsl #4",
-            "sub r3, r3, r6",
-            "eor r2, r3, r3, asr #31",
-            "udiv r2, r2, r10",
-            "eor r3, r2, r3, asr #31",
-            "93:",
-            "lsl r2, r1, #4",
-            "str r2, [r0]",
-            "lsl r2, r3, #4",
-            "str r2, [r0, #36]",
-            // The first row's depth at column 0 (r3) from the first corner given, its
-            // address (r4), the first half's rows (r5).
-            "ldr lr, [sp]",
-            "ldm lr, {{r6, r7, r8}}",
-            "rsb r6, r6, #8",
-            "add r6, r6, r4, lsl #4",
-            "rsb r7, r7, #8",
-            "add r7, r7, r5, lsl #4",
-            "add r8, r8, #32768",
-            "mla r8, r1, r6, r8",
-            "mla r3, r3, r7, r8",
-            "ldr r2, [r0, #40]",
-            "ldr r1, [sp, #4]",
-            "mla r1, r5, r2, r1",
-            "add r4, r1, r4, lsl #1",
-            "ldr r5, [sp, #8]",
-            "add sp, #16",
-            rows_body!(),
-            "ldr r3, [r0, #44]",
-            "movs r2, #0",
-            "b 99f",
-            "90:",
-            "movs r2, #1",
-            "b 98f",
-            // Steep depth: q and r by a call (AAPCS: a in r0:r1, b in r2:r3, the area
-            // on the stack; q, r back in r0, r1), the block kept beside the area.
-            "92:",
-            "strd r6, r0, [sp, #-8]!",
-            "mov r0, r1",
-            "mov r1, r2",
-            "mov r2, r3",
-            "mov r3, r8",
-            "bl {wide}",
-            "mov r3, r1",
-            "mov r1, r0",
-            "ldr r0, [sp, #4]",
-            "add sp, #8",
-            "b 93b",
-            "91:",
-            "movs r2, #0",
-            "98:",
-            "add sp, #16",
-            "movs r1, #0",
-            "movs r3, #0",
-            "99:",
-            "pop {{r6, r7}}",
-            in("r0") block.as_mut_ptr(),
-            inout("r1") vertex(tri[0]) => tested,
-            inout("r2") vertex(tri[1]) => status,
-            inout("r3") vertex(tri[2]) => failed,
-            inout("r4") zrow0 => _,
-            inout("r5") clip.y0 => _,
-            inout("r8") clip.y1 => _,
-            inout("r9") clip.x0 => _,
-            inout("r10") clip.x1 => _,
-            inout("r11") pitch => _,
-            inout("r12") delta => _,
-            inout("lr") u32::from(color) => _,
-            wide = sym wide_steps_c,
-            // The call's: the caller-saved floating-point registers, where there are any
-            // (its core ones are all operands above).
-            #[cfg(not(zraster_soft_float))] out("d0") _,
-            #[cfg(not(zraster_soft_float))] out("d1") _,
-            #[cfg(not(zraster_soft_float))] out("d2") _,
-            #[cfg(not(zraster_soft_float))] out("d3") _,
-            #[cfg(not(zraster_soft_float))] out("d4") _,
-            #[cfg(not(zraster_soft_float))] out("d5") _,
-            #[cfg(not(zraster_soft_float))] out("d6") _,
-            #[cfg(not(zraster_soft_float))] out("d7") _,
-        );
+        if T::CACHED {
+            setup_and_rows!(
+                "ldrsh",
+                "6",
+                "ldrsh",
+                "4",
+                "0",
+                "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
+            );
+        } else {
+            setup_and_rows!("ldr", "4", "ldr", "0", "8", "ldm lr, {{r6, r7, r8}}\n");
+        }
     }
     if status == 0 {
         SmallDone::Drawn(tested, failed)
@@ -1207,7 +1321,8 @@ pub(super) fn check_cases<R>(
 
 /// The set-up kernel's cases of [`check_rows_kernel`]: random triangles (from a pixel
 /// to the buffer across, some 512 pixels or more, flat, of steep depth; clips inside
-/// the buffers, some narrower) through `small_less_as_u16` and `small_less_portable`
+/// the buffers, some narrower) through `small_less_as_u16` or (every other one, the
+/// corners as cache entries) `small_less_cached`, and `small_less_portable`
 /// into copies of the same buffers (a depth and a colour buffer of 48 × 16 each in
 /// `mine` and `twin`), compared. Returns the number of cases that differ.
 fn check_small_setup(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize {
@@ -1274,7 +1389,17 @@ fn check_small_setup(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usiz
             first_row,
             clip,
         };
-        let got = small_less_as_u16(&mut t, tri.each_ref(), color);
+        // Every other case through the entry reading the corners as the vertex cache
+        // holds them (each coordinate here fits its i16).
+        let cached = tri.map(|p| CachedVertex {
+            z: p.z(),
+            xy: XyWord::new(p.x() as i16, p.y() as i16),
+        });
+        let got = if case % 2 == 1 {
+            small_less_cached(&mut t, cached.each_ref(), color)
+        } else {
+            small_less_as_u16(&mut t, tri.each_ref(), color)
+        };
         let want = small_less_portable(tri.each_ref(), &clip, first_row, W, z2, cb, color);
         if got != want || z1 != z2 || c1 != c2 {
             bad += 1;
