@@ -371,7 +371,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     continue;
                 }
             }
-            let tri = [a.placed(), b.placed(), c.placed()];
             // One call of `shade` (so that it is inlined): carried, or worked out.
             let carried = if how == Carry::Take {
                 carry.take()
@@ -385,7 +384,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            counts.add(target.fill(tri.each_ref(), color), &mut px);
+            counts.add(target.fill_cached([a, b, c], color), &mut px);
         }
         counts.flush(&mut px);
         Ok(px)
