@@ -629,19 +629,20 @@ macro_rules! rows_body {
             // A row: its columns, clamped to the clip.
             "1:\n",
             "udiv r10, r1, r7\n",
-            "udiv r11, r2, r8\n",
+            "udiv lr, r2, r8\n",
             "ldrd r9, r12, [r0, #20]\n",
             "add r1, r9\n",
             "add r2, r12\n",
+            // Its length (r11), none before the clip is (x' ≤ x: then so after it).
+            "subs r11, lr, r10\n",
+            "ble 5f\n",
             "ldrd r9, r12, [r0, #28]\n",
             // Inside the clip (usually): cx0 ≤ x and x' ≤ cx1; else clamped at 14.
             "cmp r10, r9\n",
             "it ge\n",
-            "cmpge r12, r11\n",
+            "cmpge r12, lr\n",
             "blt 14f\n",
             "15:\n",
-            "subs r11, r11, r10\n",
-            "ble 5f\n",
             // Its depth at the first column, clamped, and that column's address.
             "add r6, r11\n",
             "ldm r0, {{r9, r12, lr}}\n",
@@ -703,9 +704,11 @@ macro_rules! rows_body {
             "cmp r10, r9\n",
             "it lt\n",
             "movlt r10, r9\n",
-            "cmp r11, r12\n",
+            "cmp lr, r12\n",
             "it gt\n",
-            "movgt r11, r12\n",
+            "movgt lr, r12\n",
+            "subs r11, lr, r10\n",
+            "ble 5b\n",
             "b 15b\n",
             // The row's first depth clamped to lo..=hi.
             "16:\n",
