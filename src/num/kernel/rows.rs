@@ -654,8 +654,9 @@ macro_rules! rows_body {
             "cmphs lr, r9\n",
             "blo 16f\n",
             "17:\n",
-            "cmp r11, #1\n",
-            "bne 3f\n",
+            "cmp r11, #2\n",
+            "bhi 4f\n",
+            "beq 3f\n",
             "lsr r9, r9, #16\n",
             rows_pixel!("[r10]", "6f"),
             // The next row.
@@ -689,8 +690,6 @@ macro_rules! rows_body {
             "b 1b\n",
             // Two pixels.
             "3:\n",
-            "cmp r11, #2\n",
-            "bne 4f\n",
             "ldr r12, [r0]\n",
             "add r11, r9, r12\n",
             "lsr r9, r9, #16\n",
@@ -1004,16 +1003,15 @@ macro_rules! small_body {
             "rsb r12, r12, #0\n",
             "smlal r3, r8, r10, r12\n",
             // Both in [−2²⁶, 2²⁶) (the usual), else the steps by `wide_steps` at 92.
-            "cmp r2, r1, asr #31\n",
+            // (n + 2²⁶ as 64 bits below 2²⁷: its high word and low word's bits 27.. 0.)
+            "adds r12, r1, #0x4000000\n",
+            "adc lr, r2, #0\n",
+            "orrs lr, lr, r12, lsr #27\n",
             "bne 92f\n",
-            "add r12, r1, #0x4000000\n",
-            "cmp r12, #0x8000000\n",
-            "bhs 92f\n",
-            "cmp r8, r3, asr #31\n",
+            "adds r12, r3, #0x4000000\n",
+            "adc lr, r8, #0\n",
+            "orrs lr, lr, r12, lsr #27\n",
             "bne 92f\n",
-            "add r12, r3, #0x4000000\n",
-            "cmp r12, #0x8000000\n",
-            "bhs 92f\n",
             // q = ⌊16a/area⌋ (r1), r = ⌊16b/area⌋ (r3): the sign folded in, one UDIV of
             // n or !n each.
             "eor r10, r6, r6, asr #31\n",
