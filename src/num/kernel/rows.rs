@@ -601,14 +601,60 @@ macro_rules! rows_failed {
     };
 }
 
+/// A row's columns x (r10) .. x' (lr) tested against the clip's (`clip`: clamped at 14
+/// when they cross it), or not (`inside`: rows the set-up has proven inside it).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! rows_clip {
+    (clip) => {
+        concat!(
+            "ldrd r9, r12, [r0, #28]\n",
+            // Inside the clip (usually): cx0 ≤ x and x' ≤ cx1; else clamped at 14.
+            "cmp r10, r9\n",
+            "it ge\n",
+            "cmpge r12, lr\n",
+            "blt 14f\n",
+        )
+    };
+    (inside) => {
+        ""
+    };
+}
+
+/// The clamp of [`rows_clip`]'s `clip` rows to the clip's columns (cx0, cx1 in r9, r12),
+/// then on at 15 (or at 5, the row empty then).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! rows_clamp {
+    (clip) => {
+        concat!(
+            "14:\n",
+            "cmp r10, r9\n",
+            "it lt\n",
+            "movlt r10, r9\n",
+            "cmp lr, r12\n",
+            "it gt\n",
+            "movgt lr, r12\n",
+            "subs r11, lr, r10\n",
+            "ble 5b\n",
+            "b 15b\n",
+        )
+    };
+    (inside) => {
+        ""
+    };
+}
+
 /// The rows of [`rows_less_dsp`] from the block in r0, the first row's depth in r3, its
 /// depth address in r4, the first half's row count in r5 (r6 and r7 pushed by the
-/// caller): ends with the pixels tested in r1. Expanded once by `rows_less_dsp` and once
-/// by `small_less_dsp` after its set-up. Clobbers r1–r12, lr and the flags.
+/// caller): ends with the pixels tested in r1. `$cols` is `clip` (each row's columns
+/// clamped to the clip's) or `inside` (not: the set-up has proven every row inside
+/// them). Expanded by `rows_less_dsp` (`clip`) and twice by `small_less_dsp` after its
+/// set-up (both). Clobbers r1–r12, lr and the flags.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! rows_body {
-    () => {
+    ($cols:ident) => {
         concat!(
             "movs r6, #0\n",
             // The long and short edges to the left and right.
@@ -636,12 +682,7 @@ macro_rules! rows_body {
             // Its length (r11), none before the clip is (x' ≤ x: then so after it).
             "subs r11, lr, r10\n",
             "ble 5f\n",
-            "ldrd r9, r12, [r0, #28]\n",
-            // Inside the clip (usually): cx0 ≤ x and x' ≤ cx1; else clamped at 14.
-            "cmp r10, r9\n",
-            "it ge\n",
-            "cmpge r12, lr\n",
-            "blt 14f\n",
+            rows_clip!($cols),
             "15:\n",
             // Its depth at the first column, clamped, and that column's address.
             "add r6, r11\n",
@@ -699,16 +740,7 @@ macro_rules! rows_body {
             rows_pixel!("[r10, #2]!", "6f"),
             "b 5b\n",
             // The row's columns clamped to the clip.
-            "14:\n",
-            "cmp r10, r9\n",
-            "it lt\n",
-            "movlt r10, r9\n",
-            "cmp lr, r12\n",
-            "it gt\n",
-            "movgt lr, r12\n",
-            "subs r11, lr, r10\n",
-            "ble 5b\n",
-            "b 15b\n",
+            rows_clamp!($cols),
             // The row's first depth clamped to lo..=hi.
             "16:\n",
             "cmp r9, r12\n",
@@ -818,7 +850,7 @@ fn rows_less_dsp(
     unsafe {
         core::arch::asm!(
             "push {{r6, r7}}",
-            rows_body!(),
+            rows_body!(clip),
             "pop {{r6, r7}}",
             in("r0") r as *mut RowsLess,
             out("r1") tested,
@@ -879,7 +911,7 @@ macro_rules! small_body {
             "mov r7, r10\n",
             "51:\n",
             // Extents below 8192 (512 pixels), else the general path's; x in r10-r12,
-            // the smallest in r4.
+            // the smallest in r4, the largest kept at [sp, #12].
             "sub r10, r9, r6\n",
             "cmp r10, #8192\n",
             "bge 90f\n",
@@ -898,6 +930,7 @@ macro_rules! small_body {
             "cmp r12, lr\n",
             "it gt\n",
             "movgt lr, r12\n",
+            "str lr, [sp, #12]\n",
             "sub lr, lr, r4\n",
             "cmp lr, #8192\n",
             "bge 90f\n",
@@ -962,18 +995,13 @@ macro_rules! small_body {
             "lsl r6, r9, #4\n",
             "lsl r8, r7, #4\n",
             "strd r6, r8, [r0, #56]\n",
-            // The area (r6; 0: nothing drawn), its sign the side, the clip's columns
-            // local.
+            // The area (r6; 0: nothing drawn), its sign the side.
             "mul r6, r11, r9\n",
             "mls r6, r12, r7, r6\n",
             "cmp r6, #0\n",
             "beq 91f\n",
             "lsr r8, r6, #31\n",
             "str r8, [r0, #68]\n",
-            "ldrd r8, r10, [r0, #28]\n",
-            "sub r8, r8, r4\n",
-            "sub r10, r10, r4\n",
-            "strd r8, r10, [r0, #28]\n",
             // Depth: the clamp, then the numerators a (r1:r2) and b (r3:r8).
             concat!("ldr r8, [r1, #", $oz, "]\n"),
             concat!("ldr r10, [r2, #", $oz, "]\n"),
@@ -1043,13 +1071,31 @@ macro_rules! small_body {
             "add r8, r8, #32768\n",
             "mla r8, r1, r6, r8\n",
             "mla r3, r3, r7, r8\n",
+            // The clip's columns local (cx0 r8, cx1 r10); the rows inside them when
+            // px0 ≥ clip.x0 and ⌊(xmax + 8)/16⌋ ≤ clip.x1, i.e. cx0 < 1 and
+            // ⌊(xmax − 8)/16⌋ − px0 < cx1 (the flags: lt, kept to the branch below).
+            "ldrd r8, r10, [r0, #28]\n",
+            "ldr r12, [sp, #12]\n",
+            "sub r8, r8, r4\n",
+            "sub r10, r10, r4\n",
+            "strd r8, r10, [r0, #28]\n",
+            "sub r12, r12, #8\n",
+            "rsb r12, r4, r12, asr #4\n",
+            "cmp r8, #1\n",
+            "it lt\n",
+            "cmplt r12, r10\n",
             "ldr r2, [r0, #40]\n",
             "ldr r1, [sp, #4]\n",
             "mla r1, r5, r2, r1\n",
             "add r4, r1, r4, lsl #1\n",
             "ldr r5, [sp, #8]\n",
             "add sp, #16\n",
-            rows_body!(),
+            "blt 200f\n",
+            rows_body!(clip),
+            "b 199f\n",
+            "200:\n",
+            rows_body!(inside),
+            "199:\n",
             "ldr r3, [r0, #44]\n",
             "movs r2, #0\n",
             "b 99f\n",
@@ -1109,17 +1155,27 @@ fn small_less_dsp<T: Corner>(
     // offsets of their type's fields (`Corner::CACHED`: a `CachedVertex`, `repr(C)` and
     // 8 bytes, z at 0 and x, y the i16 halves at 4 and 6; else a `ScreenVertex`,
     // `repr(C)` and 12 bytes, x, y, z at 0, 4, 8: both pinned by const assertions) and
-    // writes only the block
-    // (a local `RowsLess`, word-aligned, every field written before the rows read it)
-    // and 16 bytes of stack it reserves itself (released before the rows).
-    // It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in columns
-    // clamped to clip.x0 − px0 .. clip.x1 − px0 (|px0| ≤ 2²⁰ by the guard band, the
-    // clip's columns inside 0..width: no wrapping, so the loop's signed compares are
+    // writes only the block (a local `RowsLess`, word-aligned, every field written
+    // before the rows read it) and 16 bytes of stack it reserves itself (released before
+    // the rows). It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in
+    // columns clamped to clip.x0 − px0 .. clip.x1 − px0 (|px0| ≤ 2²⁰ by the guard band,
+    // the clip's columns inside 0..width: no wrapping, so the loop's signed compares are
     // exact), at zrow0 + row·pitch + 2·(px0 + column) = the address of that pixel in
     // `z`: inside `z` and `c` since the clip lies inside both (the caller's check), and
     // n0 + n1 = end − start, both ≥ 0. The rows are those of `rows_less_dsp` (its
-    // SAFETY argument). Every register written is declared (r6 and r7, not allowed as
-    // operands, are pushed and popped); the flags are scratch.
+    // SAFETY argument). The `inside` rows skip the clamp, taken only when
+    // px0 ≥ clip.x0 and ⌊(xmax + 8)/16⌋ ≤ clip.x1 (signed compares of values below 2²⁵
+    // in magnitude): every row then lies inside the clip's columns, by the set-up's
+    // arithmetic. An edge from (x0, y0) to (x1, y1), dy = y1 − y0, is stepped only on
+    // rows whose centre Y lies in [y0, y1) (start = ⌈(a.y − 8)/16⌉ puts the first
+    // centre at or below a.y, the split at b likewise, and end = ⌈(c.y − 8)/16⌉ the
+    // last above c.y; an edge with dy = 0 gets no rows), so dy > 0 and
+    // t = (Y − y0)·dx + (x0 − k)·dy − 1 = dy·(x(Y) − k) − 1 exactly (no wrapping: below
+    // 2²⁸), x(Y) between x0 and x1, hence in [xmin, xmax]. With k = 16·px0 − 8 ≤ xmin − 8,
+    // t lies in [7, dy·(xmax − k)), and its column t / 16dy (UDIV) in
+    // [0, ⌊(xmax + 8)/16⌋ − px0]: both ends of every row inside the local clip
+    // [clip.x0 − px0, clip.x1 − px0]. Every register written is declared (r6 and r7,
+    // not allowed as operands, are pushed and popped); the flags are scratch.
     // The template for the corners' layout, the operands alike.
     macro_rules! setup_and_rows {
         ($($layout:tt)*) => {
