@@ -865,6 +865,23 @@ fn rows_less_dsp(
     (tested, r.failed)
 }
 
+/// The end of [`small_body`]'s set-up: the first row's address (r4) from px0 (r4),
+/// the first half's rows (r5), its 16 bytes of stack released.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! rows_start {
+    () => {
+        concat!(
+            "ldr r2, [r0, #40]\n",
+            "ldr r1, [sp, #4]\n",
+            "mla r1, r5, r2, r1\n",
+            "add r4, r1, r4, lsl #1\n",
+            "ldr r5, [sp, #8]\n",
+            "add sp, #16\n",
+        )
+    };
+}
+
 /// The set-up and rows of [`small_less_dsp`] (the assembly template), for corners whose
 /// y and x are read by `$ly`/`$lx` at byte offsets `$oy`/`$ox` and z at `$oz`; `$p0` loads
 /// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z).
@@ -1071,29 +1088,24 @@ macro_rules! small_body {
             "add r8, r8, #32768\n",
             "mla r8, r1, r6, r8\n",
             "mla r3, r3, r7, r8\n",
-            // The clip's columns local (cx0 r8, cx1 r10); the rows inside them when
-            // px0 ≥ clip.x0 and ⌊(xmax + 8)/16⌋ ≤ clip.x1, i.e. cx0 < 1 and
-            // ⌊(xmax − 8)/16⌋ − px0 < cx1 (the flags: lt, kept to the branch below).
+            // The rows inside the clip's columns when px0 ≥ clip.x0 and
+            // ⌊(xmax + 8)/16⌋ ≤ clip.x1 (at 200); else the clip's columns made local
+            // for the rows' clamp.
             "ldrd r8, r10, [r0, #28]\n",
             "ldr r12, [sp, #12]\n",
+            "add r12, r12, #8\n",
+            "cmp r4, r8\n",
+            "it ge\n",
+            "cmpge r10, r12, asr #4\n",
+            "bge 200f\n",
             "sub r8, r8, r4\n",
             "sub r10, r10, r4\n",
             "strd r8, r10, [r0, #28]\n",
-            "sub r12, r12, #8\n",
-            "rsb r12, r4, r12, asr #4\n",
-            "cmp r8, #1\n",
-            "it lt\n",
-            "cmplt r12, r10\n",
-            "ldr r2, [r0, #40]\n",
-            "ldr r1, [sp, #4]\n",
-            "mla r1, r5, r2, r1\n",
-            "add r4, r1, r4, lsl #1\n",
-            "ldr r5, [sp, #8]\n",
-            "add sp, #16\n",
-            "blt 200f\n",
+            rows_start!(),
             rows_body!(clip),
             "b 199f\n",
             "200:\n",
+            rows_start!(),
             rows_body!(inside),
             "199:\n",
             "ldr r3, [r0, #44]\n",
@@ -1164,7 +1176,7 @@ fn small_less_dsp<T: Corner>(
     // `z`: inside `z` and `c` since the clip lies inside both (the caller's check), and
     // n0 + n1 = end − start, both ≥ 0. The rows are those of `rows_less_dsp` (its
     // SAFETY argument). The `inside` rows skip the clamp, taken only when
-    // px0 ≥ clip.x0 and ⌊(xmax + 8)/16⌋ ≤ clip.x1 (signed compares of values below 2²⁵
+    // px0 ≥ clip.x0 and ⌊(xmax + 8)/16⌋ ≤ clip.x1 (signed compares of values below 2²⁶
     // in magnitude): every row then lies inside the clip's columns, by the set-up's
     // arithmetic. An edge from (x0, y0) to (x1, y1), dy = y1 − y0, is stepped only on
     // rows whose centre Y lies in [y0, y1) (start = ⌈(a.y − 8)/16⌉ puts the first
