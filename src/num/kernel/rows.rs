@@ -975,7 +975,9 @@ macro_rules! small_body {
             "str r8, [r0, #64]\n",
             "sub r8, lr, r5\n",
             "str r8, [sp, #8]\n",
-            // Edges: t = s·dx + (x − k)·dy − 1, k = ox − 8, s = 16·row + 8 − y.
+            // Edges: t = s·dx + (x − k)·dy − 1, k = ox − 8, s = 16·row + 8 − y, as the
+            // rows take them: t/16 (LSR; t ≥ 0 on every row an edge is stepped), then dy
+            // and dx, not 16dy and 16dx (the same columns: ⌊⌊t/16⌋/dy⌋ = ⌊t/16dy⌋).
             "sub r12, r12, r10\n",
             "sub r11, r11, r10\n",
             "sub r9, r9, r6\n",
@@ -991,10 +993,12 @@ macro_rules! small_body {
             "mul r8, r6, r12\n",
             "mla r8, r10, r9, r8\n",
             "sub r8, r8, #1\n",
+            "lsr r8, r8, #4\n",
             "str r8, [r0, #48]\n",
             "mul r8, r6, r11\n",
             "mla r8, r10, r7, r8\n",
             "sub r8, r8, #1\n",
+            "lsr r8, r8, #4\n",
             "str r8, [r0, #52]\n",
             "add r10, r10, r11\n",
             "sub r6, r12, r11\n",
@@ -1002,16 +1006,11 @@ macro_rules! small_body {
             "mul lr, lr, r6\n",
             "mla lr, r10, r8, lr\n",
             "sub lr, lr, #1\n",
-            "lsl r8, r8, #4\n",
-            "lsl r6, r6, #4\n",
+            "lsr lr, lr, #4\n",
             "str lr, [r0, #72]\n",
             "strd r8, r6, [r0, #76]\n",
-            "lsl r6, r12, #4\n",
-            "lsl r8, r11, #4\n",
-            "strd r6, r8, [r0, #20]\n",
-            "lsl r6, r9, #4\n",
-            "lsl r8, r7, #4\n",
-            "strd r6, r8, [r0, #56]\n",
+            "strd r12, r11, [r0, #20]\n",
+            "strd r9, r7, [r0, #56]\n",
             // The area (r6; 0: nothing drawn), its sign the side.
             "mul r6, r11, r9\n",
             "mls r6, r12, r7, r6\n",
@@ -1184,7 +1183,8 @@ fn small_less_dsp<T: Corner>(
     // last above c.y; an edge with dy = 0 gets no rows), so dy > 0 and
     // t = (Y − y0)·dx + (x0 − k)·dy − 1 = dy·(x(Y) − k) − 1 exactly (no wrapping: below
     // 2²⁸), x(Y) between x0 and x1, hence in [xmin, xmax]. With k = 16·px0 − 8 ≤ xmin − 8,
-    // t lies in [7, dy·(xmax − k)), and its column t / 16dy (UDIV) in
+    // t lies in [7, dy·(xmax − k)) (so ⌊t/16⌋ stepped by dx is ⌊t/16⌋ of t stepped by
+    // 16dx: the rows' t), and its column ⌊t/16⌋ / dy (UDIV) in
     // [0, ⌊(xmax + 8)/16⌋ − px0]: both ends of every row inside the local clip
     // [clip.x0 − px0, clip.x1 − px0]. Every register written is declared (r6 and r7,
     // not allowed as operands, are pushed and popped); the flags are scratch.
