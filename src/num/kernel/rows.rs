@@ -430,11 +430,16 @@ impl<C: Copy> SmallTarget<'_, '_, C> {
             return None;
         }
         let len = self.z.len().min(self.c.len());
-        let clip = self.clip;
-        let rows = clip.y1.saturating_sub(self.first_row).max(0) as usize;
-        let inside = i32::try_from(self.width).is_ok_and(|w| clip.x0 >= 0 && clip.x1 <= w)
+        let (clip, w) = (self.clip, self.width);
+        // Columns x0..x1 inside 0..w (a negative one is refused: as u32 above any width
+        // with rows), rows y0..y1 inside the buffers' first_row.. (when y1 < first_row
+        // the wrapped count is refused, or with w = 0 no pixel can be drawn).
+        let col = |x: i32| x as u32 as usize;
+        let rows = col(clip.y1.wrapping_sub(self.first_row));
+        let inside = col(clip.x0) <= w
+            && col(clip.x1) <= w
             && clip.y0 >= self.first_row
-            && rows.checked_mul(self.width).is_some_and(|n| n <= len);
+            && rows.checked_mul(w).is_some_and(|n| n <= len);
         if !inside {
             return None;
         }
