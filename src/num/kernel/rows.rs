@@ -59,7 +59,7 @@ pub(crate) struct DivEdge {
 /// between the long edge `(t, d, dt)[0]` and the short one `[1]`, the long one on the
 /// left when `side` is 0, then `n1` rows with the short edge replaced by `short1`, the
 /// long one carried on. Each row covers `max(left, cx0)..min(right, cx1)`; the depth at
-/// its column `x` is `clamp(z + x·sx, lo, hi)` then `+ sx` a pixel, `z`
+/// its column `x` is `clamp(z + x·sx, lo, hi)` (`hi = lo + span`) then `+ sx` a pixel, `z`
 /// ([`RowsAt::z`]) stepping by `sy` a row (all wrapping). Filled field by field as the
 /// triangle's set-up finds the values, so that they need not stay in registers
 /// meanwhile.
@@ -68,7 +68,7 @@ pub(crate) struct DivEdge {
 pub(crate) struct RowsLess {
     sx: u32,          // 0
     lo: u32,          // 4
-    hi: u32,          // 8
+    span: u32,        // 8: hi − lo
     color: u32,       // 12
     delta: u32,       // 16: colour address − depth address
     dt: [u32; 2],     // 20: the long and short edges' steps (the assembly's: left, right)
@@ -88,7 +88,7 @@ pub(crate) struct RowsLess {
 const _: () = {
     use core::mem::{align_of, offset_of, size_of};
     assert!(offset_of!(RowsLess, sx) == 0 && offset_of!(RowsLess, lo) == 4);
-    assert!(offset_of!(RowsLess, hi) == 8 && offset_of!(RowsLess, color) == 12);
+    assert!(offset_of!(RowsLess, span) == 8 && offset_of!(RowsLess, color) == 12);
     assert!(offset_of!(RowsLess, delta) == 16 && offset_of!(RowsLess, dt) == 20);
     assert!(offset_of!(RowsLess, cx) == 28 && offset_of!(RowsLess, sy) == 36);
     assert!(offset_of!(RowsLess, pitch) == 40 && offset_of!(RowsLess, failed) == 44);
@@ -106,7 +106,7 @@ impl RowsLess {
         RowsLess {
             sx: 0,
             lo: 0,
-            hi: 0,
+            span: 0,
             color: 0,
             delta: 0,
             dt: [0; 2],
@@ -122,10 +122,11 @@ impl RowsLess {
         }
     }
 
-    /// The depth plane's steps `sx` and `sy`, and the clamp `lo..=hi`.
+    /// The depth plane's steps `sx` and `sy`, and the clamp `lo..=hi` (`lo ≤ hi`: held
+    /// as `lo` and `hi − lo`, one unsigned compare a row).
     #[inline(always)]
     pub(crate) fn depth(&mut self, sx: u32, sy: u32, lo: u32, hi: u32) {
-        (self.sx, self.sy, self.lo, self.hi) = (sx, sy, lo, hi);
+        (self.sx, self.sy, self.lo, self.span) = (sx, sy, lo, hi.wrapping_sub(lo));
     }
 
     /// Rows between the long edge and `short[0]` ([`RowsAt::n0`] of them), then `n1`
@@ -275,7 +276,7 @@ pub(crate) fn rows_less_portable(
             let xr = t[1].checked_div(d[1]).unwrap_or(0) as i32;
             t = [t[0].wrapping_add(dt[0]), t[1].wrapping_add(dt[1])];
             let (xa, xb) = (xl.max(r.cx[0]), xr.min(r.cx[1]));
-            let depth = [zrow, r.sx, r.lo, r.hi];
+            let depth = [zrow, r.sx, r.lo, r.lo.wrapping_add(r.span)];
             let (t, f) = twin_row(z, c, base, (xa, xb), depth, color);
             (tested, failed) = (tested.wrapping_add(t), failed.wrapping_add(f));
             zrow = zrow.wrapping_add(r.sy);
@@ -694,11 +695,10 @@ macro_rules! rows_body {
             "ldm r0, {{r9, r12, lr}}\n",
             "mla r9, r10, r9, r3\n",
             "add r10, r4, r10, lsl #1\n",
-            // Inside lo..=hi (usually); else clamped at 16.
-            "cmp r9, r12\n",
-            "it hs\n",
-            "cmphs lr, r9\n",
-            "blo 16f\n",
+            // Inside lo..=hi (usually: depth − lo ≤ hi − lo unsigned); else clamped at 16.
+            "sub r12, r9, r12\n",
+            "cmp r12, lr\n",
+            "bhi 16f\n",
             "17:\n",
             "cmp r11, #2\n",
             "bhi 4f\n",
@@ -748,6 +748,8 @@ macro_rules! rows_body {
             rows_clamp!($cols),
             // The row's first depth clamped to lo..=hi.
             "16:\n",
+            "ldr r12, [r0, #4]\n",
+            "add lr, lr, r12\n",
             "cmp r9, r12\n",
             "it lo\n",
             "movlo r9, r12\n",
@@ -1023,7 +1025,7 @@ macro_rules! small_body {
             "beq 91f\n",
             "lsr r8, r6, #31\n",
             "str r8, [r0, #68]\n",
-            // Depth: the clamp, then the numerators a (r1:r2) and b (r3:r8).
+            // Depth: the clamp (lo, hi − lo), then the numerators a (r1:r2) and b (r3:r8).
             concat!("ldr r8, [r1, #", $oz, "]\n"),
             concat!("ldr r10, [r2, #", $oz, "]\n"),
             concat!("ldr lr, [r3, #", $oz, "]\n"),
@@ -1039,8 +1041,8 @@ macro_rules! small_body {
             "cmp lr, r2\n",
             "it hi\n",
             "movhi r2, lr\n",
+            "sub r2, r2, r1\n",
             "add r1, r1, #32768\n",
-            "add r2, r2, #32768\n",
             "strd r1, r2, [r0, #4]\n",
             "lsr r8, r8, #4\n",
             "rsb r10, r8, r10, lsr #4\n",
