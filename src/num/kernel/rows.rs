@@ -897,7 +897,7 @@ macro_rules! rows_start {
 macro_rules! small_body {
     ($ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
-            "push {{r6, r7}}\n",
+            "push {{r6-r12}}\n",
             "strd lr, r12, [r0, #12]\n",
             "movs r12, #0\n",
             "strd r11, r12, [r0, #40]\n",
@@ -1141,7 +1141,7 @@ macro_rules! small_body {
             "movs r1, #0\n",
             "movs r3, #0\n",
             "99:\n",
-            "pop {{r6, r7}}\n",
+            "pop {{r6-r12}}\n",
         )
     };
 }
@@ -1193,8 +1193,10 @@ fn small_less_dsp<T: Corner>(
     // t lies in [7, dy·(xmax − k)) (so ⌊t/16⌋ stepped by dx is ⌊t/16⌋ of t stepped by
     // 16dx: the rows' t), and its column ⌊t/16⌋ / dy (UDIV) in
     // [0, ⌊(xmax + 8)/16⌋ − px0]: both ends of every row inside the local clip
-    // [clip.x0 − px0, clip.x1 − px0]. Every register written is declared (r6 and r7,
-    // not allowed as operands, are pushed and popped); the flags are scratch.
+    // [clip.x0 − px0, clip.x1 − px0]. r6–r12 are pushed first and popped last (r6 and
+    // r7 are not allowed as operands; r8–r12 are inputs the caller keeps: its loop
+    // need not reload them); every other register written is declared; the flags are
+    // scratch.
     // The template for the corners' layout, the operands alike.
     macro_rules! setup_and_rows {
         ($($layout:tt)*) => {
@@ -1206,15 +1208,15 @@ fn small_less_dsp<T: Corner>(
                 inout("r3") vertex(tri[2]) => failed,
                 inout("r4") zrow0 => _,
                 inout("r5") clip.y0 => _,
-                inout("r8") clip.y1 => _,
-                inout("r9") clip.x0 => _,
-                inout("r10") clip.x1 => _,
-                inout("r11") pitch => _,
-                inout("r12") delta => _,
+                in("r8") clip.y1,
+                in("r9") clip.x0,
+                in("r10") clip.x1,
+                in("r11") pitch,
+                in("r12") delta,
                 inout("lr") u32::from(color) => _,
                 wide = sym wide_steps_c,
                 // The call's: the caller-saved floating-point registers, where there are any
-                // (its core ones are all operands above).
+                // (its core ones are operands above, or pushed and popped).
                 #[cfg(not(zraster_soft_float))] out("d0") _,
                 #[cfg(not(zraster_soft_float))] out("d1") _,
                 #[cfg(not(zraster_soft_float))] out("d2") _,
