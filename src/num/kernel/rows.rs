@@ -897,11 +897,10 @@ macro_rules! rows_start {
 macro_rules! small_body {
     ($ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
-            "push {{r6-r12}}\n",
+            "push {{r4-r12}}\n",
             "strd lr, r12, [r0, #12]\n",
             "movs r12, #0\n",
             "strd r11, r12, [r0, #40]\n",
-            "strd r9, r10, [r0, #28]\n",
             "sub sp, #16\n",
             "strd r1, r4, [sp]\n",
             // The corners top to bottom (r1, r2, r3; their y in r6, r7, r9), stable.
@@ -1096,8 +1095,8 @@ macro_rules! small_body {
             "mla r3, r3, r7, r8\n",
             // The rows inside the clip's columns when px0 ≥ clip.x0 and
             // ⌊(xmax + 8)/16⌋ ≤ clip.x1 (at 200); else the clip's columns made local
-            // for the rows' clamp.
-            "ldrd r8, r10, [r0, #28]\n",
+            // for the rows' clamp (clip.x0, clip.x1 as pushed by the entry, at sp + 16 + 20).
+            "ldrd r8, r10, [sp, #36]\n",
             "ldr r12, [sp, #12]\n",
             "add r12, r12, #8\n",
             "cmp r4, r8\n",
@@ -1141,7 +1140,7 @@ macro_rules! small_body {
             "movs r1, #0\n",
             "movs r3, #0\n",
             "99:\n",
-            "pop {{r6-r12}}\n",
+            "pop {{r4-r12}}\n",
         )
     };
 }
@@ -1193,10 +1192,10 @@ fn small_less_dsp<T: Corner>(
     // t lies in [7, dy·(xmax − k)) (so ⌊t/16⌋ stepped by dx is ⌊t/16⌋ of t stepped by
     // 16dx: the rows' t), and its column ⌊t/16⌋ / dy (UDIV) in
     // [0, ⌊(xmax + 8)/16⌋ − px0]: both ends of every row inside the local clip
-    // [clip.x0 − px0, clip.x1 − px0]. r6–r12 are pushed first and popped last (r6 and
-    // r7 are not allowed as operands; r8–r12 are inputs the caller keeps: its loop
-    // need not reload them); every other register written is declared; the flags are
-    // scratch.
+    // [clip.x0 − px0, clip.x1 − px0]. r4–r12 are pushed first and popped last (r6 and
+    // r7 are not allowed as operands; the others are inputs the caller keeps: its loop
+    // need not reload them; the set-up reads clip.x0 and clip.x1 back where they were
+    // pushed); every other register written is declared; the flags are scratch.
     // The template for the corners' layout, the operands alike.
     macro_rules! setup_and_rows {
         ($($layout:tt)*) => {
@@ -1206,8 +1205,8 @@ fn small_less_dsp<T: Corner>(
                 inout("r1") vertex(tri[0]) => tested,
                 inout("r2") vertex(tri[1]) => status,
                 inout("r3") vertex(tri[2]) => failed,
-                inout("r4") zrow0 => _,
-                inout("r5") clip.y0 => _,
+                in("r4") zrow0,
+                in("r5") clip.y0,
                 in("r8") clip.y1,
                 in("r9") clip.x0,
                 in("r10") clip.x1,
