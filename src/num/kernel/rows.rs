@@ -664,9 +664,8 @@ macro_rules! rows_body {
         concat!(
             "movs r6, #0\n",
             // The long and short edges to the left and right.
-            "ldr r12, [r0, #68]\n",
-            "cmp r12, #0\n",
-            "bne 11f\n",
+            "ldr r7, [r0, #68]\n",
+            "cbnz r7, 11f\n",
             "ldrd r1, r2, [r0, #48]\n",
             "ldrd r7, r8, [r0, #56]\n",
             "b 12f\n",
@@ -676,8 +675,7 @@ macro_rules! rows_body {
             "ldrd r9, r10, [r0, #20]\n",
             "strd r10, r9, [r0, #20]\n",
             "12:\n",
-            "cmp r5, #0\n",
-            "beq 8f\n",
+            "cbz r5, 8f\n",
             // A row: its columns, clamped to the clip.
             "1:\n",
             "udiv r10, r1, r7\n",
