@@ -384,7 +384,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             if how == Carry::Keep {
                 carry.keep(color);
             }
-            counts.add(target.fill_cached([a, b, c], color), &mut px);
+            counts.add(target.fill_cached_or_call([a, b, c], color), &mut px);
         }
         counts.flush(&mut px);
         Ok(px)

@@ -291,6 +291,33 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
         self.fill_inline([&p, &q, &r], color)
     }
 
+    /// [`fill_cached`](FlatTarget::fill_cached) with what the kernel leaves (all of it
+    /// where there is none) to the out-of-line [`fill`](FlatTarget::fill), for loops
+    /// that keep one copy of the general fill (the bands').
+    #[inline(always)]
+    pub(crate) fn fill_cached_or_call(&mut self, tri: [&CachedVertex; 3], color: C) -> SpanStats {
+        if let Some(s) = self.kernel_cached(tri, color) {
+            return s;
+        }
+        let [p, q, r] = tri.map(CachedVertex::placed);
+        self.fill([&p, &q, &r], color)
+    }
+
+    /// The small triangles' kernel on the cache entries `tri`, where it runs and takes
+    /// them.
+    #[inline(always)]
+    fn kernel_cached(&mut self, tri: [&CachedVertex; 3], color: C) -> Option<SpanStats> {
+        let FlatTarget::Fused { b, less: true, .. } = self else {
+            return None;
+        };
+        let (tested, written) = fill_small_cached(b, tri, color)?;
+        Some(SpanStats {
+            pixels_tested: tested,
+            pixels_written: written,
+            runs: 0,
+        })
+    }
+
     /// [`fill`](FlatTarget::fill) returning the two counts it has (a fill into buffers
     /// emits no runs), in registers rather than through memory.
     fn fill_counted(&mut self, tri: [&ScreenVertex; 3], color: C) -> Filled {
