@@ -866,15 +866,17 @@ fn rows_less_dsp(
     (tested, r.failed)
 }
 
-/// The end of [`small_body`]'s set-up: the first row's address (r4) from px0 (r4),
-/// the first half's rows (r5), its 16 bytes of stack released.
+/// The end of [`small_body`]'s set-up: the first row's address (r4) from px0 (r4) and
+/// zrow0 (pushed at sp + 16), the first half's rows (r5), the 16 bytes where r0–r3 were
+/// pushed (its scratch: the first corner's address as pushed at sp + 4, n0, xmax)
+/// released.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! rows_start {
     () => {
         concat!(
             "ldr r2, [r0, #40]\n",
-            "ldr r1, [sp, #4]\n",
+            "ldr r1, [sp, #16]\n",
             "mla r1, r5, r2, r1\n",
             "add r4, r1, r4, lsl #1\n",
             "ldr r5, [sp, #8]\n",
@@ -891,12 +893,12 @@ macro_rules! rows_start {
 macro_rules! small_body {
     ($ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
-            "push {{r4-r12}}\n",
+            // r0–r3 pushed to make the set-up's 16 bytes of scratch (r1, the first
+            // corner's address, kept at sp + 4), r4–r12 for the caller.
+            "push {{r0-r12}}\n",
             "strd lr, r12, [r0, #12]\n",
             "movs r12, #0\n",
             "strd r11, r12, [r0, #40]\n",
-            "sub sp, #16\n",
-            "strd r1, r4, [sp]\n",
             // The corners top to bottom (r1, r2, r3; their y in r6, r7, r9), stable.
             concat!($ly, " r6, [r1, #", $oy, "]\n"),
             concat!($ly, " r7, [r2, #", $oy, "]\n"),
@@ -1078,7 +1080,7 @@ macro_rules! small_body {
             "str r2, [r0, #36]\n",
             // The first row's depth at column 0 (r3) from the first corner given, its
             // address (r4), the first half's rows (r5).
-            "ldr lr, [sp]\n",
+            "ldr lr, [sp, #4]\n",
             $p0,
             "rsb r6, r6, #8\n",
             "add r6, r6, r4, lsl #4\n",
@@ -1168,8 +1170,8 @@ fn small_less_dsp<T: Corner>(
     // 8 bytes, z at 0 and x, y the i16 halves at 4 and 6; else a `ScreenVertex`,
     // `repr(C)` and 12 bytes, x, y, z at 0, 4, 8: both pinned by const assertions) and
     // writes only the block (a local `RowsLess`, word-aligned, every field written
-    // before the rows read it) and 16 bytes of stack it reserves itself (released before
-    // the rows). It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in
+    // before the rows read it) and the stack it pushes r0–r12 to (its 16 bytes of r0–r3
+    // scratch, released before the rows). It then draws rows start..end, start ≥ clip.y0 and end ≤ clip.y1, in
     // columns clamped to clip.x0 − px0 .. clip.x1 − px0 (|px0| ≤ 2²⁰ by the guard band,
     // the clip's columns inside 0..width: no wrapping, so the loop's signed compares are
     // exact), at zrow0 + row·pitch + 2·(px0 + column) = the address of that pixel in
@@ -1187,9 +1189,10 @@ fn small_less_dsp<T: Corner>(
     // t lies in [7, dy·(xmax − k)) (so ⌊t/16⌋ stepped by dx is ⌊t/16⌋ of t stepped by
     // 16dx: the rows' t), and its column ⌊t/16⌋ / dy (UDIV) in
     // [0, ⌊(xmax + 8)/16⌋ − px0]: both ends of every row inside the local clip
-    // [clip.x0 − px0, clip.x1 − px0]. r4–r12 are pushed first and popped last (r6 and
-    // r7 are not allowed as operands; the others are inputs the caller keeps: its loop
-    // need not reload them; the set-up reads clip.x0 and clip.x1 back where they were
+    // [clip.x0 − px0, clip.x1 − px0]. r0–r12 are pushed first (r0–r3's 16 bytes the
+    // set-up's scratch, released by it) and r4–r12 popped last (r6 and r7 are not
+    // allowed as operands; the others are inputs the caller keeps: its loop need not
+    // reload them; the set-up reads zrow0, clip.x0 and clip.x1 back where they were
     // pushed); every other register written is declared; the flags are scratch.
     // The template for the corners' layout, the operands alike.
     macro_rules! setup_and_rows {
