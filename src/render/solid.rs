@@ -17,11 +17,23 @@ macro_rules! per_colouring {
                 let $shade = |_: usize| Ok(c);
                 $body
             }
-            // A uniform material without one colour for all is lit.
-            (None, crate::mesh::Materials::Uniform(m)) => {
-                let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
-                $body
-            }
+            // A uniform material without one colour for all is lit: into a 5-6-5
+            // colour from the face normal in one step where it can be.
+            (None, crate::mesh::Materials::Uniform(m)) => match $r.light_block(&m) {
+                Some((block, color, normals)) => {
+                    let $shade = |f: usize| {
+                        Ok(match normals.get(f) {
+                            Some(n) => color(crate::num::kernel::lit_565(n, &block)),
+                            None => m.shade($r.face_light(f), 0, 0),
+                        })
+                    };
+                    $body
+                }
+                None => {
+                    let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
+                    $body
+                }
+            },
             (None, _) => {
                 let $shade = |f: usize| $r.face_color($materials, $lambert, f);
                 $body

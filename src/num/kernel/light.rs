@@ -1,0 +1,164 @@
+//! A face's flat Lambert colour in RGB565 (or BGR565) from its Q14 normal: one
+//! assembly block on ARMv7E-M, beside its portable twin (the renderer's
+//! `lambert_q14` and `shade::lit_rgb`, with the same roundings).
+#![allow(unsafe_code)]
+
+/// Half of the channel divisor `255 · 2¹⁵` (the rounding of `shade::rounded_channel`).
+const HALF: u32 = 255 * 32768 / 2;
+/// ⌈2³⁹ / 255⌉: `⌊x / (255 · 2¹⁵)⌋ = (x · MUL) >> 54` for every `u32` (`shade::div_den`).
+const MUL: u32 = ((1u64 << 39) / 255 + 1) as u32;
+
+/// What [`lit_565`] reads, in the order its assembly loads it: the light direction
+/// (Q15), ambient (Q15) and diffuse weight (Q15 · 8) of the renderer, the channel
+/// constants, and each 8-bit channel of the material times its depth (31, 63, 31), in
+/// the packing's order from the high field down.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LightBlock {
+    light: [i32; 3],
+    ambient: i32,
+    diffuse: i32,
+    half: u32,
+    mul: u32,
+    channels: [u32; 3],
+}
+
+// The assembly reads the block at these offsets.
+const _: () = {
+    assert!(core::mem::offset_of!(LightBlock, ambient) == 12);
+    assert!(core::mem::offset_of!(LightBlock, half) == 20);
+    assert!(core::mem::offset_of!(LightBlock, channels) == 28);
+};
+
+impl LightBlock {
+    /// The block of light `light`, `ambient`, `diffuse` (as the renderer keeps them:
+    /// ambient within ±2¹⁶, diffuse within ±2¹⁹) and a material of 8-bit channels
+    /// `[high, middle, low]` (the 5-, 6- and 5-bit fields, high to low).
+    pub(crate) fn new(light: [i32; 3], ambient: i32, diffuse: i32, [h, m, l]: [u8; 3]) -> Self {
+        LightBlock {
+            light,
+            ambient,
+            diffuse,
+            half: HALF,
+            mul: MUL,
+            channels: [u32::from(h) * 31, u32::from(m) * 63, u32::from(l) * 31],
+        }
+    }
+}
+
+/// The packed 5-6-5 colour of a face of Q14 normal `n` lit by `b`: the intensity
+/// `clamp(ambient + ⌊(max(0, n·L) · diffuse + 2³¹) / 2³²⌋, 0, 2¹⁶ − 1)`, then each
+/// channel `min(⌊(v · max · i + 255 · 2¹⁴) / (255 · 2¹⁵)⌋, max)`. On ARMv7E-M 27
+/// instructions (MUL/MLA, SMMLAR, USAT; each channel MLA, UMULL, USAT); elsewhere
+/// [`lit_565_portable`].
+#[inline(always)]
+pub(crate) fn lit_565(n: &[i16; 3], b: &LightBlock) -> u16 {
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    {
+        let mut c = n.as_ptr() as u32;
+        // SAFETY: reads the three halfwords of `n` and the ten words of `b` (offsets
+        // pinned above), both live references; writes only its registers, no memory and
+        // not the stack. MLA, UMULL and SMMLAR do not set the flags; USAT may set the
+        // sticky Q flag, which nothing in the crate reads.
+        unsafe {
+            core::arch::asm!(
+                "ldrsh {y}, [{c}, #2]",
+                "ldrsh {z}, [{c}, #4]",
+                "ldrsh {c}, [{c}]",
+                "ldrd {h}, {m}, [{b}]",
+                "ldr {a}, [{b}, #8]",
+                "mul {c}, {c}, {h}",
+                "mla {c}, {y}, {m}, {c}",
+                "mla {c}, {z}, {a}, {c}",
+                // max(0, n·L), then ambient + the rounded high word of dot · diffuse.
+                "bic {c}, {c}, {c}, asr #31",
+                "ldrd {h}, {m}, [{b}, #12]",
+                "smmlar {c}, {c}, {m}, {h}",
+                "usat {c}, #16, {c}",
+                // The channels, high to low: (i · v·max + half) · mul >> 54, saturated.
+                "ldrd {h}, {m}, [{b}, #20]",
+                "ldrd {a}, {z}, [{b}, #28]",
+                "ldr {b}, [{b}, #36]",
+                "mla {a}, {c}, {a}, {h}",
+                "umull {y}, {a}, {a}, {m}",
+                "usat {a}, #5, {a}, asr #22",
+                "mla {z}, {c}, {z}, {h}",
+                "umull {y}, {z}, {z}, {m}",
+                "usat {z}, #6, {z}, asr #22",
+                "orr {a}, {z}, {a}, lsl #6",
+                "mla {z}, {c}, {b}, {h}",
+                "umull {y}, {z}, {z}, {m}",
+                "usat {z}, #5, {z}, asr #22",
+                "orr {c}, {z}, {a}, lsl #5",
+                c = inout(reg) c,
+                b = inout(reg) b as *const LightBlock => _,
+                h = out(reg) _,
+                m = out(reg) _,
+                a = out(reg) _,
+                y = out(reg) _,
+                z = out(reg) _,
+                options(pure, readonly, nostack),
+            );
+        }
+        return c as u16;
+    }
+    #[allow(unreachable_code)]
+    lit_565_portable(n, b)
+}
+
+/// The portable twin of [`lit_565`].
+#[inline(always)]
+pub(crate) fn lit_565_portable(n: &[i16; 3], b: &LightBlock) -> u16 {
+    let [lx, ly, lz] = b.light;
+    let dot = (i32::from(n[0]).wrapping_mul(lx))
+        .wrapping_add(i32::from(n[1]).wrapping_mul(ly))
+        .wrapping_add(i32::from(n[2]).wrapping_mul(lz));
+    let term = ((i64::from(dot.max(0)) * i64::from(b.diffuse) + (1 << 31)) >> 32) as i32;
+    let i = (b.ambient + term).clamp(0, i32::from(u16::MAX)) as u32;
+    let channel = |v: u32, max: u32| {
+        let x = i * v + b.half;
+        (((u64::from(x) * u64::from(b.mul)) >> 54) as u32).min(max)
+    };
+    let [h, m, l] = b.channels;
+    (channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16
+}
+
+/// [`lit_565`] against its portable twin on this target: random unit-length and
+/// arbitrary normals, every material's extremes and random ones, lights of every
+/// strength within the renderer's ranges. Returns the number of cases that differ.
+pub fn check_light_kernel(n: usize) -> usize {
+    let mut rnd = super::xorshift32(0x1d87_2b41_u32);
+    let mut bad = 0;
+    for case in 0..n {
+        let mut r = || rnd();
+        // A normal and a light of Q14 / Q15 components, near unit length or anything
+        // whose dot product stays within i32.
+        let normal = [0; 3]
+            .map(|_| (r() % 32769) as i32 - 16384)
+            .map(|v| v as i16);
+        let light = [0; 3].map(|_| (r() % 65537) as i32 - 32768);
+        let ambient = (r() % 131_073) as i32 - 65536;
+        let diffuse = ((r() % 131_073) as i32 - 65536) << 3;
+        let extremes = [0u8, 1, 127, 128, 254, 255];
+        let channels = if case % 4 == 0 {
+            [0; 3].map(|_| extremes.get(r() as usize % 6).copied().unwrap_or(0))
+        } else {
+            [0; 3].map(|_| r() as u8)
+        };
+        let b = LightBlock::new(light, ambient, diffuse, channels);
+        if lit_565(&normal, &b) != lit_565_portable(&normal, &b) {
+            bad += 1;
+        }
+    }
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_light_kernel_is_its_twin() {
+        assert_eq!(check_light_kernel(100_000), 0);
+    }
+}
