@@ -316,9 +316,8 @@ fn lambert_term_narrow(dot: i32, w: i32) -> i32 {
 }
 
 /// What [`Renderer::light_block`] gives: the block of
-/// [`lit_565`](crate::num::kernel::lit_565), the colour of a packed value, the face
-/// normals.
-pub(crate) type LitFaces<'m, C> = (LightBlock, fn(u16) -> C, &'m [[i16; 3]]);
+/// [`lit_565`](crate::num::kernel::lit_565) and the colour of a packed value.
+pub(crate) type LitFaces<'m, C> = (LightBlock<'m>, fn(u16) -> C);
 
 /// [`Renderer::lambert_q14`] for the renderer's `light_q`.
 #[inline(always)]
@@ -615,8 +614,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
 
     /// For the faces of one material `m` lit into a 5-6-5 colour: the block of
     /// [`lit_565`](crate::num::kernel::lit_565) (the colour [`face_light`] and `m`'s
-    /// `shade` give, in one go), the colour of a packed value and the face normals (empty
-    /// without). Not on ARMv6-M, whose Lambert term is scaled otherwise.
+    /// `shade` give, in one go, for a face with a normal) and the colour of a packed
+    /// value. Not on ARMv6-M, whose Lambert term is scaled otherwise.
     ///
     /// [`face_light`]: Renderer::face_light
     #[inline(always)]
@@ -629,9 +628,10 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
         let (channels, color) = m.packed_565()?;
         let (light, ambient, diffuse) = self.light_q;
+        let normals = self.mesh.face_normals.unwrap_or(&[]);
         // Ambient within ±2¹⁶, diffuse within ±2¹⁹ (see `light_q`).
-        let block = LightBlock::new(light, ambient as i32, diffuse as i32, channels);
-        Some((block, color, self.mesh.face_normals.unwrap_or(&[])))
+        let block = LightBlock::new(light, ambient as i32, diffuse as i32, channels, normals);
+        Some((block, color))
     }
 
     /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29
@@ -698,11 +698,12 @@ mod tests {
             let (l, a, d) = light_q;
             let rgb: Rgb565 = m.shade(i, 0, 0);
             let bgr: Bgr565 = m.shade(i, 0, 0);
-            let block = |ch| LightBlock::new(l, a as i32, d as i32, ch);
-            let want = (rgb.into_storage(), bgr.into_storage());
+            let normals = [n];
+            let block = |ch| LightBlock::new(l, a as i32, d as i32, ch, &normals);
+            let want = (Some(rgb.into_storage()), Some(bgr.into_storage()));
             let got = (
-                lit_565_portable(&n, &block([m.r(), m.g(), m.b()])),
-                lit_565_portable(&n, &block([m.b(), m.g(), m.r()])),
+                lit_565_portable(0, &block([m.r(), m.g(), m.b()])),
+                lit_565_portable(0, &block([m.b(), m.g(), m.r()])),
             );
             assert_eq!(got, want, "{light_q:?} {n:?} {m:?} i {i}");
         };

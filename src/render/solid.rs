@@ -20,10 +20,10 @@ macro_rules! per_colouring {
             // A uniform material without one colour for all is lit: into a 5-6-5
             // colour from the face normal in one step where it can be.
             (None, crate::mesh::Materials::Uniform(m)) => match $r.light_block(&m) {
-                Some((block, color, normals)) => {
+                Some((block, color)) => {
                     let $shade = |f: usize| {
-                        Ok(match normals.get(f) {
-                            Some(n) => color(crate::num::kernel::lit_565(n, &block)),
+                        Ok(match crate::num::kernel::lit_565(f, &block) {
+                            Some(c) => color(c),
                             None => m.shade($r.face_light(f), 0, 0),
                         })
                     };

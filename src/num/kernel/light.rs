@@ -3,6 +3,8 @@
 //! `lambert_q14` and `shade::lit_rgb`, with the same roundings).
 #![allow(unsafe_code)]
 
+use core::marker::PhantomData;
+
 /// Half of the channel divisor `255 · 2¹⁵` (the rounding of `shade::rounded_channel`).
 const HALF: u32 = 255 * 32768 / 2;
 /// ⌈2³⁹ / 255⌉: `⌊x / (255 · 2¹⁵)⌋ = (x · MUL) >> 54` for every `u32` (`shade::div_den`).
@@ -10,31 +12,45 @@ const MUL: u32 = ((1u64 << 39) / 255 + 1) as u32;
 
 /// What [`lit_565`] reads, in the order its assembly loads it: the light direction
 /// (Q15), ambient (Q15) and diffuse weight (Q15 · 8) of the renderer, the channel
-/// constants, and each 8-bit channel of the material times its depth (31, 63, 31), in
-/// the packing's order from the high field down.
+/// constants, each 8-bit channel of the material times its depth (31, 63, 31) in the
+/// packing's order from the high field down, and the face normals (Q14).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct LightBlock {
+pub(crate) struct LightBlock<'n> {
     light: [i32; 3],
     ambient: i32,
     diffuse: i32,
     half: u32,
     mul: u32,
     channels: [u32; 3],
+    /// The normals, `count` of them (the slice's parts, at known offsets).
+    normals: *const [i16; 3],
+    count: usize,
+    life: PhantomData<&'n [[i16; 3]]>,
 }
 
-// The assembly reads the block at these offsets.
+// The assembly reads the block at these offsets (`count` at 44 on 32-bit targets).
 const _: () = {
     assert!(core::mem::offset_of!(LightBlock, ambient) == 12);
     assert!(core::mem::offset_of!(LightBlock, half) == 20);
     assert!(core::mem::offset_of!(LightBlock, channels) == 28);
+    assert!(core::mem::offset_of!(LightBlock, normals) == 40);
+    assert!(core::mem::offset_of!(LightBlock, count) == 40 + core::mem::size_of::<usize>());
+    assert!(core::mem::size_of::<[i16; 3]>() == 6);
 };
 
-impl LightBlock {
+impl<'n> LightBlock<'n> {
     /// The block of light `light`, `ambient`, `diffuse` (as the renderer keeps them:
-    /// ambient within ±2¹⁶, diffuse within ±2¹⁹) and a material of 8-bit channels
-    /// `[high, middle, low]` (the 5-, 6- and 5-bit fields, high to low).
-    pub(crate) fn new(light: [i32; 3], ambient: i32, diffuse: i32, [h, m, l]: [u8; 3]) -> Self {
+    /// ambient within ±2¹⁶, diffuse within ±2¹⁹), a material of 8-bit channels
+    /// `[high, middle, low]` (the 5-, 6- and 5-bit fields, high to low) and the face
+    /// normals `normals`.
+    pub(crate) fn new(
+        light: [i32; 3],
+        ambient: i32,
+        diffuse: i32,
+        [h, m, l]: [u8; 3],
+        normals: &'n [[i16; 3]],
+    ) -> Self {
         LightBlock {
             light,
             ambient,
@@ -42,26 +58,42 @@ impl LightBlock {
             half: HALF,
             mul: MUL,
             channels: [u32::from(h) * 31, u32::from(m) * 63, u32::from(l) * 31],
+            normals: normals.as_ptr(),
+            count: normals.len(),
+            life: PhantomData,
         }
+    }
+
+    /// The normals.
+    fn normals(&self) -> &'n [[i16; 3]] {
+        // SAFETY: the parts of a slice borrowed for 'n (see `new`).
+        unsafe { core::slice::from_raw_parts(self.normals, self.count) }
     }
 }
 
-/// The packed 5-6-5 colour of a face of Q14 normal `n` lit by `b`: the intensity
-/// `clamp(ambient + ⌊(max(0, n·L) · diffuse + 2³¹) / 2³²⌋, 0, 2¹⁶ − 1)`, then each
-/// channel `min(⌊(v · max · i + 255 · 2¹⁴) / (255 · 2¹⁵)⌋, max)`. On ARMv7E-M 27
-/// instructions (MUL/MLA, SMMLAR, USAT; each channel MLA, UMULL, USAT); elsewhere
-/// [`lit_565_portable`].
+/// The packed 5-6-5 colour of face `f` lit by `b`, from its Q14 normal `n`: the
+/// intensity `clamp(ambient + ⌊(max(0, n·L) · diffuse + 2³¹) / 2³²⌋, 0, 2¹⁶ − 1)`, then
+/// each channel `min(⌊(v · max · i + 255 · 2¹⁴) / (255 · 2¹⁵)⌋, max)`; `None` when the
+/// block has no normal `f`. On ARMv7E-M one assembly block (the bounds and the normal's
+/// place, then 27 instructions: MUL/MLA, SMMLAR, USAT; each channel MLA, UMULL, USAT);
+/// elsewhere [`lit_565_portable`].
 #[inline(always)]
-pub(crate) fn lit_565(n: &[i16; 3], b: &LightBlock) -> u16 {
+pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
     #[cfg(all(zraster_thumb, zraster_dsp))]
     {
-        let mut c = n.as_ptr() as u32;
-        // SAFETY: reads the three halfwords of `n` and the ten words of `b` (offsets
-        // pinned above), both live references; writes only its registers, no memory and
-        // not the stack. MLA, UMULL and SMMLAR do not set the flags; USAT may set the
+        let c: u32;
+        // SAFETY: reads the twelve words of `b` (offsets pinned above) and, when
+        // `f < count`, the three halfwords of normal `f` inside the slice the block
+        // borrows; writes only its registers, no memory and not the stack. CMP sets the
+        // flags (not declared preserved); MLA, UMULL and SMMLAR do not; USAT may set the
         // sticky Q flag, which nothing in the crate reads.
         unsafe {
             core::arch::asm!(
+                "ldrd {y}, {z}, [{b}, #40]",
+                "cmp {f}, {z}",
+                "bhs 2f",
+                "add {y}, {y}, {f}, lsl #1",
+                "add {c}, {y}, {f}, lsl #2",
                 "ldrsh {y}, [{c}, #2]",
                 "ldrsh {z}, [{c}, #4]",
                 "ldrsh {c}, [{c}]",
@@ -90,7 +122,13 @@ pub(crate) fn lit_565(n: &[i16; 3], b: &LightBlock) -> u16 {
                 "umull {y}, {z}, {z}, {m}",
                 "usat {z}, #5, {z}, asr #22",
                 "orr {c}, {z}, {a}, lsl #5",
-                c = inout(reg) c,
+                "b 3f",
+                // No normal f: past any colour.
+                "2:",
+                "mov.w {c}, #65536",
+                "3:",
+                f = in(reg) f,
+                c = lateout(reg) c,
                 b = inout(reg) b as *const LightBlock => _,
                 h = out(reg) _,
                 m = out(reg) _,
@@ -100,15 +138,16 @@ pub(crate) fn lit_565(n: &[i16; 3], b: &LightBlock) -> u16 {
                 options(pure, readonly, nostack),
             );
         }
-        return c as u16;
+        return u16::try_from(c).ok();
     }
     #[allow(unreachable_code)]
-    lit_565_portable(n, b)
+    lit_565_portable(f, b)
 }
 
 /// The portable twin of [`lit_565`].
 #[inline(always)]
-pub(crate) fn lit_565_portable(n: &[i16; 3], b: &LightBlock) -> u16 {
+pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
+    let n = b.normals().get(f)?;
     let [lx, ly, lz] = b.light;
     let dot = (i32::from(n[0]).wrapping_mul(lx))
         .wrapping_add(i32::from(n[1]).wrapping_mul(ly))
@@ -120,22 +159,20 @@ pub(crate) fn lit_565_portable(n: &[i16; 3], b: &LightBlock) -> u16 {
         (((u64::from(x) * u64::from(b.mul)) >> 54) as u32).min(max)
     };
     let [h, m, l] = b.channels;
-    (channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16
+    Some((channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16)
 }
 
-/// [`lit_565`] against its portable twin on this target: random unit-length and
-/// arbitrary normals, every material's extremes and random ones, lights of every
-/// strength within the renderer's ranges. Returns the number of cases that differ.
+/// [`lit_565`] against its portable twin on this target: random normals (each of the
+/// `n` cases a run of three, one face past them), every material's extremes and random
+/// ones, lights of every strength within the renderer's ranges. Returns the number of
+/// cases that differ.
 pub fn check_light_kernel(n: usize) -> usize {
     let mut rnd = super::xorshift32(0x1d87_2b41_u32);
     let mut bad = 0;
     for case in 0..n {
         let mut r = || rnd();
-        // A normal and a light of Q14 / Q15 components, near unit length or anything
-        // whose dot product stays within i32.
-        let normal = [0; 3]
-            .map(|_| (r() % 32769) as i32 - 16384)
-            .map(|v| v as i16);
+        // Normals and a light of Q14 / Q15 components, whose dot products stay in i32.
+        let normals = [[0i16; 3]; 3].map(|n| n.map(|_| ((r() % 32769) as i32 - 16384) as i16));
         let light = [0; 3].map(|_| (r() % 65537) as i32 - 32768);
         let ambient = (r() % 131_073) as i32 - 65536;
         let diffuse = ((r() % 131_073) as i32 - 65536) << 3;
@@ -145,9 +182,18 @@ pub fn check_light_kernel(n: usize) -> usize {
         } else {
             [0; 3].map(|_| r() as u8)
         };
-        let b = LightBlock::new(light, ambient, diffuse, channels);
-        if lit_565(&normal, &b) != lit_565_portable(&normal, &b) {
-            bad += 1;
+        let count = r() as usize % 4;
+        let b = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&[]),
+        );
+        for f in [0, 1, 2, 3, usize::MAX] {
+            if lit_565(f, &b) != lit_565_portable(f, &b) {
+                bad += 1;
+            }
         }
     }
     bad
