@@ -314,13 +314,16 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         if self.see_through_face::<C>(f) {
                             continue; // drawn after the opaque faces
                         }
-                        let tri = [a.placed(), b.placed(), c.placed()];
                         if let Some((row0, row1)) = rows {
-                            if outside_rows(&tri, row0, row1) {
+                            if cached_outside_rows([a, b, c], row0, row1) {
                                 continue;
                             }
                         }
-                        counts.add(target.fill_inline(tri.each_ref(), shade(f)?), &mut px);
+                        // The colour first: then only the corners' places, not their
+                        // values, are kept across it.
+                        let color = shade(f)?;
+                        let tri = [a.placed(), b.placed(), c.placed()];
+                        counts.add(target.fill_inline(tri.each_ref(), color), &mut px);
                     }
                     // Across a clip plane or far outside the screen (rare).
                     (f, None) => {
