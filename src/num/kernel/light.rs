@@ -75,8 +75,8 @@ impl<'n> LightBlock<'n> {
 /// intensity `clamp(ambient + ⌊(max(0, n·L) · diffuse + 2³¹) / 2³²⌋, 0, 2¹⁶ − 1)`, then
 /// each channel `min(⌊(v · max · i + 255 · 2¹⁴) / (255 · 2¹⁵)⌋, max)`; `None` when the
 /// block has no normal `f`. On ARMv7E-M one assembly block (the bounds and the normal's
-/// place, then 27 instructions: MUL/MLA, SMMLAR, USAT; each channel MLA, UMULL, USAT);
-/// elsewhere [`lit_565_portable`].
+/// place, then 24 instructions: three LDM of the block, MUL/MLA, SMMLAR, USAT, and each
+/// channel MLA, UMULL, USAT); elsewhere [`lit_565_portable`].
 #[inline(always)]
 pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
     #[cfg(all(zraster_thumb, zraster_dsp))]
@@ -84,57 +84,54 @@ pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
         let c: u32;
         // SAFETY: reads the twelve words of `b` (offsets pinned above) and, when
         // `f < count`, the three halfwords of normal `f` inside the slice the block
-        // borrows; writes only its registers, no memory and not the stack. CMP sets the
-        // flags (not declared preserved); MLA, UMULL and SMMLAR do not; USAT may set the
-        // sticky Q flag, which nothing in the crate reads.
+        // borrows; writes only the registers named, no memory and not the stack. CMP
+        // sets the flags (not declared preserved); MLA, UMULL and SMMLAR do not; USAT
+        // may set the sticky Q flag, which nothing in the crate reads. The registers are
+        // fixed so that the block's words come in by LDM (in ascending order).
         unsafe {
             core::arch::asm!(
-                "ldrd {y}, {z}, [{b}, #40]",
-                "cmp {f}, {z}",
+                "ldrd r2, r3, [r0, #40]",
+                "cmp r1, r3",
                 "bhs 2f",
-                "add {y}, {y}, {f}, lsl #1",
-                "add {c}, {y}, {f}, lsl #2",
-                "ldrsh {y}, [{c}, #2]",
-                "ldrsh {z}, [{c}, #4]",
-                "ldrsh {c}, [{c}]",
-                "ldrd {h}, {m}, [{b}]",
-                "ldr {a}, [{b}, #8]",
-                "mul {c}, {c}, {h}",
-                "mla {c}, {y}, {m}, {c}",
-                "mla {c}, {z}, {a}, {c}",
-                // max(0, n·L), then ambient + the rounded high word of dot · diffuse.
-                "bic {c}, {c}, {c}, asr #31",
-                "ldrd {h}, {m}, [{b}, #12]",
-                "smmlar {c}, {c}, {m}, {h}",
-                "usat {c}, #16, {c}",
+                "add r2, r2, r1, lsl #1",
+                "add r1, r2, r1, lsl #2",
+                "ldrsh r2, [r1]",
+                "ldrsh r3, [r1, #2]",
+                "ldrsh r1, [r1, #4]",
+                // n·L; max(0, n·L), then ambient + the rounded high word of dot · diffuse.
+                "ldm r0!, {{r4, r5, r12}}",
+                "mul r2, r2, r4",
+                "mla r2, r3, r5, r2",
+                "mla r2, r1, r12, r2",
+                "bic r2, r2, r2, asr #31",
+                "ldm r0!, {{r3, r4, r5, r12}}",
+                "smmlar r2, r2, r4, r3",
+                "usat r2, #16, r2",
                 // The channels, high to low: (i · v·max + half) · mul >> 54, saturated.
-                "ldrd {h}, {m}, [{b}, #20]",
-                "ldrd {a}, {z}, [{b}, #28]",
-                "ldr {b}, [{b}, #36]",
-                "mla {a}, {c}, {a}, {h}",
-                "umull {y}, {a}, {a}, {m}",
-                "usat {a}, #5, {a}, asr #22",
-                "mla {z}, {c}, {z}, {h}",
-                "umull {y}, {z}, {z}, {m}",
-                "usat {z}, #6, {z}, asr #22",
-                "orr {a}, {z}, {a}, lsl #6",
-                "mla {z}, {c}, {b}, {h}",
-                "umull {y}, {z}, {z}, {m}",
-                "usat {z}, #5, {z}, asr #22",
-                "orr {c}, {z}, {a}, lsl #5",
+                "ldm r0, {{r0, r1, r3}}",
+                "mla r0, r2, r0, r5",
+                "umull r4, r0, r0, r12",
+                "usat r0, #5, r0, asr #22",
+                "mla r1, r2, r1, r5",
+                "umull r4, r1, r1, r12",
+                "usat r1, #6, r1, asr #22",
+                "orr r0, r1, r0, lsl #6",
+                "mla r3, r2, r3, r5",
+                "umull r4, r3, r3, r12",
+                "usat r3, #5, r3, asr #22",
+                "orr r0, r3, r0, lsl #5",
                 "b 3f",
                 // No normal f: past any colour.
                 "2:",
-                "mov.w {c}, #65536",
+                "mov.w r0, #65536",
                 "3:",
-                f = in(reg) f,
-                c = lateout(reg) c,
-                b = inout(reg) b as *const LightBlock => _,
-                h = out(reg) _,
-                m = out(reg) _,
-                a = out(reg) _,
-                y = out(reg) _,
-                z = out(reg) _,
+                inout("r0") b as *const LightBlock => c,
+                inout("r1") f => _,
+                out("r2") _,
+                out("r3") _,
+                out("r4") _,
+                out("r5") _,
+                out("r12") _,
                 options(pure, readonly, nostack),
             );
         }
