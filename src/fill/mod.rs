@@ -17,6 +17,7 @@ pub(crate) mod blend;
 mod small;
 mod span;
 
+use crate::render::CachedVertex;
 use crate::state::{Dynamic, RenderState};
 use crate::{ColorBuffer, DepthTest, DrawError, ZBuffer};
 use small::{fill_small, Buffers};
@@ -270,6 +271,15 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
             pixels_written: written,
             runs: 0,
         }
+    }
+
+    /// [`fill_inline`](FlatTarget::fill_inline) of a triangle of placed cache entries
+    /// (see [`CachedVertex::placed`]): the one place where the drawing loops turn cache
+    /// entries into corners.
+    #[inline(always)]
+    pub(crate) fn fill_cached(&mut self, [a, b, c]: [&CachedVertex; 3], color: C) -> SpanStats {
+        let tri = [a.placed(), b.placed(), c.placed()];
+        self.fill_inline(tri.each_ref(), color)
     }
 
     /// [`fill`](FlatTarget::fill) returning the two counts it has (a fill into buffers

@@ -322,8 +322,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         // The colour first: then only the corners' places, not their
                         // values, are kept across it.
                         let color = shade(f)?;
-                        let tri = [a.placed(), b.placed(), c.placed()];
-                        counts.add(target.fill_inline(tri.each_ref(), color), &mut px);
+                        counts.add(target.fill_cached([a, b, c], color), &mut px);
                     }
                     // Across a clip plane or far outside the screen (rare).
                     (f, None) => {
