@@ -295,7 +295,7 @@ const LAMBERT_SCALE: u32 = if crate::num::ARMV6M { 0 } else { 3 };
 /// `dot · 8w` rounded (the same quotient: numerator and divisor times 8), which with the
 /// ambient add is one SMMLAR on Thumb-2.
 #[inline(always)]
-fn lambert_term(dot: i32, diff: i32) -> i32 {
+pub(crate) fn lambert_term(dot: i32, diff: i32) -> i32 {
     if crate::num::ARMV6M {
         lambert_term_narrow(dot, diff)
     } else {
@@ -615,7 +615,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// For the faces of one material `m` lit into a 5-6-5 colour: the block of
     /// [`lit_565`](crate::num::kernel::lit_565) (the colour [`face_light`] and `m`'s
     /// `shade` give, in one go, for a face with a normal) and the colour of a packed
-    /// value. Not on ARMv6-M, whose Lambert term is scaled otherwise.
+    /// value.
     ///
     /// [`face_light`]: Renderer::face_light
     #[inline(always)]
@@ -623,13 +623,10 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     where
         M: Material<C>,
     {
-        if crate::num::ARMV6M {
-            return None;
-        }
         let (channels, color) = m.packed_565()?;
         let (light, ambient, diffuse) = self.light_q;
         let normals = self.mesh.face_normals.unwrap_or(&[]);
-        // Ambient within ±2¹⁶, diffuse within ±2¹⁹ (see `light_q`).
+        // Ambient within ±2¹⁶, diffuse within ±2¹⁹ (see `light_q`; ±2¹⁶ on ARMv6-M).
         let block = LightBlock::new(light, ambient as i32, diffuse as i32, channels, normals);
         Some((block, color))
     }
@@ -690,9 +687,6 @@ mod tests {
         use crate::num::kernel::{lit_565_portable, LightBlock};
         use embedded_graphics::pixelcolor::{Bgr565, Rgb565, Rgb888};
         use embedded_graphics::prelude::{IntoStorage, RgbColor};
-        if crate::num::ARMV6M {
-            return;
-        }
         let check = |light_q: ([i32; 3], i64, i64), n: [i16; 3], m: Rgb888| {
             let i = lambert_q14_of(light_q, &n);
             let (l, a, d) = light_q;

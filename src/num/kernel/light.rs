@@ -11,7 +11,8 @@ const HALF: u32 = 255 * 32768 / 2;
 const MUL: u32 = ((1u64 << 39) / 255 + 1) as u32;
 
 /// What [`lit_565`] reads, in the order its assembly loads it: the light direction
-/// (Q15), ambient (Q15) and diffuse weight (Q15 · 8) of the renderer, the channel
+/// (Q15), ambient (Q15) and diffuse weight (Q15 · 8, Q15 on ARMv6-M: see
+/// `render::lambert_term`) of the renderer, the channel
 /// constants, each 8-bit channel of the material times its depth (31, 63, 31) in the
 /// packing's order from the high field down, and the face normals (Q14).
 #[repr(C)]
@@ -149,11 +150,18 @@ pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
     let dot = (i32::from(n[0]).wrapping_mul(lx))
         .wrapping_add(i32::from(n[1]).wrapping_mul(ly))
         .wrapping_add(i32::from(n[2]).wrapping_mul(lz));
-    let term = ((i64::from(dot.max(0)) * i64::from(b.diffuse) + (1 << 31)) >> 32) as i32;
+    let term = crate::render::lambert_term(dot.max(0), b.diffuse);
     let i = (b.ambient + term).clamp(0, i32::from(u16::MAX)) as u32;
     let channel = |v: u32, max: u32| {
+        // i · v·max + half < 2³⁰: ⌊x / (255 · 2¹⁵)⌋ by `mul` where there is a 32 × 32 →
+        // 64-bit product, else ⌊(x >> 15) / 255⌋ by ⌈2²³ / 255⌉ (exact below 66,299).
         let x = i * v + b.half;
-        (((u64::from(x) * u64::from(b.mul)) >> 54) as u32).min(max)
+        let q = if crate::num::ARMV6M {
+            ((x >> 15) * 32_897) >> 23
+        } else {
+            ((u64::from(x) * u64::from(b.mul)) >> 54) as u32
+        };
+        q.min(max)
     };
     let [h, m, l] = b.channels;
     Some((channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16)
@@ -172,7 +180,7 @@ pub fn check_light_kernel(n: usize) -> usize {
         let normals = [[0i16; 3]; 3].map(|n| n.map(|_| ((r() % 32769) as i32 - 16384) as i16));
         let light = [0; 3].map(|_| (r() % 65537) as i32 - 32768);
         let ambient = (r() % 131_073) as i32 - 65536;
-        let diffuse = ((r() % 131_073) as i32 - 65536) << 3;
+        let diffuse = ((r() % 131_073) as i32 - 65536) << if crate::num::ARMV6M { 0 } else { 3 };
         let extremes = [0u8, 1, 127, 128, 254, 255];
         let channels = if case % 4 == 0 {
             [0; 3].map(|_| extremes.get(r() as usize % 6).copied().unwrap_or(0))
