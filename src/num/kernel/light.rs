@@ -167,10 +167,10 @@ pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
     Some((channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16)
 }
 
-/// [`lit_565`] against its portable twin on this target: random normals (each of the
-/// `n` cases a run of three, one face past them), every material's extremes and random
-/// ones, lights of every strength within the renderer's ranges. Returns the number of
-/// cases that differ.
+/// `lit_565` against its portable twin on this target: in each of `n` cases up to
+/// three random normals, asked for faces 0 to 3 and one far past them; every material's
+/// extremes and random ones; lights of every strength within the renderer's ranges.
+/// Returns the number of cases that differ.
 pub fn check_light_kernel(n: usize) -> usize {
     let mut rnd = super::xorshift32(0x1d87_2b41_u32);
     let mut bad = 0;
