@@ -93,7 +93,11 @@ pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
             core::arch::asm!(
                 "ldrd r2, r3, [r0, #40]",
                 "cmp r1, r3",
-                "bhs 2f",
+                "blo 2f",
+                // No normal f: past any colour.
+                "mov.w r0, #65536",
+                "b 3f",
+                "2:",
                 "add r2, r2, r1, lsl #1",
                 "add r1, r2, r1, lsl #2",
                 "ldrsh r2, [r1]",
@@ -121,10 +125,6 @@ pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
                 "umull r4, r3, r3, r12",
                 "usat r3, #5, r3, asr #22",
                 "orr r0, r3, r0, lsl #5",
-                "b 3f",
-                // No normal f: past any colour.
-                "2:",
-                "mov.w r0, #65536",
                 "3:",
                 inout("r0") b as *const LightBlock => c,
                 inout("r1") f => _,
@@ -136,7 +136,7 @@ pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
                 options(pure, readonly, nostack),
             );
         }
-        return u16::try_from(c).ok();
+        return (c <= u32::from(u16::MAX)).then_some(c as u16);
     }
     #[allow(unreachable_code)]
     lit_565_portable(f, b)
