@@ -17,11 +17,23 @@ macro_rules! per_colouring {
                 let $shade = |_: usize| Ok(c);
                 $body
             }
-            // A uniform material without one colour for all is lit.
-            (None, crate::mesh::Materials::Uniform(m)) => {
-                let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
-                $body
-            }
+            // A uniform material without one colour for all is lit: into a 5-6-5
+            // colour from the face normal in one step where it can be.
+            (None, crate::mesh::Materials::Uniform(m)) => match $r.light_block(&m) {
+                Some((block, color)) => {
+                    let $shade = |f: usize| {
+                        Ok(match crate::num::kernel::lit_565(f, &block) {
+                            Some(c) => color(c),
+                            None => m.shade($r.face_light(f), 0, 0),
+                        })
+                    };
+                    $body
+                }
+                None => {
+                    let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
+                    $body
+                }
+            },
             (None, _) => {
                 let $shade = |f: usize| $r.face_color($materials, $lambert, f);
                 $body
@@ -303,11 +315,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                             continue; // drawn after the opaque faces
                         }
                         if let Some((row0, row1)) = rows {
-                            if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
+                            if cached_outside_rows([a, b, c], row0, row1) {
                                 continue;
                             }
                         }
-                        counts.add(target.fill_cached([a, b, c], shade(f)?), &mut px);
+                        // The colour first: then only the corners' places, not their
+                        // values, are kept across it.
+                        let color = shade(f)?;
+                        counts.add(target.fill_cached([a, b, c], color), &mut px);
                     }
                     // Across a clip plane or far outside the screen (rare).
                     (f, None) => {
@@ -499,5 +514,69 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         )?;
         self.stats.add_pixel_counts(&px);
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::camera::Camera;
+    use crate::math::{radians, Mat4, Vec3};
+    use crate::mesh::Mesh;
+    use crate::shade::{DisplayColor, Shading};
+    use crate::{CachedVertex, ColorBuffer, Frame, RenderOptions, Renderer, Viewport};
+    use crate::{WithDepth, ZBuffer};
+    use embedded_graphics::pixelcolor::{Bgr565, Rgb565, Rgb888};
+    use embedded_graphics::prelude::RgbColor;
+    use std::vec;
+    use zraster_bench_scene::bunny;
+
+    /// The bench's bunny (its tables; the scene crate's own types are another build of
+    /// this crate), lit, into a frame (faces of one material coloured by `lit_565` from
+    /// their normals) and through `WithDepth` (each face's light, then the material's
+    /// `shade`): the same pixels, with the face normals and without (then each face lit
+    /// from its corners by `face_light`).
+    fn one_step_lit_faces_are_the_general_paths<C: DisplayColor + RgbColor>() {
+        let (w, h) = (160, 120);
+        let n = (w * h) as usize;
+        let cam = Camera::look_at(Vec3::new(0.0, 0.0, 1.6), Vec3::new(0.0, 0.0, 0.6), Vec3::Y)
+            .unwrap()
+            .perspective(radians(60.0), 0.1, 10.0, Viewport::new(w, h).unwrap())
+            .unwrap();
+        let fit = bunny::BUNNY_FIT;
+        let xf = cam
+            .with_model(Mat4::rotation_y(radians(30.0)) * Mat4::scaling(Vec3::new(fit, fit, fit)));
+        let opts = RenderOptions {
+            shading: Shading::Lambert,
+            ..Default::default()
+        };
+        for normals in [Some(&bunny::BUNNY_FACE_NORMALS[..]), None] {
+            let material = Rgb888::new(255, 204, 153);
+            let mesh = Mesh::triangles(
+                &bunny::BUNNY_POSITIONS,
+                bunny::BUNNY_SCALE,
+                &bunny::BUNNY_INDICES,
+                material,
+            )
+            .with_normals(normals, None);
+            let mut cache = vec![CachedVertex::default(); bunny::BUNNY_POSITIONS.len()];
+            let (mut pixels, mut depth) = (vec![C::BLACK; n], vec![u16::MAX; n]);
+            let mut frame = Frame::new(&mut pixels, &mut depth, w, h).unwrap();
+            let mut r = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
+            r.draw(&mut frame).unwrap();
+            let (mut shown, mut zdepth) = (vec![C::BLACK; n], vec![u16::MAX; n]);
+            let mut display = ColorBuffer::new(&mut shown, w, h).unwrap();
+            let mut zbuf = ZBuffer::new(&mut zdepth, w, h).unwrap();
+            let mut r = Renderer::new(&mesh, &xf, opts).unwrap();
+            r.draw(&mut WithDepth::new(&mut display, &mut zbuf))
+                .unwrap();
+            assert!(frame.color().as_slice() == display.as_slice());
+            assert!(frame.color().as_slice().iter().any(|&c| c != C::BLACK));
+        }
+    }
+
+    #[test]
+    fn one_step_lit_faces_are_the_general_paths_in_both_packings() {
+        one_step_lit_faces_are_the_general_paths::<Rgb565>();
+        one_step_lit_faces_are_the_general_paths::<Bgr565>();
     }
 }
