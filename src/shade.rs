@@ -96,6 +96,15 @@ pub trait Material<C>: Copy {
     /// The colour at intensity `i` (Q15) at pixel (x, y).
     fn shade(&self, i: Intensity, x: i32, y: i32) -> C;
 
+    /// For the renderer's lit faces: when [`shade`](Material::shade) is a 5-6-5
+    /// colour's [`DisplayColor::lit`] of an `Rgb888`, the material's 8-bit channels in
+    /// the packing's order (high field first) and the colour of a packed value.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn packed_565(&self) -> Option<Packed565<C>> {
+        None
+    }
+
     /// Opacity: 255 opaque (the default), 0 invisible.
     #[inline(always)]
     fn alpha(&self) -> u8 {
@@ -200,6 +209,11 @@ pub fn screen_door(alpha: u8, x: i32, y: i32) -> bool {
     dither_level(alpha, 1, x, y) != 0
 }
 
+/// A material's 8-bit channels in a 5-6-5 packing's order (high field first) and the
+/// colour of a packed value (see [`Material::packed_565`]).
+#[doc(hidden)]
+pub type Packed565<C> = ([u8; 3], fn(u16) -> C);
+
 /// A display colour that an `Rgb888` material, lit, turns into.
 ///
 /// Every embedded-graphics colour type implements it, so a mesh of `Rgb888` colours
@@ -240,6 +254,15 @@ pub trait DisplayColor: PixelColor {
     /// The colour of `material` at intensity `i` (Q15) at pixel (x, y).
     fn lit(material: Rgb888, i: Intensity, x: i32, y: i32) -> Self;
 
+    /// For a 5-6-5 type: `material`'s 8-bit channels in the packing's order (high
+    /// field first) and the colour of a packed value (see [`Material::packed_565`]).
+    #[doc(hidden)]
+    #[inline(always)]
+    fn packed_565(material: Rgb888) -> Option<Packed565<Self>> {
+        let _ = material;
+        None
+    }
+
     /// `src` over `dst` at opacity `alpha` at pixel (x, y) (see [`Translucent`]).
     /// RGB types and `Gray8` mix each channel, `dst + (src − dst) · alpha / 255`
     /// rounded (alpha 128: the mean rounded down, `(a & b) + ((a ^ b) >> 1)`); the
@@ -261,6 +284,11 @@ impl<C: DisplayColor> Material<C> for Rgb888 {
     #[inline]
     fn shade(&self, i: Intensity, x: i32, y: i32) -> C {
         C::lit(*self, i, x, y)
+    }
+
+    #[inline(always)]
+    fn packed_565(&self) -> Option<Packed565<C>> {
+        C::packed_565(*self)
     }
 }
 
@@ -355,13 +383,19 @@ rgb_colors!(Rgb555, Bgr555, Rgb666, Bgr666, Rgb888, Bgr888);
 
 /// The 16-bit types: their 50 % blend on the packed value.
 macro_rules! rgb565_colors {
-    ($($t:ident),*) => {$(
+    ($($t:ident: $high:ident, $low:ident),*) => {$(
         impl DisplayColor for $t {
             const DITHERED: bool = false;
 
             #[inline]
             fn lit(m: Rgb888, i: Intensity, _x: i32, _y: i32) -> $t {
                 lit_rgb(m, i, $t::new)
+            }
+
+            #[inline(always)]
+            fn packed_565(m: Rgb888) -> Option<Packed565<$t>> {
+                use embedded_graphics::pixelcolor::raw::RawU16;
+                Some(([m.$high(), m.g(), m.$low()], |c| $t::from(RawU16::new(c))))
             }
 
             #[inline]
@@ -377,7 +411,7 @@ macro_rules! rgb565_colors {
     )*};
 }
 
-rgb565_colors!(Rgb565, Bgr565);
+rgb565_colors!(Rgb565: r, b, Bgr565: b, r);
 
 macro_rules! gray_colors {
     ($($t:ident: $dithered:expr),*) => {$(

@@ -27,7 +27,7 @@ pub(crate) use solid::per_colouring;
 pub(crate) use target::sealed;
 pub use target::{DepthTarget, WithDepth};
 pub use textured::{TexturedTarget, Texturing};
-pub(crate) use walk::{cached_triangle, outside_rows, CachedWalk};
+pub(crate) use walk::{cached_outside_rows, cached_triangle, outside_rows, CachedWalk};
 use walk::{decide, edges, fan, Seen};
 
 use crate::camera::Camera;
@@ -39,7 +39,7 @@ use crate::math::Vec3;
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
 /// Defined beside the set-up kernel that reads its entries in place.
 pub use crate::num::kernel::CachedVertex;
-use crate::num::kernel::XyWord;
+use crate::num::kernel::{LightBlock, XyWord};
 use crate::raster::{
     draw_line, signed_area, signed_area_guarded, Clip, Plane, ScreenVertex, SpanStats,
 };
@@ -291,6 +291,18 @@ fn lambert_term_narrow(dot: i32, w: i32) -> i32 {
     let (h, m, n) = (dot >> 16, (dot >> 8) & 0xFF, dot & 0xFF);
     let q = (m * w + ((n * w) >> 8)) >> 8;
     (h * w + q + (1 << 12)) >> 13
+}
+
+/// What [`Renderer::light_block`] gives: the block of
+/// [`lit_565`](crate::num::kernel::lit_565) and the colour of a packed value.
+pub(crate) type LitFaces<'m, C> = (LightBlock<'m>, fn(u16) -> C);
+
+/// [`Renderer::lambert_q14`] for the renderer's `light_q`.
+#[inline(always)]
+fn lambert_q14_of(([lx, ly, lz], amb, diff): ([i32; 3], i64, i64), n: &[i16; 3]) -> Intensity {
+    let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
+    let term = lambert_term(dot.max(0), diff as i32);
+    (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
 }
 
 /// A fetched vertex: screen position if inside (code 0), and its light.
@@ -578,6 +590,28 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         }
     }
 
+    /// For the faces of one material `m` lit into a 5-6-5 colour: the block of
+    /// [`lit_565`](crate::num::kernel::lit_565) (the colour [`face_light`] and `m`'s
+    /// `shade` give, in one go, for a face with a normal) and the colour of a packed
+    /// value. Not on ARMv6-M, whose Lambert term is scaled otherwise.
+    ///
+    /// [`face_light`]: Renderer::face_light
+    #[inline(always)]
+    pub(crate) fn light_block<C>(&self, m: &M) -> Option<LitFaces<'m, C>>
+    where
+        M: Material<C>,
+    {
+        if crate::num::ARMV6M {
+            return None;
+        }
+        let (channels, color) = m.packed_565()?;
+        let (light, ambient, diffuse) = self.light_q;
+        let normals = self.mesh.face_normals.unwrap_or(&[]);
+        // Ambient within ±2¹⁶, diffuse within ±2¹⁹ (see `light_q`).
+        let block = LightBlock::new(light, ambient as i32, diffuse as i32, channels, normals);
+        Some((block, color))
+    }
+
     /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29
     /// and at most 2²⁹ in magnitude (two unit vectors), so it fits `i32`. Ambient and
     /// diffuse are Q15 within ±2: the diffuse term (see [`lambert_term`]) is within
@@ -585,10 +619,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// instruction on a Cortex-M3/M4).
     #[inline]
     pub(crate) fn lambert_q14(&self, n: &[i16; 3]) -> Intensity {
-        let ([lx, ly, lz], amb, diff) = self.light_q;
-        let dot = i32::from(n[0]) * lx + i32::from(n[1]) * ly + i32::from(n[2]) * lz;
-        let term = lambert_term(dot.max(0), diff as i32);
-        (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
+        lambert_q14_of(self.light_q, n)
     }
 
     /// Face `f`'s vertex list, checked.
@@ -626,6 +657,57 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The 5-6-5 face colour in one step (`num::kernel::lit_565`'s twin) is the
+    /// renderer's: `lambert_q14` then the material's `shade`, in both packings, at every
+    /// intensity (a light straight along the normal, no diffuse, the ambient the
+    /// intensity) for materials of extreme and spread channels, then over random normals,
+    /// lights and materials.
+    #[test]
+    fn the_one_step_face_colour_is_the_shaded_light() {
+        use crate::num::kernel::{lit_565_portable, LightBlock};
+        use embedded_graphics::pixelcolor::{Bgr565, Rgb565, Rgb888};
+        use embedded_graphics::prelude::{IntoStorage, RgbColor};
+        if crate::num::ARMV6M {
+            return;
+        }
+        let check = |light_q: ([i32; 3], i64, i64), n: [i16; 3], m: Rgb888| {
+            let i = lambert_q14_of(light_q, &n);
+            let (l, a, d) = light_q;
+            let rgb: Rgb565 = m.shade(i, 0, 0);
+            let bgr: Bgr565 = m.shade(i, 0, 0);
+            let normals = [n];
+            let block = |ch| LightBlock::new(l, a as i32, d as i32, ch, &normals);
+            let want = (Some(rgb.into_storage()), Some(bgr.into_storage()));
+            let got = (
+                lit_565_portable(0, &block([m.r(), m.g(), m.b()])),
+                lit_565_portable(0, &block([m.b(), m.g(), m.r()])),
+            );
+            assert_eq!(got, want, "{light_q:?} {n:?} {m:?} i {i}");
+        };
+        let mut rnd = crate::num::kernel::xorshift32(0x5eed_1175_u32);
+        let values = [0u8, 1, 2, 7, 8, 127, 128, 200, 253, 254, 255];
+        for (k, &v) in values.iter().enumerate() {
+            let m = Rgb888::new(v, values[(k + 3) % values.len()], rnd() as u8);
+            for i in 0..=i64::from(u16::MAX) {
+                check(([32768, 0, 0], i, 0), [16384, 0, 0], m);
+            }
+            // Past either end of the intensity.
+            for i in [-65536, -1, 65536] {
+                check(([32768, 0, 0], i, 0), [16384, 0, 0], m);
+            }
+        }
+        for _ in 0..200_000 {
+            let mut r = || rnd();
+            let n = [0; 3].map(|_| ((r() % 32769) as i32 - 16384) as i16);
+            let l = [0; 3].map(|_| (r() % 65537) as i32 - 32768);
+            let (a, d) = (
+                i64::from((r() % 131_073) as i32 - 65536),
+                i64::from((r() % 131_073) as i32 - 65536) << LAMBERT_SCALE,
+            );
+            check((l, a, d), n, Rgb888::new(r() as u8, r() as u8, r() as u8));
+        }
+    }
 
     /// The diffuse term in either form is the rounded quotient it stands for, over the
     /// extremes and a spread of products.

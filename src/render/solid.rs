@@ -17,11 +17,23 @@ macro_rules! per_colouring {
                 let $shade = |_: usize| Ok(c);
                 $body
             }
-            // A uniform material without one colour for all is lit.
-            (None, crate::mesh::Materials::Uniform(m)) => {
-                let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
-                $body
-            }
+            // A uniform material without one colour for all is lit: into a 5-6-5
+            // colour from the face normal in one step where it can be.
+            (None, crate::mesh::Materials::Uniform(m)) => match $r.light_block(&m) {
+                Some((block, color)) => {
+                    let $shade = |f: usize| {
+                        Ok(match crate::num::kernel::lit_565(f, &block) {
+                            Some(c) => color(c),
+                            None => m.shade($r.face_light(f), 0, 0),
+                        })
+                    };
+                    $body
+                }
+                None => {
+                    let $shade = |f: usize| Ok(m.shade($r.face_light(f), 0, 0));
+                    $body
+                }
+            },
             (None, _) => {
                 let $shade = |f: usize| $r.face_color($materials, $lambert, f);
                 $body
@@ -303,11 +315,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                             continue; // drawn after the opaque faces
                         }
                         if let Some((row0, row1)) = rows {
-                            if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
+                            if cached_outside_rows([a, b, c], row0, row1) {
                                 continue;
                             }
                         }
-                        counts.add(target.fill_cached([a, b, c], shade(f)?), &mut px);
+                        // The colour first: then only the corners' places, not their
+                        // values, are kept across it.
+                        let color = shade(f)?;
+                        counts.add(target.fill_cached([a, b, c], color), &mut px);
                     }
                     // Across a clip plane or far outside the screen (rare).
                     (f, None) => {

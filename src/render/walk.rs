@@ -15,6 +15,12 @@ pub(crate) fn outside_rows(tri: &[ScreenVertex; 3], row0: i32, row1: i32) -> boo
     ys_outside_rows([tri[0].y(), tri[1].y(), tri[2].y()], row0, row1)
 }
 
+/// [`outside_rows`] for placed cache entries.
+#[inline(always)]
+pub(crate) fn cached_outside_rows([a, b, c]: [&CachedVertex; 3], row0: i32, row1: i32) -> bool {
+    ys_outside_rows([a.xy().1, b.xy().1, c.xy().1], row0, row1)
+}
+
 /// [`outside_rows`] for the corners' y alone.
 #[inline(always)]
 fn ys_outside_rows([a, b, c]: [i32; 3], row0: i32, row1: i32) -> bool {

@@ -160,6 +160,7 @@ fn main() -> ! {
     // The cull scan binning a banded frame's faces likewise.
     let bad = zraster::check_bin_kernel(&mut depth[..1200], 20_000);
     hprintln!("bin kernel cases differing from the portable twin: {}", bad);
+    check_light();
     check_place();
 
     // ---- bunny-320, full frame.
@@ -242,6 +243,14 @@ fn bins_band() -> &'static mut [u16] {
 fn pixels_band() -> (&'static mut [Rgb565], ()) {
     // SAFETY: borrowed once.
     (unsafe { &mut *addr_of_mut!(BAND_PIXELS) }, ())
+}
+
+/// The lit face colour against its portable twin (random normals, lights and
+/// materials; bench/mcu.sh fails unless none differ). Out of line, as `check_place`.
+#[inline(never)]
+fn check_light() {
+    let bad = zraster::check_light_kernel(20_000);
+    hprintln!("light kernel cases differing from the portable twin: {}", bad);
 }
 
 /// The assembly vertex loop against its portable twin (random transforms and

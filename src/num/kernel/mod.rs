@@ -13,11 +13,13 @@
 //! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`); the vertex cache's
 //! usual vertex, transform, projection and entry ([`place_run`](place::place_run),
 //! ARMv7E-M with an FPU, checked by `check_place_kernel`);
+//! a face's flat Lambert colour in 5-6-5 ([`lit_565`](light::lit_565), ARMv7E-M,
+//! checked by `check_light_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
@@ -37,6 +39,7 @@ pub(crate) fn xorshift32(mut seed: u32) -> impl FnMut() -> u32 {
 mod bin;
 mod cull;
 mod fill;
+mod light;
 mod mac;
 mod place;
 // Before `rows`, which uses its SIMD pixel macros.
@@ -52,6 +55,10 @@ pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
+pub use light::check_light_kernel;
+#[cfg(test)]
+pub(crate) use light::lit_565_portable;
+pub(crate) use light::{lit_565, LightBlock};
 pub(crate) use mac::smlad;
 pub use place::check_place_kernel;
 #[cfg(test)]

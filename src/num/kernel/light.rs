@@ -1,0 +1,207 @@
+//! A face's flat Lambert colour in RGB565 (or BGR565) from its Q14 normal: one
+//! assembly block on ARMv7E-M, beside its portable twin (the renderer's
+//! `lambert_q14` and `shade::lit_rgb`, with the same roundings).
+#![allow(unsafe_code)]
+
+use core::marker::PhantomData;
+
+/// Half of the channel divisor `255 · 2¹⁵` (the rounding of `shade::rounded_channel`).
+const HALF: u32 = 255 * 32768 / 2;
+/// ⌈2³⁹ / 255⌉: `⌊x / (255 · 2¹⁵)⌋ = (x · MUL) >> 54` for every `u32` (`shade::div_den`).
+const MUL: u32 = ((1u64 << 39) / 255 + 1) as u32;
+
+/// What [`lit_565`] reads, in the order its assembly loads it: the light direction
+/// (Q15), ambient (Q15) and diffuse weight (Q15 · 8) of the renderer, the channel
+/// constants, each 8-bit channel of the material times its depth (31, 63, 31) in the
+/// packing's order from the high field down, and the face normals (Q14).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LightBlock<'n> {
+    light: [i32; 3],
+    ambient: i32,
+    diffuse: i32,
+    half: u32,
+    mul: u32,
+    channels: [u32; 3],
+    /// The normals, `count` of them (the slice's parts, at known offsets).
+    normals: *const [i16; 3],
+    count: usize,
+    life: PhantomData<&'n [[i16; 3]]>,
+}
+
+// The assembly reads the block at these offsets (`count` at 44 on 32-bit targets).
+const _: () = {
+    assert!(core::mem::offset_of!(LightBlock, ambient) == 12);
+    assert!(core::mem::offset_of!(LightBlock, half) == 20);
+    assert!(core::mem::offset_of!(LightBlock, channels) == 28);
+    assert!(core::mem::offset_of!(LightBlock, normals) == 40);
+    assert!(core::mem::offset_of!(LightBlock, count) == 40 + core::mem::size_of::<usize>());
+    assert!(core::mem::size_of::<[i16; 3]>() == 6);
+};
+
+impl<'n> LightBlock<'n> {
+    /// The block of light `light`, `ambient`, `diffuse` (as the renderer keeps them:
+    /// ambient within ±2¹⁶, diffuse within ±2¹⁹), a material of 8-bit channels
+    /// `[high, middle, low]` (the 5-, 6- and 5-bit fields, high to low) and the face
+    /// normals `normals`.
+    pub(crate) fn new(
+        light: [i32; 3],
+        ambient: i32,
+        diffuse: i32,
+        [h, m, l]: [u8; 3],
+        normals: &'n [[i16; 3]],
+    ) -> Self {
+        LightBlock {
+            light,
+            ambient,
+            diffuse,
+            half: HALF,
+            mul: MUL,
+            channels: [u32::from(h) * 31, u32::from(m) * 63, u32::from(l) * 31],
+            normals: normals.as_ptr(),
+            count: normals.len(),
+            life: PhantomData,
+        }
+    }
+
+    /// The normals.
+    fn normals(&self) -> &'n [[i16; 3]] {
+        // SAFETY: the parts of a slice borrowed for 'n (see `new`).
+        unsafe { core::slice::from_raw_parts(self.normals, self.count) }
+    }
+}
+
+/// The packed 5-6-5 colour of face `f` lit by `b`, from its Q14 normal `n`: the
+/// intensity `clamp(ambient + ⌊(max(0, n·L) · diffuse + 2³¹) / 2³²⌋, 0, 2¹⁶ − 1)`, then
+/// each channel `min(⌊(v · max · i + 255 · 2¹⁴) / (255 · 2¹⁵)⌋, max)`; `None` when the
+/// block has no normal `f`. On ARMv7E-M one assembly block (the bounds and the normal's
+/// place, then 24 instructions: three LDM of the block, MUL/MLA, SMMLAR, USAT, and each
+/// channel MLA, UMULL, USAT); elsewhere [`lit_565_portable`].
+#[inline(always)]
+pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    {
+        let c: u32;
+        // SAFETY: reads the twelve words of `b` (offsets pinned above) and, when
+        // `f < count`, the three halfwords of normal `f` inside the slice the block
+        // borrows; writes only the registers named, no memory and not the stack. CMP
+        // sets the flags (not declared preserved); MLA, UMULL and SMMLAR do not; USAT
+        // may set the sticky Q flag, which nothing in the crate reads. The registers are
+        // fixed so that the block's words come in by LDM (in ascending order).
+        unsafe {
+            core::arch::asm!(
+                "ldrd r2, r3, [r0, #40]",
+                "cmp r1, r3",
+                "bhs 2f",
+                "add r2, r2, r1, lsl #1",
+                "add r1, r2, r1, lsl #2",
+                "ldrsh r2, [r1]",
+                "ldrsh r3, [r1, #2]",
+                "ldrsh r1, [r1, #4]",
+                // n·L; max(0, n·L), then ambient + the rounded high word of dot · diffuse.
+                "ldm r0!, {{r4, r5, r12}}",
+                "mul r2, r2, r4",
+                "mla r2, r3, r5, r2",
+                "mla r2, r1, r12, r2",
+                "bic r2, r2, r2, asr #31",
+                "ldm r0!, {{r3, r4, r5, r12}}",
+                "smmlar r2, r2, r4, r3",
+                "usat r2, #16, r2",
+                // The channels, high to low: (i · v·max + half) · mul >> 54, saturated.
+                "ldm r0, {{r0, r1, r3}}",
+                "mla r0, r2, r0, r5",
+                "umull r4, r0, r0, r12",
+                "usat r0, #5, r0, asr #22",
+                "mla r1, r2, r1, r5",
+                "umull r4, r1, r1, r12",
+                "usat r1, #6, r1, asr #22",
+                "orr r0, r1, r0, lsl #6",
+                "mla r3, r2, r3, r5",
+                "umull r4, r3, r3, r12",
+                "usat r3, #5, r3, asr #22",
+                "orr r0, r3, r0, lsl #5",
+                "b 3f",
+                // No normal f: past any colour.
+                "2:",
+                "mov.w r0, #65536",
+                "3:",
+                inout("r0") b as *const LightBlock => c,
+                inout("r1") f => _,
+                out("r2") _,
+                out("r3") _,
+                out("r4") _,
+                out("r5") _,
+                out("r12") _,
+                options(pure, readonly, nostack),
+            );
+        }
+        return u16::try_from(c).ok();
+    }
+    #[allow(unreachable_code)]
+    lit_565_portable(f, b)
+}
+
+/// The portable twin of [`lit_565`].
+#[inline(always)]
+pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
+    let n = b.normals().get(f)?;
+    let [lx, ly, lz] = b.light;
+    let dot = (i32::from(n[0]).wrapping_mul(lx))
+        .wrapping_add(i32::from(n[1]).wrapping_mul(ly))
+        .wrapping_add(i32::from(n[2]).wrapping_mul(lz));
+    let term = ((i64::from(dot.max(0)) * i64::from(b.diffuse) + (1 << 31)) >> 32) as i32;
+    let i = (b.ambient + term).clamp(0, i32::from(u16::MAX)) as u32;
+    let channel = |v: u32, max: u32| {
+        let x = i * v + b.half;
+        (((u64::from(x) * u64::from(b.mul)) >> 54) as u32).min(max)
+    };
+    let [h, m, l] = b.channels;
+    Some((channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16)
+}
+
+/// [`lit_565`] against its portable twin on this target: random normals (each of the
+/// `n` cases a run of three, one face past them), every material's extremes and random
+/// ones, lights of every strength within the renderer's ranges. Returns the number of
+/// cases that differ.
+pub fn check_light_kernel(n: usize) -> usize {
+    let mut rnd = super::xorshift32(0x1d87_2b41_u32);
+    let mut bad = 0;
+    for case in 0..n {
+        let mut r = || rnd();
+        // Normals and a light of Q14 / Q15 components, whose dot products stay in i32.
+        let normals = [[0i16; 3]; 3].map(|n| n.map(|_| ((r() % 32769) as i32 - 16384) as i16));
+        let light = [0; 3].map(|_| (r() % 65537) as i32 - 32768);
+        let ambient = (r() % 131_073) as i32 - 65536;
+        let diffuse = ((r() % 131_073) as i32 - 65536) << 3;
+        let extremes = [0u8, 1, 127, 128, 254, 255];
+        let channels = if case % 4 == 0 {
+            [0; 3].map(|_| extremes.get(r() as usize % 6).copied().unwrap_or(0))
+        } else {
+            [0; 3].map(|_| r() as u8)
+        };
+        let count = r() as usize % 4;
+        let b = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&[]),
+        );
+        for f in [0, 1, 2, 3, usize::MAX] {
+            if lit_565(f, &b) != lit_565_portable(f, &b) {
+                bad += 1;
+            }
+        }
+    }
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_light_kernel_is_its_twin() {
+        assert_eq!(check_light_kernel(100_000), 0);
+    }
+}
