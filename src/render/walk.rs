@@ -229,6 +229,13 @@ impl<'a> CachedWalk<'a> {
         }
     }
 
+    /// The scan's place, the scan, the drawn count and the first face's number, for the
+    /// fused face loop (`num::kernel::faces`), which moves the place itself.
+    #[inline(always)]
+    pub(crate) fn fused(&mut self) -> (&mut usize, &CullScan<'a, CachedVertex>, &mut u32, usize) {
+        (&mut self.pos, &self.scan, &mut self.tally[2], self.first)
+    }
+
     /// The geometry counts of the walk, once it has ended: every face walked but the
     /// clipped ones, which the general path counts.
     pub(crate) fn stats(&self) -> FrameStats {

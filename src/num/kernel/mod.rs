@@ -37,15 +37,20 @@ pub(crate) fn xorshift32(mut seed: u32) -> impl FnMut() -> u32 {
 }
 
 mod bin;
+// Before `faces`, which uses the scan's, the colour's and the set-up's macros.
+#[macro_use]
 mod cull;
 mod fill;
+#[macro_use]
 mod light;
 mod mac;
 mod place;
 // Before `rows`, which uses its SIMD pixel macros.
 #[macro_use]
 mod span;
+#[macro_use]
 mod rows;
+mod faces;
 mod rows_v6m;
 mod texel;
 
@@ -53,6 +58,8 @@ pub use bin::check_bin_kernel;
 pub(crate) use bin::{bin_scan, BinChains, BIN_KERNEL};
 pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
+pub use faces::check_faces_kernel;
+pub(crate) use faces::{faces_less, FaceColor, FacesCounts, FacesStop, FACES_KERNEL};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;
