@@ -330,13 +330,16 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // from it alone is worked out once a run.
         loop {
             let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+            if !matches!(target, FlatTarget::Fused { less: true, .. }) {
+                fused = None; // the same for every run
+            }
             let mut to_clip = None;
             loop {
                 let mut left = None;
                 if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
                     (&fused, &mut target)
                 {
-                    let (pos, scan, drawn, first) = walk.fused();
+                    let (mut pos, faces, cache) = walk.fused();
                     let mut t = SmallTarget {
                         z: &mut *b.zdata,
                         c: &mut *b.cdata,
@@ -344,12 +347,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         first_row: b.first_row,
                         clip: b.clip,
                     };
-                    match faces_less(pos, scan, color, &mut t, &mut fused_counts) {
+                    let scan = (&operands, faces, cache);
+                    match faces_less(&mut pos, scan, color, &mut t, &mut fused_counts) {
                         FacesStop::Face(k, tri) => {
-                            *drawn += 1;
-                            left = Some((first + k, Some(tri)));
+                            walk.fused_to(pos, 1);
+                            left = Some((walk.first() + k, Some(tri)));
                         }
-                        FacesStop::Scan => {}
+                        FacesStop::Scan => walk.fused_to(pos, 0),
                         FacesStop::Refused => fused = None,
                     }
                 }
@@ -390,7 +394,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             px.add_pixels(more);
         }
         counts.flush(&mut px);
-        *walk.fused().2 += fused_counts.drawn;
+        walk.fused_to(walk.fused().0, fused_counts.drawn);
         px.pixels_tested += fused_counts.tested;
         px.pixels_written += fused_counts.tested - fused_counts.failed;
         let mut st = walk.stats();

@@ -96,13 +96,6 @@ impl<'a, T> CullScan<'a, T> {
         Some([get(t[0])?, get(t[1])?, get(t[2])?])
     }
 
-    /// The cache scanned (for the fused face loop, `faces`).
-    #[cfg(all(zraster_thumb, zraster_dsp))]
-    #[inline(always)]
-    pub(super) fn cache(&self) -> &'a [T] {
-        self.cache
-    }
-
     /// The assembly loop's operands (for the binning scan's loop, `bin`).
     #[cfg(zraster_thumb)]
     #[inline(always)]

@@ -5,7 +5,7 @@
 //! loop leaves to it.
 #![allow(unsafe_code)]
 
-use super::cull::CullScan;
+use super::cull::{CullScan, ScanRegs};
 use super::light::LightBlock;
 use super::rows::{CachedVertex, RowsLess, SmallTarget};
 
@@ -81,7 +81,7 @@ const _: () = {
 };
 
 /// The colour of a face into lr: the block's (`flat`), or (`lit`) `lit_565` of the
-/// face (r11) through the function making it a `C` (a face without a normal is left
+/// face (r1) through the function making it a `C` (a face without a normal is left
 /// to the caller, at 68).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
@@ -92,7 +92,6 @@ macro_rules! faces_color {
     (lit) => {
         concat!(
             "ldr r0, [r7, #148]\n",
-            "mov r1, r11\n",
             lit_565_asm!(),
             "lsrs r1, r0, #16\n",
             "bne 68f\n",
@@ -114,6 +113,9 @@ macro_rules! faces_body {
         concat!(
             "push {{r6, r7}}\n",
             "mov r7, r0\n",
+            // The entries' address (the x/y words' less 4), kept in r6.
+            "ldr r6, [r7, #92]\n",
+            "subs r6, #4\n",
             "60:\n",
             "add r0, r7, #84\n",
             "ldm r0, {{r0, r1, r2, r3, r4, r5, r12, lr}}\n",
@@ -124,24 +126,20 @@ macro_rules! faces_body {
             "str r1, [r7, #88]\n",
             "movs r0, #0\n",
             "b 69f\n",
-            // Drawn: the place after it, its number (r11), its entries (r8–r10).
+            // Drawn: the place after it, its number (r1), its indices (r8–r10).
             "4:\n",
             "subs r1, #1\n",
             "strd r0, r1, [r7, #84]\n",
             "mvn r1, r1\n",
-            "add r11, lr, r1\n",
+            "add r1, lr, r1\n",
             "ldrh r8, [r0, #-6]\n",
             "ldrh r9, [r0, #-4]\n",
             "ldrh r10, [r0, #-2]\n",
-            "sub r2, r2, #4\n",
-            "add r8, r2, r8, lsl #3\n",
-            "add r9, r2, r9, lsl #3\n",
-            "add r10, r2, r10, lsl #3\n",
             faces_color!($color),
             // The set-up's operands (as `small_less_dsp` hands them over).
-            "mov r1, r8\n",
-            "mov r2, r9\n",
-            "mov r3, r10\n",
+            "add r1, r6, r8, lsl #3\n",
+            "add r2, r6, r9, lsl #3\n",
+            "add r3, r6, r10, lsl #3\n",
             "add r0, r7, #116\n",
             "ldm r0, {{r4, r5, r8, r9, r10, r11, r12}}\n",
             "mov r0, r7\n",
@@ -193,7 +191,7 @@ extern "C" fn bits_of<C: Copy>(c: u32, to: *const u8) -> u32 {
 #[inline(always)]
 pub(crate) fn faces_less<'a, C: Copy>(
     pos: &mut usize,
-    scan: &CullScan<'a, CachedVertex>,
+    scan: (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
     color: &FaceColor<'_, C>,
     t: &mut SmallTarget<'_, '_, C>,
     counts: &mut FacesCounts,
@@ -213,16 +211,20 @@ pub(crate) fn faces_less<'a, C: Copy>(
 #[inline(never)]
 fn faces_less_dsp<'a, C: Copy>(
     pos: &mut usize,
-    scan: &CullScan<'a, CachedVertex>,
+    (regs, faces, cache): (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
     color: &FaceColor<'_, C>,
     t: &mut SmallTarget<'_, '_, C>,
     counts: &mut FacesCounts,
 ) -> FacesStop<'a> {
-    let (regs, cache) = (scan.regs(), scan.cache());
-    // The scan's own operands over entries of 8 bytes with x/y at byte 4 (an entry's
-    // address is the word's less 4); faces left.
+    // Operands that are those of a scan of `faces` over `cache` (`CullScan::new`: x/y
+    // at byte 4 of the 8-byte entries, an entry's address the word's less 4); a face
+    // left.
     let xy_at = cache.as_ptr().cast::<u8>().wrapping_add(4);
-    if regs.xy != xy_at || regs.len != cache.len() || *pos >= regs.faces_len {
+    let own = regs.xy == xy_at
+        && regs.len == cache.len()
+        && regs.faces == faces.as_ptr()
+        && regs.faces_len == faces.len();
+    if !own || *pos >= faces.len() {
         return FacesStop::Refused;
     }
     let (probe, light, to_color) = match *color {
@@ -268,13 +270,13 @@ fn faces_less_dsp<'a, C: Copy>(
     };
     let status: u32;
     // SAFETY: the loop composes three blocks whose bounds arguments hold as they do
-    // alone. The scan (`dsp_cull_scan`) is `skip_culled_dsp`'s over the scan's own
-    // operands (`CullScan::regs`), from face `pos` < the faces' number with the faces
-    // left from it: it reads only faces and entries below `regs.len` = the cache's
-    // length; its place is stored back before anything else runs, and taken up again
-    // from there. A drawn face's entries are the word's address less 4 plus 8·index,
-    // for indices it has found below `len`, over 8-byte entries whose word lies at
-    // byte 4 (tested above): three `CachedVertex` of the cache. The colour (`lit`)
+    // alone. The scan (`dsp_cull_scan`) is `skip_culled_dsp`'s over operands tested
+    // above to be those of `faces` and `cache` (`regs.len` = the cache's length), from
+    // face `pos` < the faces' number with the faces left from it: it reads only faces
+    // and entries below `regs.len`; its place is stored back before anything else
+    // runs, and taken up again from there. A drawn face's entries are the word's
+    // address less 4 (r6) plus 8·index, for indices it has found below `len`: three
+    // `CachedVertex` of the cache (8 bytes each, the word at byte 4). The colour (`lit`)
     // reads the light block as `lit_565` does (its SAFETY argument, `f` the face's
     // place below the faces' number) and leaves a face with no normal to the caller;
     // its value becomes a `C` by `bits_of`, which calls the caller's function through
@@ -340,7 +342,7 @@ fn faces_less_dsp<'a, C: Copy>(
     }
     let k = *pos - 1;
     let get = |i: u16| cache.get(usize::from(i));
-    match scan.faces().get(k) {
+    match faces.get(k) {
         Some(&[a, b, c]) => match (get(a), get(b), get(c)) {
             (Some(a), Some(b), Some(c)) => FacesStop::Face(k, [a, b, c]),
             _ => {
@@ -445,6 +447,7 @@ pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
             _ => (0, 0),                 // none
         };
         let scan = CullScan::new(faces, cache, 4, CachedVertex::xy, lo, cspan);
+        let regs = scan.operands();
         // Light and normals as `check_light_kernel`'s; the packed value turned.
         let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
         let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
@@ -492,7 +495,7 @@ pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
         let mut pos = 0;
         let mut refused = false;
         while pos < faces.len() {
-            match faces_less(&mut pos, &scan, &color, &mut t, &mut mine) {
+            match faces_less(&mut pos, (&regs, faces, cache), &color, &mut t, &mut mine) {
                 FacesStop::Scan => pos += 1,
                 FacesStop::Face(k, tri) => {
                     let [p, q, r] = corners(tri);
