@@ -61,7 +61,7 @@ struct FacesBlock {
     setup: [u32; 7], // 116
     /// The colour's bits (one colour for all).
     color: u32, // 144
-    /// The light block and the address of the function making a packed value a `C`.
+    /// The light block and the function making a packed value a `C`.
     light: *const u8, // 148
     to_color: *const u8, // 152
     tested: [u32; 2], // 156
@@ -170,14 +170,13 @@ macro_rules! faces_body {
     };
 }
 
-/// The packed colour `c` made a `C` by `*to` (a `fn(u16) -> C`), as its two bytes:
+/// The packed colour `c` made a `C` by `to` (a `fn(u16) -> C`), as its two bytes:
 /// called by the fused loop, so that it writes only the bits of a `C` the function
 /// made.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 extern "C" fn bits_of<C: Copy>(c: u32, to: *const u8) -> u32 {
-    // SAFETY: `faces_less` hands over the address of a `fn(u16) -> C` it keeps alive
-    // for the whole loop.
-    let f = unsafe { *to.cast::<fn(u16) -> C>() };
+    // SAFETY: `faces_less` hands over a `fn(u16) -> C` as a pointer (the same size).
+    let f = unsafe { core::mem::transmute::<*const u8, fn(u16) -> C>(to) };
     super::rows::as_u16(&mut [], f(c as u16)).map_or(0, |(_, bits)| u32::from(bits))
 }
 
@@ -279,8 +278,8 @@ fn faces_less_dsp<'a, C: Copy>(
     // `CachedVertex` of the cache (8 bytes each, the word at byte 4). The colour (`lit`)
     // reads the light block as `lit_565` does (its SAFETY argument, `f` the face's
     // place below the faces' number) and leaves a face with no normal to the caller;
-    // its value becomes a `C` by `bits_of`, which calls the caller's function through
-    // `to_color` (the address of a local living across the loop) and returns that
+    // its value becomes a `C` by `bits_of`, which calls the caller's function (handed
+    // over as a pointer, `to_color`) and returns that
     // `C`'s two bytes (`two_bytes`, checked by `kernel_buffers`): only the bits of a
     // `C` are written. The set-up and rows (`small_body`) are `small_less_dsp`'s with
     // the same operands (depth row 0's address, the clip, the pitch, the colour's
@@ -294,8 +293,7 @@ fn faces_less_dsp<'a, C: Copy>(
     // floating-point ones the calls may write among them; the flags are scratch.
     unsafe {
         if let Some(f) = to_color {
-            let f: fn(u16) -> C = f;
-            block.to_color = core::ptr::from_ref(&f).cast::<u8>();
+            block.to_color = f as *const u8;
             core::arch::asm!(
                 faces_body!(lit),
                 inout("r0") &mut block as *mut FacesBlock => status,
