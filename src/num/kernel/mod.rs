@@ -14,12 +14,14 @@
 //! usual vertex, transform, projection and entry ([`place_run`](place::place_run),
 //! ARMv7E-M with an FPU, checked by `check_place_kernel`);
 //! a face's flat Lambert colour in 5-6-5 ([`lit_565`](light::lit_565), ARMv7E-M,
-//! checked by `check_light_kernel`);
+//! checked by `check_light_kernel`); the whole frame's face loop, scan, colour, set-up
+//! and rows composed from those ([`faces_less`](faces::faces_less), ARMv7E-M, checked
+//! by `check_faces_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `faces`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
