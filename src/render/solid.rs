@@ -5,6 +5,8 @@
 
 use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
+use crate::num::kernel::FACES_KERNEL;
+use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop, SmallTarget};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
 /// for the renderer's materials and shading, in one arm for each way of colouring (one
@@ -265,15 +267,30 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         M: Material<C>,
     {
         let lambert = self.shading() == Shading::Lambert;
+        // One opaque material, unlit or lit in 5-6-5: for the fused face loop.
+        let lit;
+        let fused = match materials {
+            crate::mesh::Materials::Uniform(m) if FACES_KERNEL && !see_through::<C, M>(&m) => {
+                match self.flat_color(materials, lambert) {
+                    Some(c) => Some(FaceColor::Flat(c)),
+                    None => {
+                        lit = self.light_block(&m);
+                        lit.as_ref().map(|(b, f)| FaceColor::Lit(b, *f))
+                    }
+                }
+            }
+            _ => None,
+        };
         let (st, px) = per_colouring!(self, materials, lambert, |shade| {
-            self.cull_and_fill(frame, zbuf, indices, faces, shade)?
+            self.cull_and_fill(frame, zbuf, indices, faces, shade, fused)?
         });
         self.count(st);
         self.stats.add_pixel_counts(&px);
         Ok(())
     }
     /// The loop of [`draw_buffer_triangles`](Renderer::draw_buffer_triangles), with the
-    /// faces' colours from `shade`; returns the geometry and pixel counts.
+    /// faces' colours from `shade` (and, where there is a fused face loop, `fused`:
+    /// the same colours for it); returns the geometry and pixel counts.
     #[inline(always)]
     pub(crate) fn cull_and_fill<C>(
         &self,
@@ -282,6 +299,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         indices: &'m [[u16; 3]],
         faces: core::ops::Range<usize>,
         shade: impl Fn(usize) -> Result<C, Error>,
+        fused: Option<FaceColor<'_, C>>,
     ) -> Result<(FrameStats, FrameStats), Error>
     where
         C: PixelColor,
@@ -302,14 +320,51 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut clipped = FrameStats::default();
         // The drawn faces' pixels in u32 registers, into `px` once at the end.
         let mut counts = FillCounts::default();
+        // The common case's faces in one assembly loop (`num::kernel::faces`), where
+        // there is one, up to a face it leaves to this loop; a band's row test is not
+        // among them.
+        let mut fused = fused.filter(|_| FACES_KERNEL && rows.is_none());
+        let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
         // from it alone is worked out once a run.
         loop {
             let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+            if !matches!(target, FlatTarget::Fused { less: true, .. }) {
+                fused = None; // the same for every run
+            }
             let mut to_clip = None;
-            for next in walk.by_ref() {
-                match next? {
+            loop {
+                let mut left = None;
+                if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
+                    (&fused, &mut target)
+                {
+                    let (mut pos, faces, cache) = walk.fused();
+                    let mut t = SmallTarget {
+                        z: &mut *b.zdata,
+                        c: &mut *b.cdata,
+                        width: b.width,
+                        first_row: b.first_row,
+                        clip: b.clip,
+                    };
+                    let scan = (&operands, faces, cache);
+                    match faces_less(&mut pos, scan, color, &mut t, &mut fused_counts) {
+                        FacesStop::Face(k, tri) => {
+                            walk.fused_to(pos, 1);
+                            left = Some((walk.first() + k, Some(tri)));
+                        }
+                        FacesStop::Scan => walk.fused_to(pos, 0),
+                        FacesStop::Refused => fused = None,
+                    }
+                }
+                let next = match left {
+                    Some(face) => face,
+                    None => match walk.next() {
+                        Some(next) => next?,
+                        None => break,
+                    },
+                };
+                match next {
                     (f, Some([a, b, c])) => {
                         if self.see_through_face::<C>(f) {
                             continue; // drawn after the opaque faces
@@ -339,6 +394,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             px.add_pixels(more);
         }
         counts.flush(&mut px);
+        walk.fused_to(walk.fused().0, fused_counts.drawn);
+        px.pixels_tested += fused_counts.tested;
+        px.pixels_written += fused_counts.tested - fused_counts.failed;
         let mut st = walk.stats();
         st.add_geometry(&clipped);
         Ok((st, px))

@@ -229,6 +229,26 @@ impl<'a> CachedWalk<'a> {
         }
     }
 
+    /// The scan's place, the faces and the cache, for the fused face loop
+    /// (`num::kernel::faces`), which goes on from there ([`CachedWalk::fused_to`]).
+    #[inline(always)]
+    pub(crate) fn fused(&self) -> (usize, &'a [[u16; 3]], &'a [CachedVertex]) {
+        (self.pos, self.scan.faces(), self.cache)
+    }
+
+    /// The walk on from the scan's place `pos`, `drawn` more faces drawn before it.
+    #[inline(always)]
+    pub(crate) fn fused_to(&mut self, pos: usize, drawn: u32) {
+        self.pos = pos;
+        self.tally[2] += drawn;
+    }
+
+    /// The number of the walk's first face.
+    #[inline(always)]
+    pub(crate) fn first(&self) -> usize {
+        self.first
+    }
+
     /// The geometry counts of the walk, once it has ended: every face walked but the
     /// clipped ones, which the general path counts.
     pub(crate) fn stats(&self) -> FrameStats {

@@ -160,6 +160,9 @@ fn main() -> ! {
     // The cull scan binning a banded frame's faces likewise.
     let bad = zraster::check_bin_kernel(&mut depth[..1200], 20_000);
     hprintln!("bin kernel cases differing from the portable twin: {}", bad);
+    // The fused face loop (scan, colour, set-up and rows) likewise: random meshes.
+    let bad = zraster::check_faces_kernel(&mut depth[..4096], 4_000);
+    hprintln!("faces kernel cases differing from the portable twin: {}", bad);
     check_light();
     check_place();
 

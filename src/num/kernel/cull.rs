@@ -264,11 +264,13 @@ pub(crate) fn culled_run_portable<T>(faces: &[[u16; 3]], scan: &CullScan<'_, T>)
     )
 }
 
-/// The loop of [`skip_culled_dsp`] from its first face on (r0 at the face at `pos`,
-/// r1 the faces left, r2 the first entry's x/y word, r3 the entries' number, r4 −lo,
-/// r5 span, r12 the marks' bound, lr the faces' number), to its end.
+/// The turns of [`skip_culled_dsp`]'s loop from its first face on (r0 at the face at
+/// `pos`, r1 the faces left, r2 the first entry's x/y word, r3 the entries' number,
+/// r4 −lo, r5 span, r12 the marks' bound): on to `3f` at a bad index or an unplaced
+/// corner, to `4f` at a drawn face (r0 past it, r1 counting it), through at the end.
+/// Also the scan of the fused face loop (`faces`).
 #[cfg(all(zraster_thumb, zraster_dsp))]
-macro_rules! dsp_cull_loop {
+macro_rules! dsp_cull_scan {
     () => {
         concat!(
             "2:\n",
@@ -295,6 +297,16 @@ macro_rules! dsp_cull_loop {
             "bhi 4f\n",
             "subs r1, #1\n",
             "bne 2b\n",
+        )
+    };
+}
+
+/// [`dsp_cull_scan`] with [`skip_culled_dsp`]'s ends (lr the faces' number).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+macro_rules! dsp_cull_loop {
+    () => {
+        concat!(
+            dsp_cull_scan!(),
             // A bad index or an unplaced corner, or none left.
             "3:\n",
             "movs r2, #0\n",

@@ -72,6 +72,53 @@ impl<'n> LightBlock<'n> {
     }
 }
 
+/// The template of [`lit_565`]: the block's address in r0, the face in r1; the colour
+/// in r0 (65536 when the block has no normal r1). Clobbers r1–r5, r12 and the flags.
+/// Also the colour of the fused face loop (`faces`).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! lit_565_asm {
+    () => {
+        concat!(
+            "ldrd r2, r3, [r0, #40]\n",
+            "cmp r1, r3\n",
+            "blo 2f\n",
+            // No normal f: past any colour.
+            "mov.w r0, #65536\n",
+            "b 3f\n",
+            "2:\n",
+            "add r2, r2, r1, lsl #1\n",
+            "add r1, r2, r1, lsl #2\n",
+            "ldrsh r2, [r1]\n",
+            "ldrsh r3, [r1, #2]\n",
+            "ldrsh r1, [r1, #4]\n",
+            // n·L; max(0, n·L), then ambient + the rounded high word of dot · diffuse.
+            "ldm r0!, {{r4, r5, r12}}\n",
+            "mul r2, r2, r4\n",
+            "mla r2, r3, r5, r2\n",
+            "mla r2, r1, r12, r2\n",
+            "bic r2, r2, r2, asr #31\n",
+            "ldm r0!, {{r3, r4, r5, r12}}\n",
+            "smmlar r2, r2, r4, r3\n",
+            "usat r2, #16, r2\n",
+            // The channels, high to low: (i · v·max + half) · mul >> 54, saturated.
+            "ldm r0, {{r0, r1, r3}}\n",
+            "mla r0, r2, r0, r5\n",
+            "umull r4, r0, r0, r12\n",
+            "usat r0, #5, r0, asr #22\n",
+            "mla r1, r2, r1, r5\n",
+            "umull r4, r1, r1, r12\n",
+            "usat r1, #6, r1, asr #22\n",
+            "orr r0, r1, r0, lsl #6\n",
+            "mla r3, r2, r3, r5\n",
+            "umull r4, r3, r3, r12\n",
+            "usat r3, #5, r3, asr #22\n",
+            "orr r0, r3, r0, lsl #5\n",
+            "3:\n",
+        )
+    };
+}
+
 /// The packed 5-6-5 colour of face `f` lit by `b`, from its Q14 normal `n`: the
 /// intensity `clamp(ambient + ⌊(max(0, n·L) · diffuse + 2³¹) / 2³²⌋, 0, 2¹⁶ − 1)`, then
 /// each channel `min(⌊(v · max · i + 255 · 2¹⁴) / (255 · 2¹⁵)⌋, max)`; `None` when the
@@ -91,41 +138,7 @@ pub(crate) fn lit_565(f: usize, b: &LightBlock<'_>) -> Option<u16> {
         // fixed so that the block's words come in by LDM (in ascending order).
         unsafe {
             core::arch::asm!(
-                "ldrd r2, r3, [r0, #40]",
-                "cmp r1, r3",
-                "blo 2f",
-                // No normal f: past any colour.
-                "mov.w r0, #65536",
-                "b 3f",
-                "2:",
-                "add r2, r2, r1, lsl #1",
-                "add r1, r2, r1, lsl #2",
-                "ldrsh r2, [r1]",
-                "ldrsh r3, [r1, #2]",
-                "ldrsh r1, [r1, #4]",
-                // n·L; max(0, n·L), then ambient + the rounded high word of dot · diffuse.
-                "ldm r0!, {{r4, r5, r12}}",
-                "mul r2, r2, r4",
-                "mla r2, r3, r5, r2",
-                "mla r2, r1, r12, r2",
-                "bic r2, r2, r2, asr #31",
-                "ldm r0!, {{r3, r4, r5, r12}}",
-                "smmlar r2, r2, r4, r3",
-                "usat r2, #16, r2",
-                // The channels, high to low: (i · v·max + half) · mul >> 54, saturated.
-                "ldm r0, {{r0, r1, r3}}",
-                "mla r0, r2, r0, r5",
-                "umull r4, r0, r0, r12",
-                "usat r0, #5, r0, asr #22",
-                "mla r1, r2, r1, r5",
-                "umull r4, r1, r1, r12",
-                "usat r1, #6, r1, asr #22",
-                "orr r0, r1, r0, lsl #6",
-                "mla r3, r2, r3, r5",
-                "umull r4, r3, r3, r12",
-                "usat r3, #5, r3, asr #22",
-                "orr r0, r3, r0, lsl #5",
-                "3:",
+                lit_565_asm!(),
                 inout("r0") b as *const LightBlock => c,
                 inout("r1") f => _,
                 out("r2") _,

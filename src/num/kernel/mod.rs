@@ -14,12 +14,14 @@
 //! usual vertex, transform, projection and entry ([`place_run`](place::place_run),
 //! ARMv7E-M with an FPU, checked by `check_place_kernel`);
 //! a face's flat Lambert colour in 5-6-5 ([`lit_565`](light::lit_565), ARMv7E-M,
-//! checked by `check_light_kernel`);
+//! checked by `check_light_kernel`); the whole frame's face loop, scan, colour, set-up
+//! and rows composed from those ([`faces_less`](faces::faces_less), ARMv7E-M, checked
+//! by `check_faces_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `faces`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
@@ -37,15 +39,20 @@ pub(crate) fn xorshift32(mut seed: u32) -> impl FnMut() -> u32 {
 }
 
 mod bin;
+// Before `faces`, which uses the scan's, the colour's and the set-up's macros.
+#[macro_use]
 mod cull;
 mod fill;
+#[macro_use]
 mod light;
 mod mac;
 mod place;
 // Before `rows`, which uses its SIMD pixel macros.
 #[macro_use]
 mod span;
+#[macro_use]
 mod rows;
+mod faces;
 mod rows_v6m;
 mod texel;
 
@@ -53,6 +60,8 @@ pub use bin::check_bin_kernel;
 pub(crate) use bin::{bin_scan, BinChains, BIN_KERNEL};
 pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
+pub use faces::check_faces_kernel;
+pub(crate) use faces::{faces_less, FaceColor, FacesCounts, FacesStop, FACES_KERNEL};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;

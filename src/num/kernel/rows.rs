@@ -426,7 +426,7 @@ impl<C: Copy> SmallTarget<'_, '_, C> {
     /// bytes and every row and column of the clip lies inside both buffers (then so does
     /// every pixel the rows may touch: they lie inside the clip); else `None`.
     #[inline(always)]
-    fn kernel_buffers(&mut self, color: C) -> Option<(&mut [u16], &mut [u16], u16)> {
+    pub(super) fn kernel_buffers(&mut self, color: C) -> Option<(&mut [u16], &mut [u16], u16)> {
         if !two_bytes::<C>() {
             return None;
         }
@@ -1248,7 +1248,7 @@ fn small_less_dsp<T: Corner>(
 
 /// [`wide_steps`] for the set-up assembly, which calls it.
 #[cfg(all(zraster_thumb, zraster_dsp))]
-extern "C" fn wide_steps_c(a: i64, b: i64, area: i32) -> u64 {
+pub(super) extern "C" fn wide_steps_c(a: i64, b: i64, area: i32) -> u64 {
     let (q, r) = wide_steps(a, b, area);
     u64::from(q) | u64::from(r) << 32
 }

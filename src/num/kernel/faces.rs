@@ -1,0 +1,562 @@
+//! The whole frame's face loop of a cached mesh in one assembly loop on ARMv7E-M: the
+//! cull scan, the face's colour and the small triangle's set-up and rows, face after
+//! face with no Rust between them. Its portable twin is the renderer's own loop (the
+//! cull walk, `lit_565` and `small_less_cached`), which also takes every face this
+//! loop leaves to it.
+#![allow(unsafe_code)]
+
+use super::cull::{CullScan, ScanRegs};
+use super::light::LightBlock;
+use super::rows::{CachedVertex, RowsLess, SmallTarget};
+
+/// Whether [`faces_less`] runs the assembly loop (ARMv7E-M); elsewhere it leaves every
+/// face to the caller and the renderer does not call it.
+pub(crate) const FACES_KERNEL: bool = cfg!(all(zraster_thumb, zraster_dsp));
+
+/// The colour of every face of the fused loop.
+#[derive(Clone, Copy)]
+pub(crate) enum FaceColor<'b, C> {
+    /// One colour for all.
+    Flat(C),
+    /// Lit by the block (`lit_565`), the packed value made a `C` by the function.
+    Lit(&'b LightBlock<'b>, fn(u16) -> C),
+}
+
+/// The fused loop's pixel and face counts: pixels tested and failed by its fills, and
+/// the faces it drew.
+#[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
+pub(crate) struct FacesCounts {
+    pub tested: u64,
+    pub failed: u64,
+    pub drawn: u32,
+}
+
+/// Where [`faces_less`] stopped.
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum FacesStop<'a> {
+    /// At face `pos` (or the end), which it does not know what to do with (a bad index,
+    /// an unplaced corner): the caller's walk's.
+    Scan,
+    /// Past face `k`, found drawn but left to the caller (no normal for its colour, or
+    /// a triangle the set-up refuses), with its corners.
+    Face(usize, [&'a CachedVertex; 3]),
+    /// Not run: the buffers or the scan are not the loop's (nothing moved).
+    Refused,
+}
+
+/// What the assembly loop reads and writes, at the offsets in the comments: the rows'
+/// block of the set-up, the scan's place and operands (in the order of its registers),
+/// the set-up's operands, the colour, the counts.
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+#[repr(C)]
+struct FacesBlock {
+    rows: RowsLess, // 0
+    /// The next face's address and the faces left from it.
+    face: *const [u16; 3], // 84
+    left: u32,      // 88
+    /// The scan's x/y word address, entries, −lo, span, mark and faces' number.
+    scan: [u32; 6], // 92
+    /// The set-up's depth row 0 address, clip y0, y1, x0, x1, pitch and colour delta.
+    setup: [u32; 7], // 116
+    /// The colour's bits (one colour for all).
+    color: u32, // 144
+    /// The light block and the function making a packed value a `C`.
+    light: *const u8, // 148
+    to_color: *const u8, // 152
+    tested: [u32; 2], // 156
+    failed: [u32; 2], // 164
+    drawn: u32,     // 172
+}
+
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::offset_of;
+    type B = FacesBlock;
+    assert!(offset_of!(B, face) == 84 && offset_of!(B, left) == 88);
+    assert!(offset_of!(B, scan) == 92 && offset_of!(B, setup) == 116);
+    assert!(offset_of!(B, color) == 144 && offset_of!(B, light) == 148);
+    assert!(offset_of!(B, to_color) == 152 && offset_of!(B, tested) == 156);
+    assert!(offset_of!(B, failed) == 164 && offset_of!(B, drawn) == 172);
+};
+
+/// The colour of a face into lr: the block's (`flat`), or (`lit`) `lit_565` of the
+/// face (r1) through the function making it a `C` (a face without a normal is left
+/// to the caller, at 68).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! faces_color {
+    (flat) => {
+        "ldr lr, [r7, #144]\n"
+    };
+    (lit) => {
+        concat!(
+            "ldr r0, [r7, #148]\n",
+            lit_565_asm!(),
+            "lsrs r1, r0, #16\n",
+            "bne 68f\n",
+            "ldr r1, [r7, #152]\n",
+            "bl {bits}\n",
+            "mov lr, r0\n",
+        )
+    };
+}
+
+/// The fused loop (the block in r0): the scan to the next face not dropped; a drawn
+/// face's colour (`$color`, [`faces_color`]), set-up and rows (`small_body`), its
+/// counts into the block, and on. Ends with r0 0 when the scan stopped (the faces left
+/// in the block), 1 at a drawn face left to the caller (the faces left after it).
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! faces_body {
+    ($color:ident) => {
+        concat!(
+            "push {{r6, r7}}\n",
+            "mov r7, r0\n",
+            // The entries' address (the x/y words' less 4), kept in r6.
+            "ldr r6, [r7, #92]\n",
+            "subs r6, #4\n",
+            "60:\n",
+            "add r0, r7, #84\n",
+            "ldm r0, {{r0, r1, r2, r3, r4, r5, r12, lr}}\n",
+            "cbz r1, 3f\n",
+            dsp_cull_scan!(),
+            // Stopped (r1 the faces left from the face it stopped at).
+            "3:\n",
+            "str r1, [r7, #88]\n",
+            "movs r0, #0\n",
+            "b 69f\n",
+            // Drawn: the place after it, its number (r1), its indices (r8–r10).
+            "4:\n",
+            "subs r1, #1\n",
+            "strd r0, r1, [r7, #84]\n",
+            "mvn r1, r1\n",
+            "add r1, lr, r1\n",
+            "ldrh r8, [r0, #-6]\n",
+            "ldrh r9, [r0, #-4]\n",
+            "ldrh r10, [r0, #-2]\n",
+            faces_color!($color),
+            // The set-up's operands (as `small_less_dsp` hands them over).
+            "add r1, r6, r8, lsl #3\n",
+            "add r2, r6, r9, lsl #3\n",
+            "add r3, r6, r10, lsl #3\n",
+            "add r0, r7, #116\n",
+            "ldm r0, {{r4, r5, r8, r9, r10, r11, r12}}\n",
+            "mov r0, r7\n",
+            small_body!(
+                "ldrsh",
+                "6",
+                "ldrsh",
+                "4",
+                "0",
+                "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
+            ),
+            // Refused by the set-up: the caller's. Else its counts (64-bit sums).
+            "cbnz r2, 68f\n",
+            "add r0, r7, #156\n",
+            "ldm r0, {{r4, r5, r8, r9, r10}}\n",
+            "adds r4, r4, r1\n",
+            "adc r5, r5, #0\n",
+            "adds r8, r8, r3\n",
+            "adc r9, r9, #0\n",
+            "add r10, r10, #1\n",
+            "stm r0, {{r4, r5, r8, r9, r10}}\n",
+            "b 60b\n",
+            "68:\n",
+            "movs r0, #1\n",
+            "69:\n",
+            "pop {{r6, r7}}\n",
+        )
+    };
+}
+
+/// The packed colour `c` made a `C` by `to` (a `fn(u16) -> C`), as its two bytes:
+/// called by the fused loop, so that it writes only the bits of a `C` the function
+/// made.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+extern "C" fn bits_of<C: Copy>(c: u32, to: *const u8) -> u32 {
+    // SAFETY: `faces_less` hands over a `fn(u16) -> C` as a pointer (the same size).
+    let f = unsafe { core::mem::transmute::<*const u8, fn(u16) -> C>(to) };
+    super::rows::as_u16(&mut [], f(c as u16)).map_or(0, |(_, bits)| u32::from(bits))
+}
+
+/// Draw the faces of `scan` from `*pos` on into `t`, those the common case covers: the
+/// scan past the dropped faces, each drawn face coloured by `color` and drawn by the
+/// small triangles' set-up and rows (`small_less_cached`: the depth test `Less` with
+/// depth writes, a two-byte colour), its counts into `counts`. Returns where it
+/// stopped ([`FacesStop`]): `*pos` the face it stopped at, or the one after the face it
+/// leaves to the caller. On ARMv7E-M one assembly loop; elsewhere it leaves every face
+/// to the caller ([`FacesStop::Refused`]).
+#[inline(always)]
+pub(crate) fn faces_less<'a, C: Copy>(
+    pos: &mut usize,
+    scan: (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    color: &FaceColor<'_, C>,
+    t: &mut SmallTarget<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> FacesStop<'a> {
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    return faces_less_dsp(pos, scan, color, t, counts);
+    #[allow(unreachable_code)]
+    {
+        let _ = (pos, scan, color, t, counts);
+        FacesStop::Refused
+    }
+}
+
+/// [`faces_less`] on ARMv7E-M. Out of line (it runs once for a run of faces): its
+/// block is not stacked on the caller's frame.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[inline(never)]
+fn faces_less_dsp<'a, C: Copy>(
+    pos: &mut usize,
+    (regs, faces, cache): (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    color: &FaceColor<'_, C>,
+    t: &mut SmallTarget<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> FacesStop<'a> {
+    // Operands that are those of a scan of `faces` over `cache` (`CullScan::new`: x/y
+    // at byte 4 of the 8-byte entries, an entry's address the word's less 4); a face
+    // left.
+    let xy_at = cache.as_ptr().cast::<u8>().wrapping_add(4);
+    let own = regs.xy == xy_at
+        && regs.len == cache.len()
+        && regs.faces == faces.as_ptr()
+        && regs.faces_len == faces.len();
+    if !own || *pos >= faces.len() {
+        return FacesStop::Refused;
+    }
+    let (probe, light, to_color) = match *color {
+        FaceColor::Flat(c) => (c, core::ptr::null(), None),
+        FaceColor::Lit(b, f) => (f(0), core::ptr::from_ref(b).cast::<u8>(), Some(f)),
+    };
+    let clip = t.clip;
+    let (first_row, width) = (t.first_row, t.width);
+    let Some((z, c, bits)) = t.kernel_buffers(probe) else {
+        return FacesStop::Refused;
+    };
+    let zaddr = z.as_mut_ptr() as u32;
+    let pitch = (width as u32).wrapping_mul(2);
+    let zrow0 = zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch));
+    let delta = (c.as_mut_ptr() as u32).wrapping_sub(zaddr);
+    let mut block = FacesBlock {
+        rows: RowsLess::new(0, 0),
+        face: regs.faces.wrapping_add(*pos),
+        left: (regs.faces_len - *pos) as u32,
+        scan: [
+            regs.xy as u32,
+            regs.len as u32,
+            regs.neg_lo as u32,
+            regs.span,
+            regs.mark as u32,
+            regs.faces_len as u32,
+        ],
+        setup: [
+            zrow0,
+            clip.y0 as u32,
+            clip.y1 as u32,
+            clip.x0 as u32,
+            clip.x1 as u32,
+            pitch,
+            delta,
+        ],
+        color: u32::from(bits),
+        light,
+        to_color: core::ptr::null(),
+        tested: [0; 2],
+        failed: [0; 2],
+        drawn: 0,
+    };
+    let status: u32;
+    // SAFETY: the loop composes three blocks whose bounds arguments hold as they do
+    // alone. The scan (`dsp_cull_scan`) is `skip_culled_dsp`'s over operands tested
+    // above to be those of `faces` and `cache` (`regs.len` = the cache's length), from
+    // face `pos` < the faces' number with the faces left from it: it reads only faces
+    // and entries below `regs.len`; its place is stored back before anything else
+    // runs, and taken up again from there. A drawn face's entries are the word's
+    // address less 4 (r6) plus 8·index, for indices it has found below `len`: three
+    // `CachedVertex` of the cache (8 bytes each, the word at byte 4). The colour (`lit`)
+    // reads the light block as `lit_565` does (its SAFETY argument, `f` the face's
+    // place below the faces' number) and leaves a face with no normal to the caller;
+    // its value becomes a `C` by `bits_of`, which calls the caller's function (handed
+    // over as a pointer, `to_color`) and returns that
+    // `C`'s two bytes (`two_bytes`, checked by `kernel_buffers`): only the bits of a
+    // `C` are written. The set-up and rows (`small_body`) are `small_less_dsp`'s with
+    // the same operands (depth row 0's address, the clip, the pitch, the colour's
+    // delta, worked out as there from `kernel_buffers`' slices: every row and column
+    // of the clip inside both buffers) and the same block (`RowsLess` at offset 0 of
+    // this block, word-aligned; its SAFETY argument); a triangle it refuses goes to
+    // the caller. The counts are stored into the block by its pinned offsets. r6 and
+    // r7 (not allowed as operands) are pushed first and popped last, r7 holding the
+    // block meanwhile; the calls (`bits_of`, the set-up's `wide_steps_c`) keep r4–r11
+    // and the stack 8-aligned; every other register written is declared, the
+    // floating-point ones the calls may write among them; the flags are scratch.
+    unsafe {
+        if let Some(f) = to_color {
+            block.to_color = f as *const u8;
+            core::arch::asm!(
+                faces_body!(lit),
+                inout("r0") &mut block as *mut FacesBlock => status,
+                out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+                out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+                out("r12") _, out("lr") _,
+                wide = sym super::rows::wide_steps_c,
+                bits = sym bits_of::<C>,
+                #[cfg(not(zraster_soft_float))] out("d0") _,
+                #[cfg(not(zraster_soft_float))] out("d1") _,
+                #[cfg(not(zraster_soft_float))] out("d2") _,
+                #[cfg(not(zraster_soft_float))] out("d3") _,
+                #[cfg(not(zraster_soft_float))] out("d4") _,
+                #[cfg(not(zraster_soft_float))] out("d5") _,
+                #[cfg(not(zraster_soft_float))] out("d6") _,
+                #[cfg(not(zraster_soft_float))] out("d7") _,
+            );
+        } else {
+            core::arch::asm!(
+                faces_body!(flat),
+                inout("r0") &mut block as *mut FacesBlock => status,
+                out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+                out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+                out("r12") _, out("lr") _,
+                wide = sym super::rows::wide_steps_c,
+                #[cfg(not(zraster_soft_float))] out("d0") _,
+                #[cfg(not(zraster_soft_float))] out("d1") _,
+                #[cfg(not(zraster_soft_float))] out("d2") _,
+                #[cfg(not(zraster_soft_float))] out("d3") _,
+                #[cfg(not(zraster_soft_float))] out("d4") _,
+                #[cfg(not(zraster_soft_float))] out("d5") _,
+                #[cfg(not(zraster_soft_float))] out("d6") _,
+                #[cfg(not(zraster_soft_float))] out("d7") _,
+            );
+        }
+    }
+    let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
+    counts.tested = counts.tested.wrapping_add(wide(block.tested));
+    counts.failed = counts.failed.wrapping_add(wide(block.failed));
+    counts.drawn = counts.drawn.wrapping_add(block.drawn);
+    *pos = regs.faces_len - block.left as usize;
+    if status == 0 {
+        return FacesStop::Scan;
+    }
+    let k = *pos - 1;
+    let get = |i: u16| cache.get(usize::from(i));
+    match faces.get(k) {
+        Some(&[a, b, c]) => match (get(a), get(b), get(c)) {
+            (Some(a), Some(b), Some(c)) => FacesStop::Face(k, [a, b, c]),
+            _ => {
+                *pos = k;
+                FacesStop::Scan
+            }
+        },
+        None => {
+            *pos = k;
+            FacesStop::Scan
+        }
+    }
+}
+
+/// On-target check of the fused loop (`faces_less`) against its twin (the scan's,
+/// the colour's and the set-up's portable twins face by face), for the bench firmware:
+/// `cases` random meshes (up to 16 faces over up to 12 cache entries, some unplaced or
+/// far apart, indices out of range; normals for some faces only; lit or one colour;
+/// the three cull modes) drawn into copies of the same random 48 × 16 buffers (the
+/// colour rows at both alignments to the depth rows, clips of the whole or part), the
+/// faces the loop leaves drawn by the twin as the renderer would. `buf` holds four
+/// 48 × 16 buffers (a shorter one is a failure). Returns the number of cases whose
+/// buffers, pixel counts or drawn faces differ (where there is no assembly, the loop
+/// leaves every face to the twin).
+#[inline(never)]
+pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
+    use super::cull::culled_run_portable;
+    use super::light::lit_565_portable;
+    use super::rows::{small_less_portable, SmallDone};
+    use crate::raster::{Clip, ScreenVertex};
+    const W: usize = 48;
+    const H: usize = 16;
+    const N: usize = W * H;
+    let Some(buf) = buf.get_mut(..4 * N) else {
+        return usize::MAX;
+    };
+    let (mine, theirs) = buf.split_at_mut(2 * N);
+    let (z1, c1) = mine.split_at_mut(N);
+    let (z2, c2) = theirs.split_at_mut(N);
+    let mut rnd = super::xorshift32(0x6a09_e667);
+    let mut bad = 0;
+    for case in 0..cases {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let off = case / 2 % 2;
+        let first_row = (rnd() % 5) as i32 - 2;
+        let rows = (H - off) as i32;
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (rnd() % 30) as i32,
+                y1: first_row + y0 + (rnd() % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + rows,
+            }
+        };
+        // Entries near the buffers (1/16 pixel), some unplaced, one far on some cases.
+        let len = rnd() as usize % 13;
+        let mut cache = [CachedVertex::EMPTY; 12];
+        let span = 64 << (case % 4); // 4 to 32 pixels
+        let (bx, by) = (
+            (rnd() % (W as u32 * 16)) as i32 - 40,
+            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        for (i, e) in cache.iter_mut().enumerate() {
+            let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
+            let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
+            let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
+            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
+            *e = CachedVertex {
+                z,
+                xy: super::XyWord::new(x, y),
+            };
+            if rnd().is_multiple_of(24) {
+                e.xy = super::XyWord::new(i16::MIN, (rnd() % 64) as i16);
+            }
+        }
+        let cache = cache.get(..len).unwrap_or(&[]);
+        let mut faces = [[0u16; 3]; 16];
+        for t in faces.iter_mut() {
+            for i in t.iter_mut() {
+                *i = (rnd() % (len as u32 + 1).min(12)) as u16;
+                if rnd().is_multiple_of(48) {
+                    *i = (len as u32 + rnd() % 4) as u16; // out of range
+                }
+            }
+        }
+        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
+        let (lo, cspan) = match rnd() % 3 {
+            0 => (0, i32::MAX as u32),   // back faces
+            1 => (i32::MIN, 1u32 << 31), // front faces
+            _ => (0, 0),                 // none
+        };
+        let scan = CullScan::new(faces, cache, 4, CachedVertex::xy, lo, cspan);
+        let regs = scan.operands();
+        // Light and normals as `check_light_kernel`'s; the packed value turned.
+        let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
+        let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
+        let ambient = (rnd() % 131_073) as i32 - 65536;
+        let diffuse = ((rnd() % 131_073) as i32 - 65536) << 3;
+        let channels = [0; 3].map(|_| rnd() as u8);
+        let count = rnd() as usize % (faces.len() + 2);
+        let block = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&normals),
+        );
+        let turn: fn(u16) -> u16 = |c| c.rotate_left(3);
+        let flat = rnd() as u16;
+        let color = if case % 4 == 3 {
+            FaceColor::Flat(flat)
+        } else {
+            FaceColor::Lit(&block, turn)
+        };
+        // A drawn face's colour as the renderer gives it (a fixed one without a normal).
+        let color_of = |k: usize| match color {
+            FaceColor::Flat(c) => c,
+            FaceColor::Lit(b, f) => lit_565_portable(k, b).map_or(0x1234, f),
+        };
+        let corners = |t: [&CachedVertex; 3]| {
+            t.map(|e| {
+                let (x, y) = e.xy();
+                ScreenVertex::from_raw(x, y, e.z)
+            })
+        };
+        // The fused loop, the faces it leaves drawn by the twin.
+        let mut mine = FacesCounts::default();
+        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
+            return usize::MAX;
+        };
+        let mut t = SmallTarget {
+            z: &mut z1[..],
+            c: ca,
+            width: W,
+            first_row,
+            clip,
+        };
+        let mut pos = 0;
+        let mut refused = false;
+        while pos < faces.len() {
+            match faces_less(&mut pos, (&regs, faces, cache), &color, &mut t, &mut mine) {
+                FacesStop::Scan => pos += 1,
+                FacesStop::Face(k, tri) => {
+                    let [p, q, r] = corners(tri);
+                    mine.drawn += 1;
+                    let (z, c) = (&mut *t.z, &mut *t.c);
+                    let done =
+                        small_less_portable([&p, &q, &r], &clip, first_row, W, z, c, color_of(k));
+                    if let SmallDone::Drawn(tested, failed) = done {
+                        mine.tested += u64::from(tested);
+                        mine.failed += u64::from(failed);
+                    }
+                }
+                FacesStop::Refused => {
+                    // Only where there is no assembly: the twin's face by face.
+                    refused = true;
+                    break;
+                }
+            }
+        }
+        if FACES_KERNEL && refused {
+            bad += 1;
+        }
+        // The twin, face by face (where the loop refused, for both).
+        let twin = |z: &mut [u16], c: &mut [u16], counts: &mut FacesCounts| {
+            for (k, tri) in faces.iter().enumerate() {
+                let (n, drawn) = culled_run_portable(core::slice::from_ref(tri), &scan);
+                let get = |i: u16| cache.get(usize::from(i));
+                let (Some(a), Some(b), Some(e)) = (get(tri[0]), get(tri[1]), get(tri[2])) else {
+                    continue;
+                };
+                if n == 1 || !drawn {
+                    continue;
+                }
+                let [p, q, r] = corners([a, b, e]);
+                counts.drawn += 1;
+                let done =
+                    small_less_portable([&p, &q, &r], &clip, first_row, W, z, c, color_of(k));
+                if let SmallDone::Drawn(tested, failed) = done {
+                    counts.tested += u64::from(tested);
+                    counts.failed += u64::from(failed);
+                }
+            }
+        };
+        let mut theirs = FacesCounts::default();
+        if refused {
+            twin(z1, c1.get_mut(off..).unwrap_or(&mut []), &mut mine);
+        }
+        twin(z2, cb, &mut theirs);
+        if mine != theirs || z1 != z2 || c1 != c2 {
+            bad += 1;
+        }
+    }
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn faces_kernel_matches_its_twin() {
+        let mut buf = [0u16; 4 * 48 * 16];
+        assert_eq!(check_faces_kernel(&mut buf, 2_000), 0);
+        assert_eq!(check_faces_kernel(&mut buf[..100], 1), usize::MAX);
+    }
+}
