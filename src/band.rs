@@ -350,42 +350,59 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         };
         let clip = clip_of(frame, zbuf);
         let (row0, row1) = clip.subpixel_rows();
-        let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+        let mut faces = faces;
         // The pixels of the common faces in u32 registers, into `px` at the end.
         let mut counts = FrameStats::fill_counts();
-        for (f, t, how) in faces {
-            if self.see_through_face::<C>(f) {
-                // Drawn after the opaque faces. Skipped alike as kept and as taken, so
-                // the carried colours stay in step.
-                continue;
-            }
-            let [a, b, c] = cached_triangle(cache, f, t)?;
-            if how == Carry::Tall {
-                // Drawn in every band: clipped by the general path, or skipped when it
-                // does not reach this band's rows.
-                if a.marked() | b.marked() | c.marked() {
-                    px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
+        // The target of the fills is a local never borrowed beyond them (a face to clip
+        // ends the run and gets a target of its own), so that what the fills work out
+        // from it alone is worked out once a run, as in the whole frame's loop.
+        loop {
+            let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            let mut to_clip = None;
+            for (f, t, how) in faces.by_ref() {
+                if self.see_through_face::<C>(f) {
+                    // Drawn after the opaque faces. Skipped alike as kept and as taken,
+                    // so the carried colours stay in step.
                     continue;
                 }
-                if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
-                    continue;
+                let [a, b, c] = cached_triangle(cache, f, t)?;
+                if how == Carry::Tall {
+                    // Drawn in every band: clipped by the general path, or skipped when
+                    // it does not reach this band's rows.
+                    if a.marked() | b.marked() | c.marked() {
+                        to_clip = Some(f);
+                        break;
+                    }
+                    if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
+                        continue;
+                    }
                 }
+                let tri = [a.placed(), b.placed(), c.placed()];
+                // One call of `shade` (so that it is inlined): carried, or worked out.
+                let carried = if how == Carry::Take {
+                    carry.take()
+                } else {
+                    None
+                };
+                let color = match carried {
+                    Some(c) => c,
+                    None => shade(f)?,
+                };
+                if how == Carry::Keep {
+                    carry.keep(color);
+                }
+                // Inline, as the whole frame's loop, but out of line on ARMv6-M, where
+                // its copies in each colouring's loop cost flash (Pico code +1.2 KB).
+                let filled = if crate::num::ARMV6M {
+                    target.fill(tri.each_ref(), color)
+                } else {
+                    target.fill_inline(tri.each_ref(), color)
+                };
+                counts.add(filled, &mut px);
             }
-            let tri = [a.placed(), b.placed(), c.placed()];
-            // One call of `shade` (so that it is inlined): carried, or worked out.
-            let carried = if how == Carry::Take {
-                carry.take()
-            } else {
-                None
-            };
-            let color = match carried {
-                Some(c) => c,
-                None => shade(f)?,
-            };
-            if how == Carry::Keep {
-                carry.keep(color);
-            }
-            counts.add(target.fill(tri.each_ref(), color), &mut px);
+            let Some(f) = to_clip else { break };
+            let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
         }
         counts.flush(&mut px);
         Ok(px)
