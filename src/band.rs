@@ -501,20 +501,49 @@ impl<'m> Iterator for BandTriangles<'_, 'm> {
         // heads below it (it stays first about half the time in bunny-320: a band's
         // faces come in runs from one chain).
         let next = u32::from(link) << 2 | k;
-        let mut i = 0;
-        while let Some(&h) = heads.get(i + 1) {
-            if next < h {
-                break;
+        if crate::num::ARMV6M {
+            move_down(heads, next);
+        } else {
+            // A chain of compares: the band loop spills less around it than around the
+            // loop (which ARMv6-M keeps: there the chain costs more).
+            let [_, b, c, d] = *heads;
+            if next < b {
+                heads[0] = next;
+            } else {
+                heads[0] = b;
+                if next < c {
+                    heads[1] = next;
+                } else {
+                    heads[1] = c;
+                    if next < d {
+                        heads[2] = next;
+                    } else {
+                        heads[2] = d;
+                        heads[3] = next;
+                    }
+                }
             }
-            if let Some(slot) = heads.get_mut(i) {
-                *slot = h;
-            }
-            i += 1;
-        }
-        if let Some(slot) = heads.get_mut(i) {
-            *slot = next;
         }
         Some((f, t, Carry::of_chain(k)))
+    }
+}
+
+/// Put `next` in the place of `heads[0]`, moved down past the heads below it, so that
+/// `heads` stays in increasing order.
+#[inline(always)]
+fn move_down(heads: &mut [u32; 4], next: u32) {
+    let mut i = 0;
+    while let Some(&h) = heads.get(i + 1) {
+        if next < h {
+            break;
+        }
+        if let Some(slot) = heads.get_mut(i) {
+            *slot = h;
+        }
+        i += 1;
+    }
+    if let Some(slot) = heads.get_mut(i) {
+        *slot = next;
     }
 }
 
