@@ -501,11 +501,11 @@ impl<'m> Iterator for BandTriangles<'_, 'm> {
         // heads below it (it stays first about half the time in bunny-320: a band's
         // faces come in runs from one chain).
         let next = u32::from(link) << 2 | k;
-        if crate::num::ARMV6M {
+        if !crate::num::THUMB2 {
             move_down(heads, next);
         } else {
-            // A chain of compares: the band loop spills less around it than around the
-            // loop (which ARMv6-M keeps: there the chain costs more).
+            // On Thumb-2 a chain of compares: the band loop spills less around it than
+            // around the loop (which costs less on ARMv6-M and x86-64).
             let [_, b, c, d] = *heads;
             if next < b {
                 heads[0] = next;
