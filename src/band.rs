@@ -373,11 +373,11 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         to_clip = Some(f);
                         break;
                     }
-                    if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
-                        continue;
-                    }
                 }
                 let tri = [a.placed(), b.placed(), c.placed()];
+                if how == Carry::Tall && outside_rows(&tri, row0, row1) {
+                    continue;
+                }
                 // One call of `shade` (so that it is inlined): carried, or worked out.
                 let carried = if how == Carry::Take {
                     carry.take()
