@@ -18,7 +18,7 @@ use crate::mesh::Faces;
 use crate::num::kernel::BinChains;
 use crate::raster::Clip;
 use crate::render::{
-    cached_triangle, outside_rows, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
+    cached_outside_rows, cached_triangle, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
 };
 use crate::shade::{Material, Shading};
 mod carry;
@@ -350,41 +350,58 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         };
         let clip = clip_of(frame, zbuf);
         let (row0, row1) = clip.subpixel_rows();
-        let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+        let mut faces = faces;
         // The pixels of the common faces in u32 registers, into `px` at the end.
         let mut counts = FrameStats::fill_counts();
-        for (f, t, how) in faces {
-            if self.see_through_face::<C>(f) {
-                // Drawn after the opaque faces. Skipped alike as kept and as taken, so
-                // the carried colours stay in step.
-                continue;
-            }
-            let [a, b, c] = cached_triangle(cache, f, t)?;
-            if how == Carry::Tall {
-                // Drawn in every band: clipped by the general path, or skipped when it
-                // does not reach this band's rows.
-                if a.marked() | b.marked() | c.marked() {
-                    px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
+        // The target of the fills is a local never borrowed beyond them (a face to clip
+        // ends the run and gets a target of its own), so that what the fills work out
+        // from it alone is worked out once a run, as in the whole frame's loop.
+        loop {
+            let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            let mut to_clip = None;
+            for (f, t, how) in faces.by_ref() {
+                if self.see_through_face::<C>(f) {
+                    // Drawn after the opaque faces. Skipped alike as kept and as taken,
+                    // so the carried colours stay in step.
                     continue;
                 }
-                if outside_rows(&[a.placed(), b.placed(), c.placed()], row0, row1) {
+                let [a, b, c] = cached_triangle(cache, f, t)?;
+                if how == Carry::Tall {
+                    // Drawn in every band: clipped by the general path, or skipped when
+                    // it does not reach this band's rows.
+                    if a.marked() | b.marked() | c.marked() {
+                        to_clip = Some(f);
+                        break;
+                    }
+                }
+                if how == Carry::Tall && cached_outside_rows([a, b, c], row0, row1) {
                     continue;
                 }
+                // One call of `shade` (so that it is inlined): carried, or worked out.
+                let carried = if how == Carry::Take {
+                    carry.take()
+                } else {
+                    None
+                };
+                let color = match carried {
+                    Some(c) => c,
+                    None => shade(f)?,
+                };
+                if how == Carry::Keep {
+                    carry.keep(color);
+                }
+                // Inline, as the whole frame's loop, but out of line on ARMv6-M, where
+                // its copies in each colouring's loop cost flash (Pico code +1.2 KB).
+                let filled = if crate::num::ARMV6M {
+                    target.fill_cached_or_call([a, b, c], color)
+                } else {
+                    target.fill_cached([a, b, c], color)
+                };
+                counts.add(filled, &mut px);
             }
-            // One call of `shade` (so that it is inlined): carried, or worked out.
-            let carried = if how == Carry::Take {
-                carry.take()
-            } else {
-                None
-            };
-            let color = match carried {
-                Some(c) => c,
-                None => shade(f)?,
-            };
-            if how == Carry::Keep {
-                carry.keep(color);
-            }
-            counts.add(target.fill_cached_or_call([a, b, c], color), &mut px);
+            let Some(f) = to_clip else { break };
+            let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
         }
         counts.flush(&mut px);
         Ok(px)
@@ -483,20 +500,49 @@ impl<'m> Iterator for BandTriangles<'_, 'm> {
         // heads below it (it stays first about half the time in bunny-320: a band's
         // faces come in runs from one chain).
         let next = u32::from(link) << 2 | k;
-        let mut i = 0;
-        while let Some(&h) = heads.get(i + 1) {
-            if next < h {
-                break;
+        if !crate::num::THUMB2 {
+            move_down(heads, next);
+        } else {
+            // On Thumb-2 a chain of compares: the band loop spills less around it than
+            // around the loop (which costs less on ARMv6-M and x86-64).
+            let [_, b, c, d] = *heads;
+            if next < b {
+                heads[0] = next;
+            } else {
+                heads[0] = b;
+                if next < c {
+                    heads[1] = next;
+                } else {
+                    heads[1] = c;
+                    if next < d {
+                        heads[2] = next;
+                    } else {
+                        heads[2] = d;
+                        heads[3] = next;
+                    }
+                }
             }
-            if let Some(slot) = heads.get_mut(i) {
-                *slot = h;
-            }
-            i += 1;
-        }
-        if let Some(slot) = heads.get_mut(i) {
-            *slot = next;
         }
         Some((f, t, Carry::of_chain(k)))
+    }
+}
+
+/// Put `next` in the place of `heads[0]`, moved down past the heads below it, so that
+/// `heads` stays in increasing order.
+#[inline(always)]
+fn move_down(heads: &mut [u32; 4], next: u32) {
+    let mut i = 0;
+    while let Some(&h) = heads.get(i + 1) {
+        if next < h {
+            break;
+        }
+        if let Some(slot) = heads.get_mut(i) {
+            *slot = h;
+        }
+        i += 1;
+    }
+    if let Some(slot) = heads.get_mut(i) {
+        *slot = next;
     }
 }
 

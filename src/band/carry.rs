@@ -12,7 +12,8 @@ const CARRY: usize = 64;
 pub(crate) struct ColorCarry<C> {
     colors: [[C; CARRY]; 2],
     /// The half this band reads (what the band above kept); it keeps into the other.
-    read: usize,
+    /// A `bool`, so that indexing the two halves by it needs no bounds test.
+    read: bool,
     /// Colours the band above kept; how many this band has taken; how many it keeps.
     filled: usize,
     taken: usize,
@@ -23,7 +24,7 @@ impl<C: Copy> ColorCarry<C> {
     pub(crate) fn new(fill: C) -> Self {
         ColorCarry {
             colors: [[fill; CARRY]; 2],
-            read: 0,
+            read: false,
             filled: 0,
             taken: 0,
             kept: 0,
@@ -32,7 +33,7 @@ impl<C: Copy> ColorCarry<C> {
 
     /// A new band: what the band before kept is what this one takes.
     pub(crate) fn start_band(&mut self) {
-        self.read ^= 1;
+        self.read = !self.read;
         self.filled = self.kept;
         self.taken = 0;
         self.kept = 0;
@@ -44,7 +45,7 @@ impl<C: Copy> ColorCarry<C> {
         let i = self.taken;
         self.taken += 1;
         if i < self.filled {
-            self.colors.get(self.read)?.get(i).copied()
+            self.colors.get(usize::from(self.read))?.get(i).copied()
         } else {
             None
         }
@@ -53,7 +54,7 @@ impl<C: Copy> ColorCarry<C> {
     /// Keep `c` for the band below (dropped when full: that face is lit again there).
     #[inline]
     pub(crate) fn keep(&mut self, c: C) {
-        let half = self.colors.get_mut(self.read ^ 1);
+        let half = self.colors.get_mut(usize::from(!self.read));
         if let Some(slot) = half.and_then(|h| h.get_mut(self.kept)) {
             *slot = c;
             self.kept += 1;

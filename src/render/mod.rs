@@ -27,7 +27,7 @@ pub(crate) use solid::per_colouring;
 pub(crate) use target::sealed;
 pub use target::{DepthTarget, WithDepth};
 pub use textured::{TexturedTarget, Texturing};
-pub(crate) use walk::{cached_outside_rows, cached_triangle, outside_rows, CachedWalk};
+pub(crate) use walk::{cached_outside_rows, cached_triangle, CachedWalk};
 use walk::{decide, edges, fan, Seen};
 
 use crate::camera::Camera;

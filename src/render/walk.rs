@@ -8,20 +8,14 @@ use super::*;
 use crate::num::kernel::{bin_scan, skip_culled, skip_culled_by, BinChains, CullScan};
 use crate::num::kernel::{ScanRegs, BIN_KERNEL, CULL_KERNEL};
 
-/// Whether `tri` lies wholly above or below rows `row0..row1` (in 1/16 pixel): later
-/// passes (bands) skip such triangles before anything else.
-#[inline(always)]
-pub(crate) fn outside_rows(tri: &[ScreenVertex; 3], row0: i32, row1: i32) -> bool {
-    ys_outside_rows([tri[0].y(), tri[1].y(), tri[2].y()], row0, row1)
-}
-
-/// [`outside_rows`] for placed cache entries.
+/// Whether the placed cache entries lie wholly above or below rows `row0..row1` (in
+/// 1/16 pixel): later passes (bands) skip such triangles before anything else.
 #[inline(always)]
 pub(crate) fn cached_outside_rows([a, b, c]: [&CachedVertex; 3], row0: i32, row1: i32) -> bool {
     ys_outside_rows([a.xy().1, b.xy().1, c.xy().1], row0, row1)
 }
 
-/// [`outside_rows`] for the corners' y alone.
+/// [`cached_outside_rows`] for the corners' y alone.
 #[inline(always)]
 fn ys_outside_rows([a, b, c]: [i32; 3], row0: i32, row1: i32) -> bool {
     a.max(b).max(c) + 8 < row0 || a.min(b).min(c) + 8 > row1
