@@ -472,18 +472,10 @@ impl ScreenMap {
         if !(room(self.sx, self.ox) && room(self.sy, self.oy)) {
             return None;
         }
-        Some(PlaceBlock {
+        Some(PlaceBlock::new(
             rows,
-            consts: [
-                1.0,
-                self.sx * f,
-                self.ox,
-                self.sy * f,
-                self.oy,
-                DEPTH_HALF,
-                0.5,
-            ],
-        })
+            [self.sx * f, self.ox, self.sy * f, self.oy],
+        ))
     }
 
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
@@ -501,12 +493,12 @@ impl ScreenMap {
         if !PLACE_KERNEL {
             return false;
         }
-        let Some(block) = self.place_block(fixed) else {
+        let Some(mut block) = self.place_block(fixed) else {
             return false;
         };
         let mut at = 0;
         while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
-            at += place_run(&block, p, c);
+            at += place_run(&mut block, p, c);
             let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
                 break;
             };
