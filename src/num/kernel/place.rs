@@ -33,7 +33,8 @@ pub(crate) struct PlaceBlock {
     /// The loop's sixteen to twenty-seventh float registers at the start of a pair, as
     /// bits: the sums' starting values (x offset, y offset, x offset, y offset, ½, the
     /// first reciprocal's place, ½, the second's, then 1 and 1 for the depths) and two
-    /// words the loop takes back as they are (the end of the pair's entries, `0x10001`).
+    /// words the loop takes back as they are (the end of the pair's entries, and a word
+    /// it does not use).
     start: [u32; 12],
     /// 1, the x scale, the y scale and half the depth range.
     scales: [f32; 4],
@@ -69,7 +70,7 @@ impl PlaceBlock {
                 f(0.5),
                 0,
                 0,
-                0x1_0001,
+                0,
                 f(1.0),
                 f(1.0),
             ],
@@ -164,7 +165,7 @@ pub(crate) fn place_run(
 /// Writes the entries of `positions` into `out` two by two from the first on, up to the
 /// first pair with a position [`place_portable`] does not place, and returns how many it
 /// wrote (even, at most the shorter length rounded down). `positions` starts on a word
-/// (else it writes nothing). On ARMv7E-M with an FPU an assembly loop of 96 instructions
+/// (else it writes nothing). On ARMv7E-M with an FPU an assembly loop of 95 instructions
 /// a pair; elsewhere the twin.
 #[inline]
 fn place_pairs(b: &mut PlaceBlock, positions: &[[i16; 3]], out: &mut [CachedVertex]) -> usize {
@@ -199,10 +200,12 @@ fn place_pairs(b: &mut PlaceBlock, positions: &[[i16; 3]], out: &mut [CachedVert
         // 14 fraction bits), one VDIV each, the screen coordinates accumulated from
         // their offsets (VMLA rounds the product, then the sum), doubled, truncated and
         // saturated to 16 bits, the depths from ½; s16–s25 pushed and popped into
-        // r4–lr. Then the tests (both reciprocals positive, the depths in range), the
-        // halves rounded by SHADD16, and the rounded x and y tested: 2r + 2¹⁵ is 0
-        // modulo 2¹⁶ only for r = ±2¹⁴, so one product of halves from each position
-        // is zero if any is out of range.
+        // r4–lr. Then both reciprocals' signs, the halves rounded by SHADD16 (plus 1
+        // where above 0: USAT16 to [0, 1]), and three products of halves, one for each
+        // coordinate of the two positions, each zero if a half is: of the depths' top
+        // halves plus 2 without their low two bits (a carry from the first half only
+        // where that is already zero), and of 2r + 2¹⁵ for the rounded x and y (zero
+        // modulo 2¹⁶ only for r = ±2¹⁴).
         unsafe {
             core::arch::asm!(
                 "push {{r4-r11, lr}}",
@@ -284,16 +287,13 @@ fn place_pairs(b: &mut PlaceBlock, positions: &[[i16; 3]], out: &mut [CachedVert
                 "pop {{r4-r12, lr}}",
                 "orrs r9, r9, r11",
                 "bmi 3f",
-                "sub.w r9, r8, #65536",
-                "cmn.w r9, #196608",
-                "bhs 3f",
-                "sub.w r9, r10, #65536",
-                "cmn.w r9, #196608",
-                "bhs 3f",
+                "pkhtb lr, r10, r8, asr #16",
+                "add.w lr, lr, #0x20002",
+                "bic.w lr, lr, #0x30003",
                 "pkhbt r4, r4, r5, lsl #16",
                 "pkhbt r6, r6, r7, lsl #16",
-                "bic.w r5, lr, r4, lsr #15",
-                "bic.w r7, lr, r6, lsr #15",
+                "usat16 r5, #1, r4",
+                "usat16 r7, #1, r6",
                 "shadd16 r9, r4, r5",
                 "shadd16 r11, r6, r7",
                 "sadd16 r4, r9, r9",
@@ -302,8 +302,10 @@ fn place_pairs(b: &mut PlaceBlock, positions: &[[i16; 3]], out: &mut [CachedVert
                 "eor r6, r6, #0x80008000",
                 "smulbb r5, r4, r6",
                 "smultt r7, r4, r6",
+                "smulbt r4, lr, lr",
                 "cbz r5, 3f",
                 "cbz r7, 3f",
+                "cbz r4, 3f",
                 "stm r2!, {{r8-r11}}",
                 "cmp r2, r12",
                 "bne 2b",
@@ -465,6 +467,37 @@ mod tests {
             for c in [q, r] {
                 let want = crate::num::round_f32(c);
                 assert_eq!(round_doubled((c * 2.0) as i32), want, "{c}");
+            }
+        }
+    }
+
+    /// The loop's tests on packed halves are the twin's: for every truncated double t
+    /// (VCVT's 16 bits), the halves rounded by SHADD16 with USAT16's addend are
+    /// `round_doubled`, and 2r + 2¹⁵ is zero modulo 2¹⁶ exactly where r leaves ±(2¹⁴ −
+    /// 1); for every depth unit of either position (the other's in and out of range),
+    /// the depths' product of halves is zero exactly where the twin stops.
+    #[test]
+    fn packed_tests_are_the_twins() {
+        let halves = |w: u32| [w as u16 as i16 as i32, (w >> 16) as u16 as i16 as i32];
+        let pack = |[lo, hi]: [i32; 2]| (lo as u32 & 0xffff) | (hi as u32) << 16;
+        for t in -32768..32768 {
+            let p = pack([t, -1 - t]);
+            let m = pack(halves(p).map(|h| h.clamp(0, 1))); // USAT16 #1
+            let r = pack([0, 1].map(|k| (halves(p)[k] + halves(m)[k]) >> 1)); // SHADD16
+            assert_eq!(halves(r), [round_doubled(t), round_doubled(-1 - t)]);
+            let z = halves(r).map(|h| (2 * h + 0x8000) as u16); // SADD16, EOR
+            let fits = |h: i32| h.unsigned_abs() < 1 << 14;
+            assert_eq!(z.map(|h| h != 0), halves(r).map(fits), "{t}");
+        }
+        let depth_ok = |sz: u32| sz.wrapping_add(2 << 16) >= 4 << 16;
+        for h in 0..1 << 16 {
+            for other in [0u32, 1, 2, 3, 100, 65533, 65534, 65535] {
+                for (a, b) in [(h, other), (other, h)] {
+                    let (sa, sb) = (a << 16 | 0x8000, b << 16 | 0x1234);
+                    let d = ((sb & 0xffff_0000) | sa >> 16).wrapping_add(0x2_0002) & !0x3_0003;
+                    let product = i32::from(d as u16 as i16) * i32::from((d >> 16) as u16 as i16);
+                    assert_eq!(product != 0, depth_ok(sa) && depth_ok(sb), "{a} {b}");
+                }
             }
         }
     }
