@@ -6,13 +6,12 @@
 use super::transform::{Clip4, FixedTransform};
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
-use crate::num::kernel::{place_run, PlaceBlock, PLACE_KERNEL};
+use crate::num::kernel::{place_run, CachedVertex, PlaceBlock, PLACE_KERNEL};
 use crate::num::{
     bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
     scaled_ratio_parts, shr64, ARMV6M, INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
-use crate::render::CachedVertex;
 
 /// How far outside the screen (in screen widths) a vertex may project before the
 /// triangle is clipped: |x|, |y| ≤ GUARD·w. With viewports of at most 8192 pixels the

@@ -110,29 +110,8 @@ impl FrameStats {
     }
 }
 
-/// A vertex transformed and projected once per frame (8 bytes), so that every band
-/// and every face sharing it reuses the work. See [`Renderer::with_cache`].
-///
-/// It holds the screen position of a vertex inside the view volume within ±1024 pixels
-/// of the origin (x and y in 1/16 pixel below 2¹⁴ in magnitude, so that the cull pass
-/// works out areas in `i32`; depth in 16.16). Any other vertex is marked and
-/// holds its outcode: faces using it take the general path, which clips them or
-/// projects that vertex again.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(C)]
-pub struct CachedVertex {
-    /// Depth in 16.16.
-    z: u32,
-    /// x and y as one word, x in the low half (the cull scans read the word): x in
-    /// 1/16 pixel, or [`CachedVertex::MARK`]; y in 1/16 pixel, or the outcode when
-    /// marked.
-    xy: XyWord,
-}
-
-// The place kernel (`num::kernel::place`) stores an entry as two words: depth, then x/y.
-const _: () = assert!(
-    core::mem::offset_of!(CachedVertex, z) == 0 && core::mem::offset_of!(CachedVertex, xy) == 4
-);
+// The vertex cache's entry is defined beside the kernel that writes it; its methods here.
+pub use crate::num::kernel::CachedVertex;
 
 impl CachedVertex {
     /// `x` of a vertex the entry does not place.

@@ -56,6 +56,7 @@ pub(crate) use mac::smlad;
 pub use place::check_place_kernel;
 #[cfg(test)]
 pub(crate) use place::place_portable;
+pub use place::CachedVertex;
 pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;

@@ -1,5 +1,6 @@
-//! The vertex cache's usual vertex on ARMv7E-M with an FPU: the fixed-point transform,
-//! the projection and the entry in one assembly loop, beside its portable twin.
+//! The vertex cache's entries, and its usual vertex on ARMv7E-M with an FPU: the
+//! fixed-point transform, the projection and the entry in one assembly loop, two
+//! vertices a turn, beside its portable twin.
 //!
 //! It computes the `f32` path's entry ([`ScreenMap::project_float_inside`] of
 //! [`Clip4::to_f32`], then [`CachedVertex::placing`]) bit for bit, with every scale
@@ -7,17 +8,45 @@
 //! in units of 2¹⁴ (the low partial sum converted with 14 fraction bits, no multiply),
 //! x and y without their scale `s` (folded into the screen scales), and the screen
 //! coordinates rounded from their doubles truncated. The planes it tests are narrower
-//! than the `f32` path's, so that it places no vertex that path would not: w by its
-//! high partial sum (w > 2³¹), near and far by the depth (one unit of room), the guard
-//! band by the screen range (±1020 pixels, inside the band for the viewports
-//! [`PlaceBlock`] takes). Any other vertex stops the loop for the caller's exact path.
+//! than the `f32` path's, so that it places no vertex that path would not: w by the
+//! reciprocal's sign (w is an integer: w > 0 is w ≥ 1), near and far by the depth (two
+//! units of room), the guard band by the cache's screen range (±1024 pixels, inside the
+//! band for the viewports [`PlaceBlock`] takes). Any other vertex stops the loop for the
+//! caller's exact path.
 //!
 //! [`ScreenMap::project_float_inside`]: crate::geometry::project::ScreenMap
 //! [`Clip4::to_f32`]: crate::geometry::transform::Clip4
 #![allow(unsafe_code)]
 
-use crate::raster::ScreenVertex;
-use crate::render::CachedVertex;
+use super::XyWord;
+
+/// A vertex transformed and projected once per frame (8 bytes), so that every band
+/// and every face sharing it reuses the work. See [`Renderer::with_cache`].
+///
+/// It holds the screen position of a vertex inside the view volume within ±1024 pixels
+/// of the origin (x and y in 1/16 pixel below 2¹⁴ in magnitude, so that the cull pass
+/// works out areas in `i32`; depth in 16.16). Any other vertex is marked and
+/// holds its outcode: faces using it take the general path, which clips them or
+/// projects that vertex again.
+///
+/// [`Renderer::with_cache`]: crate::Renderer::with_cache
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)]
+pub struct CachedVertex {
+    /// Depth in 16.16.
+    pub(crate) z: u32,
+    /// x and y as one word, x in the low half (the cull scans read the word): x in
+    /// 1/16 pixel, or `i16::MIN` (the mark); y in 1/16 pixel, or the outcode when
+    /// marked.
+    pub(crate) xy: XyWord,
+}
+
+// The place kernel stores an entry as two words: depth, then x/y.
+const _: () = assert!(
+    core::mem::offset_of!(CachedVertex, z) == 0
+        && core::mem::offset_of!(CachedVertex, xy) == 4
+        && core::mem::size_of::<CachedVertex>() == 8
+);
 
 /// Whether [`place_pairs`] is the assembly loop (ARMv7E-M with an FPU).
 pub(crate) const PLACE_KERNEL: bool =
@@ -117,7 +146,10 @@ pub(crate) fn place_portable(b: &PlaceBlock, p: &[i16; 3]) -> Option<CachedVerte
     {
         return None;
     }
-    CachedVertex::placing(ScreenVertex::from_raw(rx, ry, sz))
+    Some(CachedVertex {
+        z: sz,
+        xy: XyWord::new(rx as i16, ry as i16),
+    })
 }
 
 /// `round_f32(c)` (halves away from zero) from `t = trunc(2c)`, for |c| < 2²²: ⌊c + ½⌋
@@ -175,7 +207,6 @@ fn place_pairs(b: &mut PlaceBlock, positions: &[[i16; 3]], out: &mut [CachedVert
     }
     #[cfg(all(zraster_thumb, zraster_dsp, not(zraster_soft_float)))]
     {
-        const _: () = assert!(core::mem::size_of::<CachedVertex>() == 8);
         let start = out.as_mut_ptr();
         b.start[END] = start.wrapping_add(2 * pairs) as usize as u32;
         let end: *mut CachedVertex;
@@ -370,7 +401,7 @@ fn place_pairs_portable(b: &PlaceBlock, positions: &[[i16; 3]], out: &mut [Cache
     positions.len().min(out.len()) & !1
 }
 
-/// The vertex loop ([`place_pairs`]) against its twin on this target: 24 transforms of
+/// The vertex loop (`place_pairs`) against its twin on this target: 24 transforms of
 /// the kind `FixedTransform` makes for a perspective camera (random coefficients, w near
 /// 2⁴² or anywhere within ±2⁴⁰, x and y scaled by 2¹², 2¹⁴ or 2¹⁶ to reach ±1.5·w to
 /// ±24·w, viewports of several sizes and offsets), each over `n` random positions
