@@ -6,13 +6,12 @@
 use super::transform::{Clip4, FixedTransform};
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
-use crate::num::kernel::{place_run, PlaceBlock, PLACE_KERNEL};
+use crate::num::kernel::{place_run, CachedVertex, PlaceBlock, PLACE_KERNEL};
 use crate::num::{
     bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
     scaled_ratio_parts, shr64, ARMV6M, INTEGER_PROJECTION,
 };
 use crate::raster::ScreenVertex;
-use crate::render::CachedVertex;
 
 /// How far outside the screen (in screen widths) a vertex may project before the
 /// triangle is clipped: |x|, |y| ≤ GUARD·w. With viewports of at most 8192 pixels the
@@ -472,18 +471,10 @@ impl ScreenMap {
         if !(room(self.sx, self.ox) && room(self.sy, self.oy)) {
             return None;
         }
-        Some(PlaceBlock {
+        Some(PlaceBlock::new(
             rows,
-            consts: [
-                1.0,
-                self.sx * f,
-                self.ox,
-                self.sy * f,
-                self.oy,
-                DEPTH_HALF,
-                0.5,
-            ],
-        })
+            [self.sx * f, self.ox, self.sy * f, self.oy],
+        ))
     }
 
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
@@ -501,12 +492,12 @@ impl ScreenMap {
         if !PLACE_KERNEL {
             return false;
         }
-        let Some(block) = self.place_block(fixed) else {
+        let Some(mut block) = self.place_block(fixed) else {
             return false;
         };
         let mut at = 0;
         while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
-            at += place_run(&block, p, c);
+            at += place_run(&mut block, p, c);
             let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
                 break;
             };

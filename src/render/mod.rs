@@ -368,35 +368,44 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         options: RenderOptions,
         cache: &'c mut [CachedVertex],
     ) -> Result<Self, Error> {
-        let mut r = Self::new(mesh, xf, options)?;
-        let n = mesh.positions.len();
-        let cache = crate::error::prefix_mut(cache, n)?;
-        // The usual vertex by the vertex kernel, any other out of line.
-        if r.map
-            .place_all(&r.fixed, mesh.positions, cache, |p| r.cache_entry(p))
-        {
+        // Made in the place it is returned from (a move of the 300-byte renderer is a
+        // copy).
+        let mut made = Self::new(mesh, xf, options);
+        if let Ok(r) = &mut made {
+            let cache = crate::error::prefix_mut(cache, mesh.positions.len())?;
+            r.fill_cache(cache);
             r.cache = Some(cache);
-            return Ok(r);
+        }
+        made
+    }
+
+    /// Fills `cache` with the entries of the mesh's positions (as many as it holds).
+    fn fill_cache(&self, cache: &mut [CachedVertex]) {
+        let positions = self.mesh.positions;
+        // The usual vertex by the vertex kernel, any other out of line.
+        if self
+            .map
+            .place_all(&self.fixed, positions, cache, |p| self.cache_entry(p))
+        {
+            return;
         }
         // w's bits beyond 31 at the previous vertex, for the next (project_fast).
         let mut sh_hint = W_SHIFT_HINT;
-        for (p, slot) in mesh.positions.iter().zip(cache.iter_mut()) {
+        for (p, slot) in positions.iter().zip(cache.iter_mut()) {
             // The usual vertex (project_vertex's fast path) here, any other out of line.
-            let c = r.fixed.apply(p);
+            let c = self.fixed.apply(p);
             let usual = if !crate::num::INTEGER_PROJECTION {
-                r.map.project_float_inside(c.to_f32())
+                self.map.project_float_inside(c.to_f32())
             } else if crate::num::ARMV6M {
-                r.map.project_fast(&c, &mut sh_hint)
+                self.map.project_fast(&c, &mut sh_hint)
             } else {
                 None
             };
             *slot = match usual.and_then(CachedVertex::placing) {
                 Some(entry) => entry,
-                None => r.cache_entry(p),
+                None => self.cache_entry(p),
             };
         }
-        r.cache = Some(cache);
-        Ok(r)
     }
 
     /// This renderer with the render state `T` fixed at compile time: a firmware that

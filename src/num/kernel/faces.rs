@@ -7,7 +7,8 @@
 
 use super::cull::{CullScan, ScanRegs};
 use super::light::LightBlock;
-use super::rows::{CachedVertex, RowsLess, SmallTarget};
+use super::rows::{RowsLess, SmallTarget};
+use super::CachedVertex;
 
 /// Whether [`faces_less`] runs the assembly loop (ARMv7E-M); elsewhere it leaves every
 /// face to the caller and the renderer does not call it.

@@ -72,10 +72,10 @@ pub(crate) use mac::smlad;
 pub use place::check_place_kernel;
 #[cfg(test)]
 pub(crate) use place::place_portable;
+pub use place::CachedVertex;
 pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
-pub use rows::CachedVertex;
 pub(crate) use rows::{
     small_less_as_u16, small_less_cached, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL,
 };

@@ -5,38 +5,10 @@
 //! by `LDRD`/`LDM`), beside its portable twin.
 #![allow(unsafe_code)]
 
-use super::XyWord;
+use super::{CachedVertex, XyWord};
 use crate::fixed::SUBPIXEL;
 use crate::num::{div_floor_pair, floor_div32};
 use crate::raster::{Clip, ScreenVertex, DEPTH_BIAS, SMALL};
-
-/// A vertex transformed and projected once per frame (8 bytes), so that every band
-/// and every face sharing it reuses the work. See [`Renderer::with_cache`](crate::Renderer::with_cache).
-///
-/// It holds the screen position of a vertex inside the view volume within ±1024 pixels
-/// of the origin (x and y in 1/16 pixel below 2¹⁴ in magnitude, so that the cull pass
-/// works out areas in `i32`; depth in 16.16). Any other vertex is marked and
-/// holds its outcode: faces using it take the general path, which clips them or
-/// projects that vertex again.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(C)]
-pub struct CachedVertex {
-    /// Depth in 16.16.
-    pub(crate) z: u32,
-    /// x and y as one word, x in the low half (the cull scans read the word): x in
-    /// 1/16 pixel, or [`CachedVertex::MARK`]; y in 1/16 pixel, or the outcode when
-    /// marked.
-    pub(crate) xy: XyWord,
-}
-
-// The place kernel (`num::kernel::place`) stores an entry as two words, depth then x/y,
-// and the set-up kernel ([`small_less_cached`]) reads them in place.
-const _: () = assert!(
-    core::mem::offset_of!(CachedVertex, z) == 0
-        && core::mem::offset_of!(CachedVertex, xy) == 4
-        && core::mem::size_of::<CachedVertex>() == 8
-        && core::mem::align_of::<CachedVertex>() >= 4
-);
 
 /// Whether [`small_less_as_u16`] and [`rows_less_as_u16`] run the assembly (ARMv7E-M).
 /// Elsewhere they run the portable twins, which the rasterizer does not call (its own
