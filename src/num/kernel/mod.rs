@@ -61,7 +61,9 @@ pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{small_less_as_u16, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL};
 pub use rows_v6m::check_rows_walk_kernel;
-pub(crate) use rows_v6m::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
+pub(crate) use rows_v6m::{
+    rows_walk_less_as_u16, small_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
+};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;
