@@ -260,31 +260,32 @@ pub(crate) fn small_walk_less_as_u16<C: Copy>(
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
         let zaddr = t.z.as_mut_ptr() as u32;
-        let mut rows = RowsWalk::new(
-            [0; 4],
-            [0; 2],
-            WalkEdge::default(),
-            [WalkEdge::default(); 2],
-            0,
-            true,
-        );
-        rows.color = u32::from(bits);
-        rows.delta = (words.as_mut_ptr() as u32).wrapping_sub(zaddr);
-        rows.pitch = (width as u32).wrapping_mul(2);
-        let mut s = SmallWalk {
-            rows,
-            clip: [clip.y0, clip.y1, clip.x0, clip.x1],
-            first_row: t.first_row,
-            zaddr,
-        };
+        // The block's fields the assembly reads before it writes them; the rest it
+        // writes (an edge of a half without rows it neither writes nor reads).
+        let mut s = core::mem::MaybeUninit::<SmallWalk>::uninit();
+        let p = s.as_mut_ptr();
+        // SAFETY: writes to fields of `s`, through a pointer to it (no reference to
+        // uninitialised memory is made).
+        unsafe {
+            (&raw mut (*p).rows.color).write(u32::from(bits));
+            (&raw mut (*p).rows.delta).write((words.as_mut_ptr() as u32).wrapping_sub(zaddr));
+            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
+            (&raw mut (*p).rows.failed).write(0);
+            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
+            (&raw mut (*p).first_row).write(t.first_row);
+            (&raw mut (*p).zaddr).write(zaddr);
+        }
         // SAFETY: every row and column of the clip lies inside both buffers (checked
         // above), and the assembly draws only inside the clip; its comment says what
-        // it touches.
-        let tested = unsafe { zraster_small_walk_v6m(&mut s, &tri) };
+        // it touches. `failed` was written above, and the assembly only adds to it.
+        let (tested, failed) = unsafe {
+            let tested = zraster_small_walk_v6m(p, &tri);
+            (tested, (&raw const (*p).rows.failed).read())
+        };
         if tested == u32::MAX {
             SmallDone::General
         } else {
-            SmallDone::Drawn(tested, s.rows.failed)
+            SmallDone::Drawn(tested, failed)
         }
     }
     #[cfg(not(all(zraster_thumb, zraster_armv6m)))]
