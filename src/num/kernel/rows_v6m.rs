@@ -727,7 +727,7 @@ core::arch::global_asm!(
     // Frame: 48 bytes below the saved registers: [sp] the first corner given, +4 dx1,
     // +8 dy1, +12 dx2, +16 dy2 (the middle and last corner from the top one), +20 the
     // block, +24 |area| then the first row's depth, +28 the area's sign, +32 and +36
-    // the top and middle corners. r8 the first row, r9 the middle row (clamped to the
+    // the top and middle corners, +40 and +44 the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
     // rows), r10 the first half's rows, r11 the local origin's column · 16 + 8.
     ".balign 4",
     ".global zraster_small_walk_v6m",
@@ -1013,13 +1013,23 @@ core::arch::global_asm!(
     "adds r0, r0, r4",
     "str r0, [sp, #24]",
     // The edges: the long one at the first row, the short ones at their halves' first
-    // rows (a half without rows keeps its edge unset).
+    // rows (a half without rows keeps its edge unset). The top corner's offsets
+    // 16·start + 8 − y and x − 16·px0 − 8 at [sp, #40] and [sp, #44].
+    "ldr r2, [sp, #32]",
+    "mov r4, r8",
+    "lsls r4, r4, #4",
+    "adds r4, #8",
+    "ldr r5, [r2, #4]",
+    "subs r4, r4, r5",
+    "str r4, [sp, #40]",
+    "ldr r5, [r2]",
+    "mov r6, r11",
+    "subs r5, r5, r6",
+    "str r5, [sp, #44]",
     "movs r1, #48",
     "adds r1, r1, r3",
     "ldr r2, [sp, #12]",
     "ldr r3, [sp, #16]",
-    "ldr r4, [sp, #32]",
-    "mov r5, r8",
     "bl .Lsw_edge",
     "mov r4, r10",
     "cmp r4, #0",
@@ -1027,8 +1037,8 @@ core::arch::global_asm!(
     "adds r1, #12",
     "ldr r2, [sp, #4]",
     "ldr r3, [sp, #8]",
-    "ldr r4, [sp, #32]",
-    "mov r5, r8",
+    "ldr r4, [sp, #40]",
+    "ldr r5, [sp, #44]",
     "bl .Lsw_edge",
     ".Lsw_short1:",
     "ldr r0, [sp, #20]",
@@ -1043,8 +1053,15 @@ core::arch::global_asm!(
     "ldr r3, [sp, #16]",
     "ldr r4, [sp, #8]",
     "subs r3, r3, r4",
-    "ldr r4, [sp, #36]",
-    "mov r5, r9",
+    "ldr r6, [sp, #36]",
+    "mov r4, r9",
+    "lsls r4, r4, #4",
+    "adds r4, #8",
+    "ldr r5, [r6, #4]",
+    "subs r4, r4, r5",
+    "ldr r5, [r6]",
+    "mov r7, r11",
+    "subs r5, r5, r7",
     "bl .Lsw_edge",
     // The rows: the depth address of the first row's local column 0,
     // zaddr + (start − first_row)·pitch + 2·px0, then the loop above with its frame.
@@ -1065,32 +1082,32 @@ core::arch::global_asm!(
     "mov r3, r10",
     "add sp, #48",
     "b .Lzraster_rows_walk_body",
-    // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: from
-    // the corner at r4 by (dx, dy) = (r2, r3 > 0), at row r5 (r11 = 16·px0 + 8).
-    // t = (16·py + 8 − y)·dx + (x − 16·px0 − 8)·dy; the first column ⌈t/16dy⌉ and
+    // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: by
+    // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r4 = 16·py + 8 − y
+    // and r5 = x − 16·px0 − 8. t = r4·dx + r5·dy; the first column ⌈t/16dy⌉ and
     // err = x·16dy − t, the step ⌊dx/dy⌋ and its remainder, each by one unsigned
-    // division (a negative dividend n by ⌊n/d⌋ = !⌊!n/d⌋). Keeps r1–r3; r4–r7 scratch.
+    // division (a negative dividend n by ⌊n/d⌋ = !⌊!n/d⌋; a quotient of 0 without the
+    // call). Keeps r1–r3; r4–r7 scratch.
     ".Lsw_edge:",
     "push {{lr}}",
-    "lsls r5, r5, #4",
-    "adds r5, #8",
-    "ldr r6, [r4, #4]",
-    "subs r5, r5, r6",
-    "muls r5, r2",
-    "ldr r6, [r4]",
-    "mov r7, r11",
-    "subs r6, r6, r7",
-    "muls r6, r3",
-    "adds r4, r5, r6",
+    "muls r4, r2",
+    "muls r5, r3",
+    "adds r4, r4, r5",
     "lsls r5, r3, #4",
+    "movs r6, #0",
     "rsbs r4, r4, #0",
     "bmi .Lsw_edge_neg",
+    "cmp r4, r5",
+    "blo .Lsw_edge_at",
     "bl .Lsw_udiv",
     "rsbs r6, r6, #0",
     "b .Lsw_edge_at",
     ".Lsw_edge_neg:",
     "mvns r4, r4",
+    "cmp r4, r5",
+    "blo .Lsw_edge_neg0",
     "bl .Lsw_udiv",
+    ".Lsw_edge_neg0:",
     "adds r6, #1",
     "subs r4, r5, r4",
     "subs r4, #1",
@@ -1100,13 +1117,19 @@ core::arch::global_asm!(
     "adds r6, r6, r4",
     "str r6, [r1]",
     "movs r5, r3",
+    "movs r6, #0",
     "movs r4, r2",
     "bmi .Lsw_edge_negdx",
+    "cmp r4, r5",
+    "blo .Lsw_edge_step",
     "bl .Lsw_udiv",
     "b .Lsw_edge_step",
     ".Lsw_edge_negdx:",
     "mvns r4, r4",
+    "cmp r4, r5",
+    "blo .Lsw_edge_negdx0",
     "bl .Lsw_udiv",
+    ".Lsw_edge_negdx0:",
     "mvns r6, r6",
     "subs r4, r5, r4",
     "subs r4, #1",
@@ -1119,10 +1142,10 @@ core::arch::global_asm!(
     "adds r6, r6, r3",
     "str r6, [r1, #8]",
     "pop {{pc}}",
-    // r6 = r4 / r5, r4 = r4 % r5 for r5 > 0 and a quotient below 2¹⁴, one bit a step
-    // from the quotient's top (found below 4, 16, 256 or else 2¹⁴); r7 scratch.
+    // r6 = r4 / r5, r4 = r4 % r5 for r5 > 0, r6 = 0 on entry and a quotient below 2¹⁴,
+    // one bit a step from the quotient's top (found below 4, 16, 256 or else 2¹⁴); r7
+    // scratch.
     ".Lsw_udiv:",
-    "movs r6, #0",
     "lsrs r7, r4, #2",
     "cmp r7, r5",
     "blo .Lsw_udiv2",
