@@ -456,6 +456,46 @@ macro_rules! rows_walk_section {
     };
 }
 
+/// The section of `zraster_small_walk_v6m` (the set-up, run once a triangle): the
+/// rows loop's own, so that it joins the loop by a branch; under `zraster_ram_code`
+/// flash (RAM is scarce there), the loop then reached through a register.
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
+macro_rules! small_walk_section {
+    () => {
+        ".pushsection .text.zraster_small_walk_v6m,\"ax\",%progbits"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
+macro_rules! rows_walk_jump {
+    () => {
+        "ldr r4, .Lsw_body\nbx r4"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
+macro_rules! rows_walk_literal {
+    () => {
+        ".Lsw_body:\n.word .Lzraster_rows_walk_body + 1"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! small_walk_section {
+    () => {
+        rows_walk_section!()
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! rows_walk_jump {
+    () => {
+        "b .Lzraster_rows_walk_body"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! rows_walk_literal {
+    () => {
+        ""
+    };
+}
+
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
     /// [`rows_walk_less_u16`]'s loop on ARMv6-M, a whole function in `global_asm!`
@@ -715,6 +755,8 @@ core::arch::global_asm!(
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
     ".size zraster_rows_walk_v6m, . - zraster_rows_walk_v6m",
+    ".popsection",
+    small_walk_section!(),
     // The set-up of a small triangle, then the rows above (see `zraster_small_walk_v6m`).
     // Frame: 48 bytes below the saved registers: [sp] the first corner given, +4 dx1,
     // +8 dy1, +12 dx2, +16 dy2 (the middle and last corner from the top one), +20 the
@@ -1126,7 +1168,7 @@ core::arch::global_asm!(
     "ldr r1, [sp, #24]",
     "mov r3, r10",
     "add sp, #48",
-    "b .Lzraster_rows_walk_body",
+    rows_walk_jump!(),
     // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: by
     // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r4 = 16·py + 8 − y
     // and r5 = x − 16·px0 − 8. t = r4·dx + r5·dy; the first column ⌈t/16dy⌉ and
@@ -1271,6 +1313,7 @@ core::arch::global_asm!(
     ".word {lz8}",
     ".Lsw_recip16:",
     ".word {recip16} - 1024",
+    rows_walk_literal!(),
     ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
     ".popsection",
     lz8 = sym crate::num::armv6m::LEADING_ZEROS8,
