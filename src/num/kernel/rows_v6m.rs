@@ -1396,9 +1396,9 @@ fn check_small_walk(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize
                 y1: first_row + H as i32,
             }
         };
-        let span = [24, 40, 80, 320, 640][(case % 5) as usize];
+        let span = 12u32 << (case % 9); // 1/16 pixel: 12 to 3,072
         let z0 = next(seed) >> 1;
-        let spread = 1u32 << (10 + case / 5 % 4 * 7); // 2¹⁰, 2¹⁷, 2²⁴, 2³¹
+        let spread = 1u32 << (10 + case / 9 % 4 * 7); // 2¹⁰, 2¹⁷, 2²⁴, 2³¹
                                                       // Corners near a random point of the buffer (1/16 pixel), one far on some.
         let (bx, by) = (
             (next(seed) % (W as u32 * 16)) as i32 - 40,
