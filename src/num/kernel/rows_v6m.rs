@@ -279,7 +279,7 @@ pub(crate) fn small_walk_less_as_u16<C: Copy>(
         // above), and the assembly draws only inside the clip; its comment says what
         // it touches. `failed` was written above, and the assembly only adds to it.
         let (tested, failed) = unsafe {
-            let tested = zraster_small_walk_v6m(p, &tri);
+            let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
             (tested, (&raw const (*p).rows.failed).read())
         };
         if tested == u32::MAX {
@@ -516,7 +516,7 @@ extern "C" {
     /// buffers (columns `px0 + cx0 .. px0 + cx1`) are inside them ([`RowsAt::check`]).
     fn zraster_rows_walk_v6m(r: *mut RowsWalk, z: u32, base: u32, n0: u32) -> u32;
 
-    /// The set-up of the small triangle whose corners `tri` points to, in block `s`
+    /// The set-up of the small triangle of corners `p0`, `p1`, `p2`, in block `s`
     /// (its rows' `color`, `delta`, `pitch` and `failed` set as
     /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address), then
     /// the rows of [`zraster_rows_walk_v6m`] (its frame and registers): the pixels
@@ -524,9 +524,14 @@ extern "C" {
     ///
     /// # Safety
     ///
-    /// `s` and `tri` point to valid values; every row and column of the clip lies
+    /// `s` points to a valid block; every row and column of the clip lies
     /// inside both buffers.
-    fn zraster_small_walk_v6m(s: *mut SmallWalk, tri: *const [&ScreenVertex; 3]) -> u32;
+    fn zraster_small_walk_v6m(
+        s: *mut SmallWalk,
+        p0: &ScreenVertex,
+        p1: &ScreenVertex,
+        p2: &ScreenVertex,
+    ) -> u32;
 }
 
 /// One step of the set-up's division (`.Lsw_udiv`): quotient bit `k` into r6.
@@ -777,7 +782,6 @@ core::arch::global_asm!(
     "push {{r4, r5, r6, r7}}",
     "sub sp, #48",
     "str r0, [sp, #20]",
-    "ldm r1, {{r1, r2, r3}}",
     "str r1, [sp]",
     // The corners top to bottom (a stable sort by y): r1–r3, their y in r4–r6.
     "ldr r4, [r1, #4]",
@@ -955,8 +959,7 @@ core::arch::global_asm!(
     ".Lsw_z4:",
     "subs r1, r1, r7",
     "str r1, [r0, #8]",
-    "movs r1, #1",
-    "lsls r1, r1, #15",
+    "ldr r1, .Lsw_bias",
     "adds r7, r7, r1",
     "str r7, [r0, #4]",
     // dz1 in r6, dz2 in r7 (depths over 16); the numerators' high parts over 2¹⁶ in
@@ -980,8 +983,7 @@ core::arch::global_asm!(
     "ldr r2, [sp, #12]",
     "muls r3, r2",
     "subs r5, r5, r3",
-    "movs r3, #1",
-    "lsls r3, r3, #12",
+    "ldr r3, .Lsw_high",
     "adds r4, r4, r3",
     "adds r5, r5, r3",
     "orrs r4, r5",
@@ -998,13 +1000,10 @@ core::arch::global_asm!(
     "ldr r3, [sp, #12]",
     "muls r3, r6",
     "subs r5, r5, r3",
-    "movs r3, #1",
-    "lsls r3, r3, #27",
-    "subs r3, #1",
+    "ldr r3, .Lsw_within",
     "adds r6, r4, r3",
     "adds r7, r5, r3",
-    "lsls r3, r3, #1",
-    "adds r3, #1",
+    "ldr r3, .Lsw_range",
     "cmp r6, r3",
     "bhs .Lsw_refuse",
     "cmp r7, r3",
@@ -1095,8 +1094,7 @@ core::arch::global_asm!(
     "adds r0, r0, r1",
     "ldr r4, [r2, #8]",
     "adds r0, r0, r4",
-    "movs r4, #1",
-    "lsls r4, r4, #15",
+    "ldr r4, .Lsw_bias",
     "adds r0, r0, r4",
     "str r0, [sp, #24]",
     // The edges: the long one at the first row, the short ones at their halves' first
@@ -1313,6 +1311,14 @@ core::arch::global_asm!(
     ".word {lz8}",
     ".Lsw_recip16:",
     ".word {recip16} - 1024",
+    ".Lsw_bias:",
+    ".word 32768",
+    ".Lsw_high:",
+    ".word 4096",
+    ".Lsw_within:",
+    ".word 0x07ffffff",
+    ".Lsw_range:",
+    ".word 0x0fffffff",
     rows_walk_literal!(),
     ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
     ".popsection",
