@@ -1,7 +1,9 @@
 //! The rows of a small flat-coloured triangle on ARMv6-M, both halves in one
 //! out-of-line loop: edges in the DDA form of [`EdgeWalk`](crate::raster::EdgeWalk)
-//! (there is no divide), the depth test `Less` with depth writes, a two-byte colour.
-//! Thumb-1 assembly beside its portable twin.
+//! (there is no divide), the depth test `Less` with depth writes, a two-byte colour;
+//! and the triangle's set-up before them ([`small_walk_less_as_u16`]: sort, rows,
+//! edges by one unsigned division pair each, depth steps by a reciprocal), which joins
+//! the loop. Thumb-1 assembly beside its portable twins.
 #![allow(unsafe_code)]
 
 use super::rows::{as_u16, check_cases, check_place, next, twin_row, CHECK_W};
@@ -565,6 +567,18 @@ macro_rules! udiv_bit {
 // through r0 (`failed`, the edges, `n1` cleared for the second half). r4–r11 and lr
 // are saved and restored as AAPCS wants; r0–r2 pushed and popped around the longer
 // rows' loop.
+//
+// SAFETY (of the set-up, for `small_walk_less_as_u16`): every row and column of the
+// clip lies inside both buffers (its caller's check). The set-up reads the three
+// corners and the block through r0–r3 and writes only the block and its own 48-byte
+// frame; the rows it hands the loop are start .. end with clip.y0 ≤ start and
+// end ≤ clip.y1 (none when start ≥ end: it returns before the loop), from the depth
+// address of row start − first_row ≥ 0, with columns cx = clip.x − px0 around local
+// column px0: the loop's contract above. Its divisions have divisors > 0 (16·dy and
+// dy of an edge with rows, |area| ≠ 0) and quotients within the unrolled steps (an
+// edge's columns lie within the triangle's 512, its step below 2¹³). It saves r4–r11
+// and lr as the loop's prologue does, so the loop's epilogue returns for both; BL
+// inside it clobbers only lr, saved.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     rows_walk_section!(),
