@@ -1464,4 +1464,34 @@ mod tests {
         assert_eq!(check_rows_walk_kernel(&mut buf), 0);
         assert_eq!(check_rows_walk_kernel(&mut buf[..100]), usize::MAX);
     }
+
+    /// The set-up draws the usual small triangle itself (the Rust path takes only
+    /// what it refuses): of random triangles up to 10 pixels across, of depths a few
+    /// units apart, all but the flat ones.
+    #[test]
+    fn small_walk_setup_takes_the_usual_triangle() {
+        let mut seed = 0x1234_5678;
+        let clip = Clip {
+            x0: 0,
+            y0: 0,
+            x1: 48,
+            y1: 48,
+        };
+        let mut taken = 0;
+        for _ in 0..1000 {
+            let mut vertex = || {
+                let (x, y) = (
+                    (next(&mut seed) % 160) as i32,
+                    (next(&mut seed) % 160) as i32,
+                );
+                let z = (1 << 20) + next(&mut seed) % (1 << 20);
+                ScreenVertex::new(x + 100, y + 100, z).unwrap_or(ScreenVertex::ORIGIN)
+            };
+            let tri = [vertex(), vertex(), vertex()];
+            if small_walk_setup(tri.each_ref(), &clip, 0, 48).is_ok() {
+                taken += 1;
+            }
+        }
+        assert!(taken > 950, "{taken} of 1000 taken");
+    }
 }
