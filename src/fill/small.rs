@@ -9,6 +9,7 @@
 
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
+use crate::num::kernel::small_walk_less_as_u16;
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
 use crate::num::kernel::{small_less_as_u16, small_less_cached, two_bytes, CachedVertex};
 use crate::num::kernel::{SmallDone, SmallTarget, ROWS_KERNEL};
@@ -66,8 +67,10 @@ pub(crate) fn fill_small<C: Copy>(
         } else {
             fill_small_divide::<C, false>(b, tri, color, pass)
         }
+    } else if WALK_KERNEL {
+        fill_small_walk(b, tri, color, write, pass)
     } else {
-        fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, WALK_KERNEL)
+        fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, false)
     }
 }
 
@@ -95,6 +98,33 @@ pub(crate) fn fill_small_cached<C: Copy>(
         SmallDone::Drawn(tested, failed) => Some((tested, tested.wrapping_sub(failed))),
         SmallDone::General => None,
     }
+}
+
+/// ARMv6-M's small path: `Less` with depth writes in a two-byte colour by
+/// [`small_walk_less_as_u16`] (set-up and rows in assembly); what it leaves (steep
+/// depth, a clip beyond the buffers) and the other tests by [`fill_small_with`]'s
+/// set-up, its rows through [`rows_walk_less_as_u16`] where it can.
+#[inline(always)]
+fn fill_small_walk<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    tri: [&ScreenVertex; 3],
+    color: C,
+    write: bool,
+    pass: impl Fn(u16, u16) -> bool + Copy,
+) -> Option<(u32, u32)> {
+    if write && is_less(&pass) && two_bytes::<C>() {
+        let mut t = SmallTarget {
+            z: &mut *b.zdata,
+            c: &mut *b.cdata,
+            width: b.width,
+            first_row: b.first_row,
+            clip: b.clip,
+        };
+        if let SmallDone::Drawn(tested, failed) = small_walk_less_as_u16(&mut t, tri, color) {
+            return Some((tested, tested.wrapping_sub(failed)));
+        }
+    }
+    fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, true)
 }
 
 /// [`fill_small`] with edges of kind `E`; with `kernel`, the depth test `Less` with
@@ -883,6 +913,21 @@ mod tests {
                     "triangle {i}: {tri:?} in {clip:?}"
                 );
             }
+            // ARMv6-M's path: the set-up of `small_walk_less_as_u16` (on the host its
+            // twin, in the assembly's order), what it leaves to `fill_small_with`.
+            let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
+            let mut b = Buffers {
+                zdata: &mut zdata,
+                cdata: &mut cdata,
+                width: W,
+                first_row: 3,
+                clip,
+            };
+            let done = fill_small_walk::<u16>(&mut b, tri.each_ref(), 7, true, less);
+            assert!(
+                want == (done, zdata, cdata),
+                "triangle {i}: {tri:?} in {clip:?}"
+            );
             // With `walk`, `Less` without depth writes is left to the general path (or
             // has no rows inside): nothing drawn.
             let (done, zdata, cdata) = run(Some(true), false);

@@ -87,7 +87,7 @@ pub(crate) fn recip32_small(d: u32) -> u32 {
 /// (dn's leading 9 bits read as 512 + i), which is below 2¹⁶ · 2⁹/top. Worked out at
 /// compile time.
 #[allow(clippy::indexing_slicing)] // evaluated at compile time: a bad index fails the build
-const RECIP16: [u16; 512] = {
+pub(crate) static RECIP16: [u16; 512] = {
     let mut t = [0u16; 512];
     let mut i = 0;
     while i < 512 {
@@ -99,7 +99,7 @@ const RECIP16: [u16; 512] = {
 
 /// Leading zeros of a byte (8 for 0).
 #[allow(clippy::indexing_slicing)] // evaluated at compile time: a bad index fails the build
-const LEADING_ZEROS8: [u8; 256] = {
+pub(crate) static LEADING_ZEROS8: [u8; 256] = {
     let mut t = [0u8; 256];
     let mut i = 0;
     while i < 256 {

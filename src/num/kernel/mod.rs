@@ -7,7 +7,7 @@
 //! on ARMv7E-M, which runs the span loop's SIMD steps for rows of eight pixels or more;
 //! its rows alone are [`rows_less_as_u16`](rows::rows_less_as_u16), checked on their own);
 //! on ARMv6-M the rows of a small triangle ([`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16),
-//! edges by DDA);
+//! edges by DDA), and its set-up before them ([`small_walk_less_as_u16`](rows_v6m::small_walk_less_as_u16));
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
 //! by `check_cull_kernel`), and the same scan binning the drawn faces of a banded frame
 //! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`); the vertex cache's
@@ -80,7 +80,9 @@ pub(crate) use rows::{
     small_less_as_u16, small_less_cached, RowsAt, SmallDone, SmallTarget, ROWS_KERNEL,
 };
 pub use rows_v6m::check_rows_walk_kernel;
-pub(crate) use rows_v6m::{rows_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL};
+pub(crate) use rows_v6m::{
+    rows_walk_less_as_u16, small_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
+};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;

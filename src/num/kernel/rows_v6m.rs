@@ -1,11 +1,15 @@
 //! The rows of a small flat-coloured triangle on ARMv6-M, both halves in one
 //! out-of-line loop: edges in the DDA form of [`EdgeWalk`](crate::raster::EdgeWalk)
-//! (there is no divide), the depth test `Less` with depth writes, a two-byte colour.
-//! Thumb-1 assembly beside its portable twin.
+//! (there is no divide), the depth test `Less` with depth writes, a two-byte colour;
+//! and the triangle's set-up before them ([`small_walk_less_as_u16`]: sort, rows,
+//! edges by one unsigned division pair each, depth steps by a reciprocal), which joins
+//! the loop. Thumb-1 assembly beside its portable twins.
 #![allow(unsafe_code)]
 
 use super::rows::{as_u16, check_cases, check_place, next, twin_row, CHECK_W};
-use super::RowsAt;
+use super::{RowsAt, SmallDone, SmallTarget};
+use crate::num::floor_div32_pair_small;
+use crate::raster::{Clip, ScreenVertex, DEPTH_BIAS, SMALL};
 
 /// Whether the small triangles' rows go to [`rows_walk_less_as_u16`] (ARMv6-M).
 pub(crate) const WALK_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m));
@@ -209,6 +213,257 @@ pub(crate) fn rows_walk_less_portable(
     (tested, failed)
 }
 
+/// [`small_walk_less_as_u16`]'s block: the rows' block, then the clip (rows `y0..y1`,
+/// columns `x0..x1`), the buffers' first row and the depth buffer's address.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+struct SmallWalk {
+    rows: RowsWalk, // 0
+    clip: [i32; 4], // 84: y0, y1, x0, x1
+    first_row: i32, // 100
+    zaddr: u32,     // 104
+}
+
+const _: () = {
+    use core::mem::{offset_of, size_of};
+    assert!(offset_of!(SmallWalk, clip) == 84 && offset_of!(SmallWalk, first_row) == 100);
+    assert!(offset_of!(SmallWalk, zaddr) == 104 && size_of::<SmallWalk>() == 108);
+    assert!(size_of::<ScreenVertex>() == 12 && SMALL == 8192 && DEPTH_BIAS == 32768);
+};
+
+/// The small flat triangle `tri` in `color` with the depth test `Less` and depth
+/// writes, set-up and rows, on ARMv6-M in one assembly call
+/// (`zraster_small_walk_v6m`): the pixels, depths and counts of `fill::small`'s
+/// ARMv6-M path. [`SmallDone::General`] (nothing drawn) for a colour that is not two
+/// bytes, a clip not inside the buffers, or a triangle the set-up leaves to that path
+/// (an extent of 512 pixels or more, `|area| ≥ 2¹⁶`, steep depth).
+#[inline(always)]
+pub(crate) fn small_walk_less_as_u16<C: Copy>(
+    t: &mut SmallTarget<'_, '_, C>,
+    tri: [&ScreenVertex; 3],
+    color: C,
+) -> SmallDone {
+    let Some((words, bits)) = as_u16(&mut *t.c, color) else {
+        return SmallDone::General;
+    };
+    // Every row and column of the clip inside both buffers (rows and width below
+    // 2¹⁶: a 32-bit product): then so is every pixel the rows may touch.
+    let (clip, width) = (t.clip, t.width);
+    let len = t.z.len().min(words.len());
+    let rows = clip.y1.saturating_sub(t.first_row).max(0) as usize;
+    let inside = (rows | width) <= 0xffff
+        && clip.x0 >= 0
+        && clip.x1 <= width as i32
+        && clip.y0 >= t.first_row
+        && rows * width <= len;
+    if !inside {
+        return SmallDone::General;
+    }
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    {
+        let zaddr = t.z.as_mut_ptr() as u32;
+        // The block's fields the assembly reads before it writes them; the rest it
+        // writes (an edge of a half without rows it neither writes nor reads).
+        let mut s = core::mem::MaybeUninit::<SmallWalk>::uninit();
+        let p = s.as_mut_ptr();
+        // SAFETY: writes to fields of `s`, through a pointer to it (no reference to
+        // uninitialised memory is made).
+        unsafe {
+            (&raw mut (*p).rows.color).write(u32::from(bits));
+            (&raw mut (*p).rows.delta).write((words.as_mut_ptr() as u32).wrapping_sub(zaddr));
+            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
+            (&raw mut (*p).rows.failed).write(0);
+            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
+            (&raw mut (*p).first_row).write(t.first_row);
+            (&raw mut (*p).zaddr).write(zaddr);
+        }
+        // SAFETY: every row and column of the clip lies inside both buffers (checked
+        // above), and the assembly draws only inside the clip; its comment says what
+        // it touches. `failed` was written above, and the assembly only adds to it.
+        let (tested, failed) = unsafe {
+            let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
+            (tested, (&raw const (*p).rows.failed).read())
+        };
+        if tested == u32::MAX {
+            SmallDone::General
+        } else {
+            SmallDone::Drawn(tested, failed)
+        }
+    }
+    #[cfg(not(all(zraster_thumb, zraster_armv6m)))]
+    {
+        small_walk_portable(tri, &clip, t.first_row, width, &mut *t.z, words, bits)
+    }
+}
+
+/// The portable twin of `zraster_small_walk_v6m`: [`small_walk_setup`] then
+/// [`rows_walk_less_portable`]. The clip must lie inside the buffers (pixels outside
+/// are skipped).
+pub(crate) fn small_walk_portable(
+    tri: [&ScreenVertex; 3],
+    clip: &Clip,
+    first_row: i32,
+    width: usize,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> SmallDone {
+    match small_walk_setup(tri, clip, first_row, width) {
+        Ok((r, at)) => {
+            let (tested, failed) = rows_walk_less_portable(&r, at, z, c, color);
+            SmallDone::Drawn(tested, failed)
+        }
+        Err(done) => done,
+    }
+}
+
+/// The set-up of [`small_walk_less_as_u16`] in the assembly's order: the rows' block
+/// and where they start, or what to do instead. What `fill::small`'s ARMv6-M path
+/// works out (`by_rows`, `small_steps_q` by `steps_narrow`, `small_origin`,
+/// `EdgeWalk::new_small`), each edge's two divisions unsigned.
+fn small_walk_setup(
+    tri: [&ScreenVertex; 3],
+    clip: &Clip,
+    first_row: i32,
+    width: usize,
+) -> Result<(RowsWalk, RowsAt), SmallDone> {
+    let p0 = tri[0];
+    let mut v = tri;
+    if v[1].y() < v[0].y() {
+        v.swap(0, 1);
+    }
+    if v[2].y() < v[1].y() {
+        v.swap(1, 2);
+        if v[1].y() < v[0].y() {
+            v.swap(0, 1);
+        }
+    }
+    let [a, b, c] = v;
+    let (dy1, dy2) = (b.y() - a.y(), c.y() - a.y());
+    if dy2 >= SMALL {
+        return Err(SmallDone::General);
+    }
+    let centre = |y: i32| (y + 7) >> 4;
+    let (start, end) = (centre(a.y()).max(clip.y0), centre(c.y()).min(clip.y1));
+    let mid = centre(b.y()).max(start).min(end);
+    let (dx1, dx2) = (b.x() - a.x(), c.x() - a.x());
+    let xmin = a.x().min(b.x()).min(c.x());
+    if a.x().max(b.x()).max(c.x()) - xmin >= SMALL {
+        return Err(SmallDone::General);
+    }
+    if start >= end {
+        return Err(SmallDone::Drawn(0, 0));
+    }
+    let px0 = xmin >> 4;
+    let k = (px0 << 4) + 8;
+    let area = dx1 * dy2 - dx2 * dy1;
+    if area == 0 {
+        return Err(SmallDone::Drawn(0, 0));
+    }
+    let m = area >> 31;
+    let d = ((area ^ m) - m) as u32;
+    if d >= 1 << 16 {
+        return Err(SmallDone::General);
+    }
+    let (za, zb, zc) = (a.z(), b.z(), c.z());
+    let (lo, hi) = (za.min(zb).min(zc), za.max(zb).max(zc));
+    let (dz1, dz2) = (
+        (zb >> 4) as i32 - (za >> 4) as i32,
+        (zc >> 4) as i32 - (za >> 4) as i32,
+    );
+    let cross = |a: i32, b: i32, c: i32, d: i32| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
+    let (h1, h2) = (dz1 >> 16, dz2 >> 16);
+    let (ah, bh) = (cross(h1, dy2, h2, dy1), cross(h2, dx1, h1, dx2));
+    if (ah.wrapping_add(1 << 12) | bh.wrapping_add(1 << 12)) as u32 >= 1 << 13 {
+        return Err(SmallDone::General);
+    }
+    let (na, nb) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
+    let within = |n: i32| (n.wrapping_add((1 << 27) - 1) as u32) < (1 << 28) - 1;
+    if !(within(na) && within(nb)) {
+        return Err(SmallDone::General);
+    }
+    let fold = |n: i32| ((n << 4) ^ m) - m;
+    let (q, r) = floor_div32_pair_small(fold(na), fold(nb), d);
+    let (q, r) = (q as u32, r as u32);
+    let z = p0
+        .z()
+        .wrapping_add(DEPTH_BIAS)
+        .wrapping_add(q.wrapping_mul((k - p0.x()) as u32))
+        .wrapping_add(r.wrapping_mul((16 * start + 8 - p0.y()) as u32));
+    let (n0, n1) = (mid - start, end - mid);
+    let long = setup_edge(a, start, (dx2, dy2), k);
+    let short0 = if n0 > 0 {
+        setup_edge(a, start, (dx1, dy1), k)
+    } else {
+        WalkEdge::default()
+    };
+    let short1 = if n1 > 0 {
+        setup_edge(b, mid, (dx2 - dx1, dy2 - dy1), k)
+    } else {
+        WalkEdge::default()
+    };
+    let depth = [q << 4, r << 4, lo + DEPTH_BIAS, hi + DEPTH_BIAS];
+    let cx = [clip.x0 - px0, clip.x1 - px0];
+    let r = RowsWalk::new(depth, cx, long, [short0, short1], n1 as u32, area > 0);
+    let at = RowsAt {
+        row0: (start - first_row) as usize,
+        width,
+        px0,
+        n0: n0 as u32,
+        z,
+    };
+    Ok((r, at))
+}
+
+/// [`small_walk_setup`]'s edge from corner `v` by (`dx`, `dy` > 0) at row `py`
+/// (`k` = 16·px0 + 8): `t = (16py + 8 − y)·dx + (x − k)·dy`, `x = ⌈t/16dy⌉` and
+/// `err = x·16dy − t`, `step = ⌊dx/dy⌋` and `dx − step·dy`, each pair by one unsigned
+/// division (⌊n/d⌋ = !⌊!n/d⌋ for n < 0). The assembly finds `x` and `err` from the
+/// step when `16py + 8 − y ≤ 16` (`column_from_step`, in the tests).
+fn setup_edge(v: &ScreenVertex, py: i32, (dx, dy): (i32, i32), k: i32) -> WalkEdge {
+    let t = (16 * py + 8 - v.y()) * dx + (v.x() - k) * dy;
+    let (d, n) = ((16 * dy) as u32, -t);
+    let (x, err) = if n >= 0 {
+        let q = n as u32 / d;
+        ((q as i32).wrapping_neg(), n as u32 - q * d)
+    } else {
+        let (q, r) = (!n as u32 / d, !n as u32 % d);
+        (q as i32 + 1, d - 1 - r)
+    };
+    let dyu = dy as u32;
+    let (step, rem) = if dx >= 0 {
+        ((dx as u32 / dyu) as i32, dx as u32 % dyu)
+    } else {
+        let (q, r) = (!dx as u32 / dyu, !dx as u32 % dyu);
+        (!(q as i32), dyu - 1 - r)
+    };
+    WalkEdge {
+        at: ((x as u32) << 16).wrapping_add(err >> 4),
+        step: ((step as u32) << 16).wrapping_sub(rem),
+        fix: (1 << 16) + dyu,
+    }
+}
+
+/// An edge's first column and `err` as the assembly finds them from its step when the
+/// row is near its top corner (`0 ≤ y ≤ 16`, `y` = 16py + 8 − the corner's y, `x` its
+/// column offset, `step`, `rem` = ⌊dx/dy⌋ and its remainder): `N = x + y·step = 16u + v`
+/// and `t = dy·N + y·rem`, so `t/16dy = u + W/16dy` with `W = v·dy + y·rem < 2·16dy`, and
+/// `⌈t/16dy⌉ = u + ⌈W/16dy⌉` by two compares. The tests check it against the division.
+#[cfg(test)]
+fn column_from_step((y, x): (i32, i32), (step, rem): (i32, i32), dy: i32) -> (i32, u32) {
+    let n = x + y * step;
+    let (u, v) = (n >> 4, n & 15);
+    let (w, d) = (v * dy + y * rem, 16 * dy);
+    let k = if w == 0 {
+        0
+    } else if w <= d {
+        1
+    } else {
+        2
+    };
+    (u + k, (k * d - w) as u32)
+}
+
 /// The section of [`rows_walk_less_u16`]'s loop: RAM under `zraster_ram_code` (as the
 /// other loops' `.data.zraster`), else its own text section.
 #[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
@@ -221,6 +476,46 @@ macro_rules! rows_walk_section {
 macro_rules! rows_walk_section {
     () => {
         ".pushsection .text.zraster_rows_walk_v6m,\"ax\",%progbits"
+    };
+}
+
+/// The section of `zraster_small_walk_v6m` (the set-up, run once a triangle): the
+/// rows loop's own, so that it joins the loop by a branch; under `zraster_ram_code`
+/// flash (RAM is scarce there), the loop then reached through a register.
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
+macro_rules! small_walk_section {
+    () => {
+        ".pushsection .text.zraster_small_walk_v6m,\"ax\",%progbits"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
+macro_rules! rows_walk_jump {
+    () => {
+        "ldr r4, .Lsw_body\nbx r4"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
+macro_rules! rows_walk_literal {
+    () => {
+        ".Lsw_body:\n.word .Lzraster_rows_walk_body + 1"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! small_walk_section {
+    () => {
+        rows_walk_section!()
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! rows_walk_jump {
+    () => {
+        "b .Lzraster_rows_walk_body"
+    };
+}
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! rows_walk_literal {
+    () => {
+        ""
     };
 }
 
@@ -243,6 +538,43 @@ extern "C" {
     /// as [`rows_walk_less_u16`] sets them, and rows `row0 .. row0 + n0 + n1` of both
     /// buffers (columns `px0 + cx0 .. px0 + cx1`) are inside them ([`RowsAt::check`]).
     fn zraster_rows_walk_v6m(r: *mut RowsWalk, z: u32, base: u32, n0: u32) -> u32;
+
+    /// The set-up of the small triangle of corners `p0`, `p1`, `p2`, in block `s`
+    /// (its rows' `color`, `delta`, `pitch` and `failed` set as
+    /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address), then
+    /// the rows of [`zraster_rows_walk_v6m`] (its frame and registers): the pixels
+    /// tested, or `u32::MAX` (nothing drawn) for a triangle it leaves to the Rust path.
+    ///
+    /// # Safety
+    ///
+    /// `s` points to a valid block; every row and column of the clip lies
+    /// inside both buffers.
+    fn zraster_small_walk_v6m(
+        s: *mut SmallWalk,
+        p0: &ScreenVertex,
+        p1: &ScreenVertex,
+        p2: &ScreenVertex,
+    ) -> u32;
+}
+
+/// One step of the set-up's division (`.Lsw_udiv`): quotient bit `k` into r6.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! udiv_bit {
+    ($k:literal) => {
+        concat!(
+            "lsrs r7, r4, #",
+            $k,
+            "\n",
+            "cmp r7, r5\n",
+            "blo 1f\n",
+            "lsls r7, r5, #",
+            $k,
+            "\n",
+            "subs r4, r4, r7\n",
+            "1:\n",
+            "adcs r6, r6"
+        )
+    };
 }
 
 // SAFETY (of the loop, for its callers above): rows row0 .. row0 + n0 + n1 of width
@@ -256,6 +588,18 @@ extern "C" {
 // through r0 (`failed`, the edges, `n1` cleared for the second half). r4–r11 and lr
 // are saved and restored as AAPCS wants; r0–r2 pushed and popped around the longer
 // rows' loop.
+//
+// SAFETY (of the set-up, for `small_walk_less_as_u16`): every row and column of the
+// clip lies inside both buffers (its caller's check). The set-up reads the three
+// corners and the block through r0–r3 and writes only the block and its own 48-byte
+// frame; the rows it hands the loop are start .. end with clip.y0 ≤ start and
+// end ≤ clip.y1 (none when start ≥ end: it returns before the loop), from the depth
+// address of row start − first_row ≥ 0, with columns cx = clip.x − px0 around local
+// column px0: the loop's contract above. Its divisions have divisors > 0 (16·dy and
+// dy of an edge with rows, |area| ≠ 0) and quotients within the unrolled steps (an
+// edge's columns lie within the triangle's 512, its step below 2¹³). It saves r4–r11
+// and lr as the loop's prologue does, so the loop's epilogue returns for both; BL
+// inside it clobbers only lr, saved.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     rows_walk_section!(),
@@ -271,6 +615,8 @@ core::arch::global_asm!(
     "mov r6, r10",
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
+    // zraster_small_walk_v6m joins here, its frame the same.
+    ".Lzraster_rows_walk_body:",
     "mov r8, r1",
     "mov r9, r2",
     "ldr r6, [r0, #36]",
@@ -450,6 +796,593 @@ core::arch::global_asm!(
     "pop {{r4, r5, r6, r7, pc}}",
     ".size zraster_rows_walk_v6m, . - zraster_rows_walk_v6m",
     ".popsection",
+    small_walk_section!(),
+    // The set-up of a small triangle, then the rows above (see `zraster_small_walk_v6m`).
+    // Frame: 48 bytes below the saved registers: [sp] the first corner given, +4 dx1,
+    // +8 dy1, +12 dx2, +16 dy2 (the middle and last corner from the top one), +20 the
+    // block, +24 |area| then the first row's depth, +28 the area's sign, +32 and +36
+    // the top and middle corners, +40 and +44 the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
+    // rows), r10 the first half's rows, r11 the local origin's column · 16 + 8.
+    ".balign 4",
+    ".global zraster_small_walk_v6m",
+    ".hidden zraster_small_walk_v6m",
+    ".type zraster_small_walk_v6m, %function",
+    ".thumb_func",
+    "zraster_small_walk_v6m:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4, r5, r6, r7}}",
+    "sub sp, #48",
+    "str r0, [sp, #20]",
+    "str r1, [sp]",
+    // The corners top to bottom (a stable sort by y): r1–r3, their y in r4–r6.
+    "ldr r4, [r1, #4]",
+    "ldr r5, [r2, #4]",
+    "cmp r5, r4",
+    "bge .Lsw_sort1",
+    "mov r6, r1",
+    "mov r1, r2",
+    "mov r2, r6",
+    "mov r6, r4",
+    "mov r4, r5",
+    "mov r5, r6",
+    ".Lsw_sort1:",
+    "ldr r6, [r3, #4]",
+    "cmp r6, r5",
+    "bge .Lsw_sort2",
+    "mov r7, r2",
+    "mov r2, r3",
+    "mov r3, r7",
+    "mov r7, r5",
+    "mov r5, r6",
+    "mov r6, r7",
+    "cmp r5, r4",
+    "bge .Lsw_sort2",
+    "mov r7, r1",
+    "mov r1, r2",
+    "mov r2, r7",
+    "mov r7, r4",
+    "mov r4, r5",
+    "mov r5, r7",
+    ".Lsw_sort2:",
+    "str r1, [sp, #32]",
+    "str r2, [sp, #36]",
+    // Its height below SMALL, else the general path.
+    "subs r7, r6, r4",
+    "str r7, [sp, #16]",
+    "lsrs r7, r7, #13",
+    "bne .Lsw_refuse",
+    "subs r7, r5, r4",
+    "str r7, [sp, #8]",
+    // Rows whose centres may be covered, inside the clip: start in r4, end in r6, the
+    // middle one clamped between them in r5.
+    "adds r4, #7",
+    "asrs r4, r4, #4",
+    "ldr r7, [r0, #84]",
+    "cmp r4, r7",
+    "bge .Lsw_rows1",
+    "mov r4, r7",
+    ".Lsw_rows1:",
+    "adds r6, #7",
+    "asrs r6, r6, #4",
+    "ldr r7, [r0, #88]",
+    "cmp r6, r7",
+    "ble .Lsw_rows2",
+    "mov r6, r7",
+    ".Lsw_rows2:",
+    "adds r5, #7",
+    "asrs r5, r5, #4",
+    "cmp r5, r4",
+    "bge .Lsw_rows3",
+    "mov r5, r4",
+    ".Lsw_rows3:",
+    "cmp r5, r6",
+    "ble .Lsw_rows4",
+    "mov r5, r6",
+    ".Lsw_rows4:",
+    "subs r7, r6, r5",
+    "str r7, [r0, #40]",
+    "mov r8, r4",
+    "mov r9, r5",
+    "subs r7, r5, r4",
+    "mov r10, r7",
+    "subs r6, r6, r4",
+    "mov r12, r6",
+    // Columns: dx1, dx2; its width below SMALL, else the general path; no rows, nothing.
+    "ldr r4, [r1]",
+    "ldr r5, [r2]",
+    "ldr r6, [r3]",
+    "subs r7, r5, r4",
+    "str r7, [sp, #4]",
+    "subs r7, r6, r4",
+    "str r7, [sp, #12]",
+    "mov r7, r4",
+    "cmp r5, r7",
+    "bge .Lsw_cols1",
+    "mov r7, r5",
+    ".Lsw_cols1:",
+    "cmp r6, r7",
+    "bge .Lsw_cols2",
+    "mov r7, r6",
+    ".Lsw_cols2:",
+    "cmp r5, r4",
+    "ble .Lsw_cols3",
+    "mov r4, r5",
+    ".Lsw_cols3:",
+    "cmp r6, r4",
+    "ble .Lsw_cols4",
+    "mov r4, r6",
+    ".Lsw_cols4:",
+    "subs r4, r4, r7",
+    "lsrs r4, r4, #13",
+    "bne .Lsw_refuse",
+    "mov r4, r12",
+    "cmp r4, #0",
+    "ble .Lsw_empty",
+    // The local origin's column px0 (of the leftmost corner): the clip's columns from
+    // it, and r11 = 16·px0 + 8.
+    "asrs r7, r7, #4",
+    "ldr r4, [r0, #92]",
+    "subs r4, r4, r7",
+    "str r4, [r0, #20]",
+    "ldr r4, [r0, #96]",
+    "subs r4, r4, r7",
+    "str r4, [r0, #24]",
+    "lsls r7, r7, #4",
+    "adds r7, #8",
+    "mov r11, r7",
+    // The area (none: nothing), the side, |area| below 2¹⁶ (else the general path).
+    "ldr r4, [sp, #4]",
+    "ldr r5, [sp, #16]",
+    "muls r4, r5",
+    "ldr r5, [sp, #12]",
+    "ldr r6, [sp, #8]",
+    "muls r5, r6",
+    "subs r4, r4, r5",
+    "beq .Lsw_empty",
+    "lsrs r5, r4, #31",
+    "str r5, [r0, #44]",
+    "asrs r5, r4, #31",
+    "str r5, [sp, #28]",
+    "eors r4, r5",
+    "subs r4, r4, r5",
+    "lsrs r6, r4, #16",
+    "bne .Lsw_refuse",
+    "str r4, [sp, #24]",
+    "b .Lsw_depths",
+    // Nothing to draw, or a triangle for the Rust path (here, within the conditional
+    // branches' reach).
+    ".Lsw_empty:",
+    "movs r0, #0",
+    "b .Lsw_out",
+    ".Lsw_refuse:",
+    "movs r0, #0",
+    "mvns r0, r0",
+    ".Lsw_out:",
+    "add sp, #48",
+    "pop {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4, r5, r6, r7, pc}}",
+    // The depths' range: lo (biased) and hi − lo.
+    ".Lsw_depths:",
+    "ldr r4, [r1, #8]",
+    "ldr r5, [r2, #8]",
+    "ldr r6, [r3, #8]",
+    "mov r7, r4",
+    "mov r1, r4",
+    "cmp r5, r7",
+    "bhs .Lsw_z1",
+    "mov r7, r5",
+    ".Lsw_z1:",
+    "cmp r6, r7",
+    "bhs .Lsw_z2",
+    "mov r7, r6",
+    ".Lsw_z2:",
+    "cmp r5, r1",
+    "bls .Lsw_z3",
+    "mov r1, r5",
+    ".Lsw_z3:",
+    "cmp r6, r1",
+    "bls .Lsw_z4",
+    "mov r1, r6",
+    ".Lsw_z4:",
+    "subs r1, r1, r7",
+    "str r1, [r0, #8]",
+    "ldr r1, .Lsw_bias",
+    "adds r7, r7, r1",
+    "str r7, [r0, #4]",
+    // dz1 in r6, dz2 in r7 (depths over 16); the numerators' high parts over 2¹⁶ in
+    // [−2¹², 2¹²), else the general path (`fill::small::steps_narrow`).
+    "lsrs r4, r4, #4",
+    "lsrs r6, r6, #4",
+    "subs r7, r6, r4",
+    "lsrs r6, r5, #4",
+    "subs r6, r6, r4",
+    "asrs r4, r6, #16",
+    "ldr r5, [sp, #16]",
+    "muls r4, r5",
+    "asrs r5, r7, #16",
+    "ldr r3, [sp, #8]",
+    "muls r5, r3",
+    "subs r4, r4, r5",
+    "asrs r5, r7, #16",
+    "ldr r3, [sp, #4]",
+    "muls r5, r3",
+    "asrs r3, r6, #16",
+    "ldr r2, [sp, #12]",
+    "muls r3, r2",
+    "subs r5, r5, r3",
+    "ldr r3, .Lsw_high",
+    "adds r4, r4, r3",
+    "adds r5, r5, r3",
+    "orrs r4, r5",
+    "lsrs r4, r4, #13",
+    "bne .Lsw_refuse",
+    // The numerators a (r4) and b (r5), modulo 2³², inside ±(2²⁷ − 1).
+    "ldr r4, [sp, #16]",
+    "muls r4, r6",
+    "ldr r5, [sp, #8]",
+    "muls r5, r7",
+    "subs r4, r4, r5",
+    "ldr r5, [sp, #4]",
+    "muls r5, r7",
+    "ldr r3, [sp, #12]",
+    "muls r3, r6",
+    "subs r5, r5, r3",
+    "ldr r3, .Lsw_within",
+    "adds r6, r4, r3",
+    "adds r7, r5, r3",
+    "ldr r3, .Lsw_range",
+    "cmp r6, r3",
+    "bhs .Lsw_refuse",
+    "cmp r7, r3",
+    "bhs .Lsw_refuse",
+    // The steps ⌊±16a/|area|⌋, ⌊±16b/|area|⌋ (the area's sign folded in), as
+    // `num::floor_div32_pair_small`: the folded numerators at [sp, #40] and [sp, #44],
+    // then x = ⌊(2³² − 1)/d⌋ in r6 (d = |area| in r4) as `num::armv6m::recip32_small`:
+    // d normalised to [2¹⁵, 2¹⁶) by s (its leading zeros, from a byte table), a guess
+    // from the reciprocal table << (s + 1), two Newton steps, the fix-up.
+    "ldr r3, [sp, #28]",
+    "lsls r0, r4, #4",
+    "eors r0, r3",
+    "subs r0, r0, r3",
+    "str r0, [sp, #40]",
+    "lsls r1, r5, #4",
+    "eors r1, r3",
+    "subs r1, r1, r3",
+    "str r1, [sp, #44]",
+    "ldr r4, [sp, #24]",
+    "ldr r7, .Lsw_lz8",
+    "lsrs r5, r4, #8",
+    "beq .Lsw_recip1",
+    "ldrb r5, [r7, r5]",
+    "b .Lsw_recip2",
+    ".Lsw_recip1:",
+    "ldrb r5, [r7, r4]",
+    "adds r5, #8",
+    ".Lsw_recip2:",
+    "movs r6, r4",
+    "lsls r6, r5",
+    "lsrs r6, r6, #6",
+    "lsls r6, r6, #1",
+    "ldr r7, .Lsw_recip16",
+    "ldrh r6, [r7, r6]",
+    "adds r5, #1",
+    "lsls r6, r5",
+    "movs r5, r4",
+    "muls r5, r6",
+    "rsbs r5, r5, #0",
+    "bl .Lsw_mulhi",
+    "adds r6, r6, r7",
+    "movs r5, r4",
+    "muls r5, r6",
+    "rsbs r5, r5, #0",
+    "lsrs r0, r6, #16",
+    "muls r0, r5",
+    "uxth r1, r6",
+    "muls r1, r5",
+    "lsrs r1, r1, #16",
+    "adds r0, r0, r1",
+    "lsrs r0, r0, #16",
+    "adds r6, r6, r0",
+    "movs r5, r4",
+    "muls r5, r6",
+    "mvns r5, r5",
+    ".Lsw_recip3:",
+    "cmp r5, r4",
+    "blo .Lsw_recip4",
+    "adds r6, #1",
+    "subs r5, r5, r4",
+    "b .Lsw_recip3",
+    ".Lsw_recip4:",
+    "ldr r5, [sp, #40]",
+    "bl .Lsw_quot",
+    "str r7, [sp, #40]",
+    "ldr r5, [sp, #44]",
+    "bl .Lsw_quot",
+    "movs r1, r7",
+    "ldr r0, [sp, #40]",
+    "ldr r3, [sp, #20]",
+    "lsls r2, r0, #4",
+    "str r2, [r3]",
+    "lsls r2, r1, #4",
+    "str r2, [r3, #32]",
+    // The first row's depth at local column 0, from the first corner given:
+    // z + DEPTH_BIAS + q·(16·px0 + 8 − x) + r·(16·start + 8 − y).
+    "ldr r2, [sp]",
+    "ldr r4, [r2]",
+    "mov r5, r11",
+    "subs r5, r5, r4",
+    "muls r0, r5",
+    "ldr r4, [r2, #4]",
+    "mov r5, r8",
+    "lsls r5, r5, #4",
+    "adds r5, #8",
+    "subs r5, r5, r4",
+    "muls r1, r5",
+    "adds r0, r0, r1",
+    "ldr r4, [r2, #8]",
+    "adds r0, r0, r4",
+    "ldr r4, .Lsw_bias",
+    "adds r0, r0, r4",
+    "str r0, [sp, #24]",
+    // The edges: the long one at the first row, the short ones at their halves' first
+    // rows (a half without rows keeps its edge unset). The top corner's offsets
+    // 16·start + 8 − y and x − 16·px0 − 8 at [sp, #40] and [sp, #44].
+    "ldr r2, [sp, #32]",
+    "mov r4, r8",
+    "lsls r4, r4, #4",
+    "adds r4, #8",
+    "ldr r5, [r2, #4]",
+    "subs r4, r4, r5",
+    "str r4, [sp, #40]",
+    "ldr r5, [r2]",
+    "mov r6, r11",
+    "subs r5, r5, r6",
+    "str r5, [sp, #44]",
+    "movs r1, #48",
+    "adds r1, r1, r3",
+    "ldr r2, [sp, #12]",
+    "ldr r3, [sp, #16]",
+    "bl .Lsw_edge",
+    "mov r4, r10",
+    "cmp r4, #0",
+    "beq .Lsw_short1",
+    "adds r1, #12",
+    "ldr r2, [sp, #4]",
+    "ldr r3, [sp, #8]",
+    "ldr r4, [sp, #40]",
+    "ldr r5, [sp, #44]",
+    "bl .Lsw_edge",
+    ".Lsw_short1:",
+    "ldr r0, [sp, #20]",
+    "ldr r4, [r0, #40]",
+    "cmp r4, #0",
+    "beq .Lsw_rows",
+    "movs r1, #72",
+    "adds r1, r1, r0",
+    "ldr r2, [sp, #12]",
+    "ldr r4, [sp, #4]",
+    "subs r2, r2, r4",
+    "ldr r3, [sp, #16]",
+    "ldr r4, [sp, #8]",
+    "subs r3, r3, r4",
+    "ldr r6, [sp, #36]",
+    "mov r4, r9",
+    "lsls r4, r4, #4",
+    "adds r4, #8",
+    "ldr r5, [r6, #4]",
+    "subs r4, r4, r5",
+    "ldr r5, [r6]",
+    "mov r7, r11",
+    "subs r5, r5, r7",
+    "bl .Lsw_edge",
+    // The rows: the depth address of the first row's local column 0,
+    // zaddr + (start − first_row)·pitch + 2·px0, then the loop above with its frame.
+    ".Lsw_rows:",
+    "ldr r0, [sp, #20]",
+    "mov r2, r8",
+    "ldr r4, [r0, #100]",
+    "subs r2, r2, r4",
+    "ldr r4, [r0, #36]",
+    "muls r2, r4",
+    "ldr r4, [r0, #104]",
+    "adds r2, r2, r4",
+    "mov r4, r11",
+    "asrs r4, r4, #4",
+    "lsls r4, r4, #1",
+    "adds r2, r2, r4",
+    "ldr r1, [sp, #24]",
+    "mov r3, r10",
+    "add sp, #48",
+    rows_walk_jump!(),
+    // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: by
+    // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r4 = Y =
+    // 16·py + 8 − y (≥ 0) and r5 = X = x − 16·px0 − 8. First the step ⌊dx/dy⌋ and its
+    // remainder by one unsigned division (a negative dividend n by ⌊n/d⌋ = !⌊!n/d⌋; a
+    // quotient of 0 without the call). Then t = Y·dx + X·dy, the first column ⌈t/16dy⌉
+    // and err = x·16dy − t: with Y ≤ 16 (the triangle's first row in its half, not
+    // clipped) from the step, N = X + Y·step = 16u + v, t = dy·N + Y·rem, so
+    // t/16dy = u + W/16dy with W = v·dy + Y·rem in [0, 2·16dy); else by one more
+    // division. Keeps r1–r3; r4–r7 scratch.
+    ".Lsw_edge:",
+    "push {{r4, r5, lr}}",
+    "movs r5, r3",
+    "movs r6, #0",
+    "movs r4, r2",
+    "bmi .Lsw_edge_negdx",
+    "cmp r4, r5",
+    "blo .Lsw_edge_step",
+    "bl .Lsw_udiv",
+    "b .Lsw_edge_step",
+    ".Lsw_edge_negdx:",
+    "mvns r4, r4",
+    "cmp r4, r5",
+    "blo .Lsw_edge_negdx0",
+    "bl .Lsw_udiv",
+    ".Lsw_edge_negdx0:",
+    "mvns r6, r6",
+    "subs r4, r5, r4",
+    "subs r4, #1",
+    ".Lsw_edge_step:",
+    "lsls r7, r6, #16",
+    "subs r7, r7, r4",
+    "str r7, [r1, #4]",
+    "movs r7, #1",
+    "lsls r7, r7, #16",
+    "adds r7, r7, r3",
+    "str r7, [r1, #8]",
+    "pop {{r5, r7}}",
+    "cmp r5, #16",
+    "bhi .Lsw_edge_far",
+    "muls r6, r5",
+    "adds r6, r6, r7",
+    "muls r4, r5",
+    "lsls r5, r6, #28",
+    "lsrs r5, r5, #28",
+    "muls r5, r3",
+    "adds r4, r4, r5",
+    "asrs r6, r6, #4",
+    "lsls r5, r3, #4",
+    "cmp r4, #0",
+    "beq .Lsw_edge_at",
+    "adds r6, #1",
+    "subs r4, r5, r4",
+    "bhs .Lsw_edge_at",
+    "adds r6, #1",
+    "adds r4, r4, r5",
+    "b .Lsw_edge_at",
+    ".Lsw_edge_far:",
+    "muls r5, r2",
+    "muls r7, r3",
+    "adds r4, r5, r7",
+    "lsls r5, r3, #4",
+    "movs r6, #0",
+    "rsbs r4, r4, #0",
+    "bmi .Lsw_edge_neg",
+    "cmp r4, r5",
+    "blo .Lsw_edge_at",
+    "bl .Lsw_udiv",
+    "rsbs r6, r6, #0",
+    "b .Lsw_edge_at",
+    ".Lsw_edge_neg:",
+    "mvns r4, r4",
+    "cmp r4, r5",
+    "blo .Lsw_edge_neg0",
+    "bl .Lsw_udiv",
+    ".Lsw_edge_neg0:",
+    "adds r6, #1",
+    "subs r4, r5, r4",
+    "subs r4, #1",
+    ".Lsw_edge_at:",
+    "lsrs r4, r4, #4",
+    "lsls r6, r6, #16",
+    "adds r6, r6, r4",
+    "str r6, [r1]",
+    "pop {{pc}}",
+    // r6 = r4 / r5, r4 = r4 % r5 for r5 > 0, r6 = 0 on entry and a quotient below 2¹⁴,
+    // one bit a step from the quotient's top (found below 4, 16, 256 or else 2¹⁴); r7
+    // scratch.
+    ".Lsw_udiv:",
+    "lsrs r7, r4, #2",
+    "cmp r7, r5",
+    "blo .Lsw_udiv2",
+    "lsrs r7, r4, #4",
+    "cmp r7, r5",
+    "blo .Lsw_udiv4",
+    "lsrs r7, r4, #8",
+    "cmp r7, r5",
+    "blo .Lsw_udiv8",
+    udiv_bit!(13),
+    udiv_bit!(12),
+    udiv_bit!(11),
+    udiv_bit!(10),
+    udiv_bit!(9),
+    udiv_bit!(8),
+    ".Lsw_udiv8:",
+    udiv_bit!(7),
+    udiv_bit!(6),
+    udiv_bit!(5),
+    udiv_bit!(4),
+    ".Lsw_udiv4:",
+    udiv_bit!(3),
+    udiv_bit!(2),
+    ".Lsw_udiv2:",
+    udiv_bit!(1),
+    "cmp r4, r5",
+    "blo 1f",
+    "subs r4, r4, r5",
+    "1:",
+    "adcs r6, r6",
+    "bx lr",
+    // r7 = ⌊r5/r4⌋ (signed r5, 0 < r4 < 2¹⁶) given r6 = ⌊(2³² − 1)/r4⌋, as
+    // `num::armv6m::divrem_by_recip` of |r5| flipped (⌊n/d⌋ = !⌊!n/d⌋); r0–r3, r5 and
+    // r12 scratch.
+    ".Lsw_quot:",
+    "push {{lr}}",
+    "asrs r0, r5, #31",
+    "mov r12, r0",
+    "eors r5, r0",
+    "bl .Lsw_mulhi",
+    "movs r0, r7",
+    "muls r0, r4",
+    "subs r5, r5, r0",
+    ".Lsw_quot1:",
+    "cmp r5, r4",
+    "blo .Lsw_quot2",
+    "adds r7, #1",
+    "subs r5, r5, r4",
+    "b .Lsw_quot1",
+    ".Lsw_quot2:",
+    "mov r0, r12",
+    "eors r7, r0",
+    "pop {{pc}}",
+    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products; r0–r3 scratch.
+    ".Lsw_mulhi:",
+    "lsrs r0, r6, #16",
+    "lsrs r1, r5, #16",
+    "uxth r2, r6",
+    "uxth r3, r5",
+    "movs r7, r0",
+    "muls r7, r1",
+    "muls r0, r3",
+    "muls r1, r2",
+    "muls r2, r3",
+    "adds r0, r0, r1",
+    "bcc .Lsw_mulhi1",
+    "movs r1, #1",
+    "lsls r1, r1, #16",
+    "adds r7, r7, r1",
+    ".Lsw_mulhi1:",
+    "lsls r1, r0, #16",
+    "lsrs r0, r0, #16",
+    "adds r2, r2, r1",
+    "adcs r7, r0",
+    "bx lr",
+    ".balign 4",
+    ".Lsw_lz8:",
+    ".word {lz8}",
+    ".Lsw_recip16:",
+    ".word {recip16} - 1024",
+    ".Lsw_bias:",
+    ".word 32768",
+    ".Lsw_high:",
+    ".word 4096",
+    ".Lsw_within:",
+    ".word 0x07ffffff",
+    ".Lsw_range:",
+    ".word 0x0fffffff",
+    rows_walk_literal!(),
+    ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
+    ".popsection",
+    lz8 = sym crate::num::armv6m::LEADING_ZEROS8,
+    recip16 = sym crate::num::armv6m::RECIP16,
 );
 
 /// A random edge of a small triangle (local coordinates, extents below 32 pixels) at
@@ -486,7 +1419,84 @@ pub fn check_rows_walk_kernel(buf: &mut [u16]) -> usize {
         (r, place)
     };
     let kernel = rows_walk_less_as_u16::<u16>;
-    check_cases(buf, 0x1357_9bdf, make, kernel, rows_walk_less_portable)
+    let bad = check_cases(buf, 0x1357_9bdf, make, kernel, rows_walk_less_portable);
+    let Some(buf) = buf.get_mut(..4 * CHECK_W * 16) else {
+        return usize::MAX;
+    };
+    let (mine, twin) = buf.split_at_mut(2 * CHECK_W * 16);
+    bad.saturating_add(check_small_walk(&mut 0x2468_ace1, mine, twin))
+}
+
+/// The set-up's cases of [`check_rows_walk_kernel`]: random triangles (from a pixel to
+/// the buffer across, some 512 pixels or more, flat, of steep depth; clips inside the
+/// buffers, some narrower) through `small_walk_less_as_u16` and `small_walk_portable`
+/// into copies of the same buffers (a depth and a colour buffer of 48 × 16 each in
+/// `mine` and `twin`), compared. Returns the number of cases that differ.
+fn check_small_walk(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize {
+    const W: usize = CHECK_W;
+    const H: usize = 16;
+    let (z1, c1) = mine.split_at_mut(W * H);
+    let (z2, c2) = twin.split_at_mut(W * H);
+    let mut bad = 0;
+    for case in 0..1500u32 {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (next(seed) as u16 | 0x8000 >> (case % 3), next(seed) as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let first_row = (next(seed) % 5) as i32 - 2;
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((next(seed) % 20) as i32, (next(seed) % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (next(seed) % 30) as i32,
+                y1: first_row + y0 + (next(seed) % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + H as i32,
+            }
+        };
+        let span = 12u32 << (case % 9); // 1/16 pixel: 12 to 3,072
+        let z0 = next(seed) >> 1;
+        let spread = 1u32 << (10 + case / 9 % 4 * 7); // 2¹⁰, 2¹⁷, 2²⁴, 2³¹
+                                                      // Corners near a random point of the buffer (1/16 pixel), one far on some.
+        let (bx, by) = (
+            (next(seed) % (W as u32 * 16)) as i32 - 40,
+            (next(seed) % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        let mut vertex = |k: u32| {
+            let far = if case % 29 == 0 && k == 1 { 9000 } else { 0 };
+            let x = (next(seed) % span) as i32 + bx - span as i32 / 2 + far;
+            let y = (next(seed) % span) as i32 + by - span as i32 / 2;
+            let z = z0
+                .saturating_add(next(seed) % spread)
+                .min(crate::fixed::MAX_DEPTH);
+            ScreenVertex::new(x, y, z).unwrap_or(ScreenVertex::ORIGIN)
+        };
+        let mut tri = [vertex(0), vertex(1), vertex(2)];
+        if case % 7 == 0 {
+            tri[2] = tri[1];
+        }
+        let color = next(seed) as u16;
+        let mut t = SmallTarget {
+            z: &mut z1[..],
+            c: &mut c1[..],
+            width: W,
+            first_row,
+            clip,
+        };
+        let got = small_walk_less_as_u16(&mut t, tri.each_ref(), color);
+        let want = small_walk_portable(tri.each_ref(), &clip, first_row, W, z2, c2, color);
+        if got != want || z1 != z2 || c1 != c2 {
+            bad += 1;
+        }
+    }
+    bad
 }
 
 #[cfg(test)]
@@ -498,5 +1508,57 @@ mod tests {
         let mut buf = [0u16; 4 * 48 * 16];
         assert_eq!(check_rows_walk_kernel(&mut buf), 0);
         assert_eq!(check_rows_walk_kernel(&mut buf[..100]), usize::MAX);
+    }
+
+    /// `column_from_step` gives `setup_edge`'s first column and `err` for every row
+    /// near the corner (its offset 0 to 16), on random small edges.
+    #[test]
+    fn column_from_step_matches_the_division() {
+        let mut seed = 0x0dd_ba11;
+        for _ in 0..200_000 {
+            let dy = 1 + (next(&mut seed) % 8191) as i32;
+            let dx = (next(&mut seed) % 16383) as i32 - 8191;
+            let (y, x) = (
+                (next(&mut seed) % 17) as i32,
+                (next(&mut seed) % 8200) as i32 - 8,
+            );
+            // The corner at (x + 8, 8 − y) from the origin column 0 (k = 8), row 0.
+            let corner = ScreenVertex::new(x + 8, 8 - y, 0).unwrap_or(ScreenVertex::ORIGIN);
+            let e = setup_edge(&corner, 0, (dx, dy), 8);
+            let (step, rem) = (dx.div_euclid(dy), dx.rem_euclid(dy));
+            let (col, err) = column_from_step((y, x), (step, rem), dy);
+            let at = ((col as u32) << 16).wrapping_add(err >> 4);
+            assert_eq!(at, e.at, "dx {dx} dy {dy} y {y} x {x}");
+        }
+    }
+
+    /// The set-up draws the usual small triangle itself (the Rust path takes only
+    /// what it refuses): of random triangles up to 10 pixels across, of depths a few
+    /// units apart, all but the flat ones.
+    #[test]
+    fn small_walk_setup_takes_the_usual_triangle() {
+        let mut seed = 0x1234_5678;
+        let clip = Clip {
+            x0: 0,
+            y0: 0,
+            x1: 48,
+            y1: 48,
+        };
+        let mut taken = 0;
+        for _ in 0..1000 {
+            let mut vertex = || {
+                let (x, y) = (
+                    (next(&mut seed) % 160) as i32,
+                    (next(&mut seed) % 160) as i32,
+                );
+                let z = (1 << 20) + next(&mut seed) % (1 << 20);
+                ScreenVertex::new(x + 100, y + 100, z).unwrap_or(ScreenVertex::ORIGIN)
+            };
+            let tri = [vertex(), vertex(), vertex()];
+            if small_walk_setup(tri.each_ref(), &clip, 0, 48).is_ok() {
+                taken += 1;
+            }
+        }
+        assert!(taken > 950, "{taken} of 1000 taken");
     }
 }
