@@ -209,10 +209,14 @@ pub fn screen_door(alpha: u8, x: i32, y: i32) -> bool {
     dither_level(alpha, 1, x, y) != 0
 }
 
-/// A material's 8-bit channels in a 5-6-5 packing's order (high field first) and the
-/// colour of a packed value (see [`Material::packed_565`]).
+/// A material's 8-bit channels in a 5-6-5 packing's order (high field first), the
+/// colour of a packed value and, where the crate knows it, [`Raw565`]: that colour's
+/// two bytes are the packed value (see [`Material::packed_565`]).
 #[doc(hidden)]
-pub type Packed565<C> = ([u8; 3], fn(u16) -> C);
+pub type Packed565<C> = ([u8; 3], fn(u16) -> C, Option<Raw565<C>>);
+
+#[doc(hidden)]
+pub use crate::num::kernel::Raw565;
 
 /// A display colour that an `Rgb888` material, lit, turns into.
 ///
@@ -395,7 +399,7 @@ macro_rules! rgb565_colors {
             #[inline(always)]
             fn packed_565(m: Rgb888) -> Option<Packed565<$t>> {
                 use embedded_graphics::pixelcolor::raw::RawU16;
-                Some(([m.$high(), m.g(), m.$low()], |c| $t::from(RawU16::new(c))))
+                Some(([m.$high(), m.g(), m.$low()], |c| $t::from(RawU16::new(c)), Some(Raw565::<$t>::PROOF)))
             }
 
             #[inline]

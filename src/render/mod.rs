@@ -294,8 +294,13 @@ fn lambert_term_narrow(dot: i32, w: i32) -> i32 {
 }
 
 /// What [`Renderer::light_block`] gives: the block of
-/// [`lit_565`](crate::num::kernel::lit_565) and the colour of a packed value.
-pub(crate) type LitFaces<'m, C> = (LightBlock<'m>, fn(u16) -> C);
+/// [`lit_565`](crate::num::kernel::lit_565), the colour of a packed value and whether
+/// that colour is the packed value ([`Raw565`](crate::shade::Raw565)).
+pub(crate) type LitFaces<'m, C> = (
+    LightBlock<'m>,
+    fn(u16) -> C,
+    Option<crate::shade::Raw565<C>>,
+);
 
 /// [`Renderer::lambert_q14`] for the renderer's `light_q`.
 #[inline(always)]
@@ -610,12 +615,12 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     where
         M: Material<C>,
     {
-        let (channels, color) = m.packed_565()?;
+        let (channels, color, raw) = m.packed_565()?;
         let (light, ambient, diffuse) = self.light_q;
         let normals = self.mesh.face_normals.unwrap_or(&[]);
         // Ambient within ±2¹⁶, diffuse within ±2¹⁹ (see `light_q`; ±2¹⁶ on ARMv6-M).
         let block = LightBlock::new(light, ambient as i32, diffuse as i32, channels, normals);
-        Some((block, color))
+        Some((block, color, raw))
     }
 
     /// `ambient + diffuse · max(0, n·L)` for a Q14 unit normal, in integers: n·L is Q29

@@ -22,7 +22,7 @@ macro_rules! per_colouring {
             // A uniform material without one colour for all is lit: into a 5-6-5
             // colour from the face normal in one step where it can be.
             (None, crate::mesh::Materials::Uniform(m)) => match $r.light_block(&m) {
-                Some((block, color)) => {
+                Some((block, color, _)) => {
                     let $shade = |f: usize| {
                         Ok(match crate::num::kernel::lit_565(f, &block) {
                             Some(c) => color(c),
@@ -275,7 +275,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     Some(c) => Some(FaceColor::Flat(c)),
                     None => {
                         lit = self.light_block(&m);
-                        lit.as_ref().map(|(b, f)| FaceColor::Lit(b, *f))
+                        lit.as_ref().map(|(b, f, raw)| FaceColor::Lit(b, *f, *raw))
                     }
                 }
             }

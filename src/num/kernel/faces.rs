@@ -9,18 +9,51 @@ use super::cull::{CullScan, ScanRegs};
 use super::light::LightBlock;
 use super::rows::{RowsLess, SmallTarget};
 use super::CachedVertex;
+use core::marker::PhantomData;
+use embedded_graphics::pixelcolor::{Bgr565, Rgb565};
 
 /// Whether [`faces_less`] runs the assembly loop (ARMv7E-M); elsewhere it leaves every
 /// face to the caller and the renderer does not call it.
 pub(crate) const FACES_KERNEL: bool = cfg!(all(zraster_thumb, zraster_dsp));
 
 /// The colour of every face of the fused loop.
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
 #[derive(Clone, Copy)]
 pub(crate) enum FaceColor<'b, C> {
     /// One colour for all.
     Flat(C),
-    /// Lit by the block (`lit_565`), the packed value made a `C` by the function.
-    Lit(&'b LightBlock<'b>, fn(u16) -> C),
+    /// Lit by the block (`lit_565`), the packed value made a `C` by the function (with
+    /// [`Raw565`], written as it is).
+    Lit(&'b LightBlock<'b>, fn(u16) -> C, Option<Raw565<C>>),
+}
+
+/// Proof that the colour `Material::packed_565`'s function makes of a packed value `c`
+/// is two bytes holding `c`, so the fused loop writes `c` with no call. Only made here:
+/// for `Rgb565` and `Bgr565` (their one field the `RawU16` of `c`; the test
+/// `raw_565_is_the_packed_value` checks every value) and for the check's `u16`.
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug)]
+pub struct Raw565<C>(PhantomData<fn() -> C>);
+
+const _: () = {
+    use core::mem::{align_of, size_of};
+    assert!(size_of::<Rgb565>() == 2 && align_of::<Rgb565>() == 2);
+    assert!(size_of::<Bgr565>() == 2 && align_of::<Bgr565>() == 2);
+};
+
+impl Raw565<Rgb565> {
+    /// The proof for `Rgb565`, its function `|c| Rgb565::from(RawU16::new(c))`.
+    pub(crate) const PROOF: Self = Self(PhantomData);
+}
+
+impl Raw565<Bgr565> {
+    /// The proof for `Bgr565`, its function `|c| Bgr565::from(RawU16::new(c))`.
+    pub(crate) const PROOF: Self = Self(PhantomData);
+}
+
+impl Raw565<u16> {
+    /// The proof for `u16`, its function the identity (the check's).
+    const PROOF: Self = Self(PhantomData);
 }
 
 /// The fused loop's pixel and face counts: pixels tested and failed by its fills, and
@@ -82,8 +115,8 @@ const _: () = {
 };
 
 /// The colour of a face into lr: the block's (`flat`), or (`lit`) `lit_565` of the
-/// face (r1) through the function making it a `C` (a face without a normal is left
-/// to the caller, at 68).
+/// face (r1) through the function making it a `C`, or (`raw`) as it is (a face without
+/// a normal is left to the caller, at 68).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! faces_color {
@@ -98,6 +131,15 @@ macro_rules! faces_color {
             "bne 68f\n",
             "ldr r1, [r7, #152]\n",
             "bl {bits}\n",
+            "mov lr, r0\n",
+        )
+    };
+    (raw) => {
+        concat!(
+            "ldr r0, [r7, #148]\n",
+            lit_565_asm!(),
+            "lsrs r1, r0, #16\n",
+            "bne 68f\n",
             "mov lr, r0\n",
         )
     };
@@ -229,7 +271,11 @@ fn faces_less_dsp<'a, C: Copy>(
     }
     let (probe, light, to_color) = match *color {
         FaceColor::Flat(c) => (c, core::ptr::null(), None),
-        FaceColor::Lit(b, f) => (f(0), core::ptr::from_ref(b).cast::<u8>(), Some(f)),
+        FaceColor::Lit(b, f, raw) => (
+            f(0),
+            core::ptr::from_ref(b).cast::<u8>(),
+            Some((f, raw.is_some())),
+        ),
     };
     let clip = t.clip;
     let (first_row, width) = (t.first_row, t.width);
@@ -282,7 +328,7 @@ fn faces_less_dsp<'a, C: Copy>(
     // its value becomes a `C` by `bits_of`, which calls the caller's function (handed
     // over as a pointer, `to_color`) and returns that
     // `C`'s two bytes (`two_bytes`, checked by `kernel_buffers`): only the bits of a
-    // `C` are written. The set-up and rows (`small_body`) are `small_less_dsp`'s with
+    // `C` are written; with a `Raw565` (`raw`) the value itself, which is those bytes. The set-up and rows (`small_body`) are `small_less_dsp`'s with
     // the same operands (depth row 0's address, the clip, the pitch, the colour's
     // delta, worked out as there from `kernel_buffers`' slices: every row and column
     // of the clip inside both buffers) and the same block (`RowsLess` at offset 0 of
@@ -293,7 +339,24 @@ fn faces_less_dsp<'a, C: Copy>(
     // and the stack 8-aligned; every other register written is declared, the
     // floating-point ones the calls may write among them; the flags are scratch.
     unsafe {
-        if let Some(f) = to_color {
+        if let Some((_, true)) = to_color {
+            core::arch::asm!(
+                faces_body!(raw),
+                inout("r0") &mut block as *mut FacesBlock => status,
+                out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+                out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+                out("r12") _, out("lr") _,
+                wide = sym super::rows::wide_steps_c,
+                #[cfg(not(zraster_soft_float))] out("d0") _,
+                #[cfg(not(zraster_soft_float))] out("d1") _,
+                #[cfg(not(zraster_soft_float))] out("d2") _,
+                #[cfg(not(zraster_soft_float))] out("d3") _,
+                #[cfg(not(zraster_soft_float))] out("d4") _,
+                #[cfg(not(zraster_soft_float))] out("d5") _,
+                #[cfg(not(zraster_soft_float))] out("d6") _,
+                #[cfg(not(zraster_soft_float))] out("d7") _,
+            );
+        } else if let Some((f, _)) = to_color {
             block.to_color = f as *const u8;
             core::arch::asm!(
                 faces_body!(lit),
@@ -463,15 +526,16 @@ pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
         );
         let turn: fn(u16) -> u16 = |c| c.rotate_left(3);
         let flat = rnd() as u16;
-        let color = if case % 4 == 3 {
-            FaceColor::Flat(flat)
-        } else {
-            FaceColor::Lit(&block, turn)
+        let same: fn(u16) -> u16 = |c| c;
+        let color = match case % 4 {
+            3 => FaceColor::Flat(flat),
+            2 => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
+            _ => FaceColor::Lit(&block, turn, None),
         };
         // A drawn face's colour as the renderer gives it (a fixed one without a normal).
         let color_of = |k: usize| match color {
             FaceColor::Flat(c) => c,
-            FaceColor::Lit(b, f) => lit_565_portable(k, b).map_or(0x1234, f),
+            FaceColor::Lit(b, f, _) => lit_565_portable(k, b).map_or(0x1234, f),
         };
         let corners = |t: [&CachedVertex; 3]| {
             t.map(|e| {
@@ -559,5 +623,23 @@ mod tests {
         let mut buf = [0u16; 4 * 48 * 16];
         assert_eq!(check_faces_kernel(&mut buf, 2_000), 0);
         assert_eq!(check_faces_kernel(&mut buf[..100], 1), usize::MAX);
+    }
+
+    /// `Raw565`'s promise: the colour of every packed value is two bytes holding it.
+    #[test]
+    fn raw_565_is_the_packed_value() {
+        use crate::shade::DisplayColor;
+        use embedded_graphics::pixelcolor::Rgb888;
+        fn holds<C: DisplayColor + Copy>() {
+            let (_, f, raw) = C::packed_565(Rgb888::new(1, 2, 3)).unwrap();
+            assert!(raw.is_some());
+            for c in 0..=u16::MAX {
+                let v = f(c);
+                // SAFETY: `C` is two bytes (the const assert above).
+                assert_eq!(unsafe { core::mem::transmute_copy::<C, u16>(&v) }, c);
+            }
+        }
+        holds::<Rgb565>();
+        holds::<Bgr565>();
     }
 }
