@@ -194,14 +194,14 @@ macro_rules! faces_body {
                 "0",
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
-            // Refused by the set-up: the caller's. Else its counts (64-bit sums).
+            // Refused by the set-up: the caller's. Else its counts (64-bit sums, each
+            // one UMLAL of the count times 1).
             "cbnz r2, 68f\n",
             "add r0, r7, #156\n",
             "ldm r0, {{r4, r5, r8, r9, r10}}\n",
-            "adds r4, r4, r1\n",
-            "adc r5, r5, #0\n",
-            "adds r8, r8, r3\n",
-            "adc r9, r9, #0\n",
+            "movs r11, #1\n",
+            "umlal r4, r5, r1, r11\n",
+            "umlal r8, r9, r3, r11\n",
             "add r10, r10, #1\n",
             "stm r0, {{r4, r5, r8, r9, r10}}\n",
             "b 60b\n",
