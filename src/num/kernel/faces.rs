@@ -114,14 +114,14 @@ const _: () = {
     assert!(offset_of!(B, failed) == 164 && offset_of!(B, drawn) == 172);
 };
 
-/// The colour of a face into lr: the block's (`flat`), or (`lit`) `lit_565` of the
-/// face (r1) through the function making it a `C`, or (`raw`) as it is (a face without
-/// a normal is left to the caller, at 68).
+/// The colour of a face into the rows' block (at 12): the block's, stored there once
+/// (`flat`), or (`lit`) `lit_565` of the face (r1) through the function making it a
+/// `C`, or (`raw`) as it is (a face without a normal is left to the caller, at 68).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! faces_color {
     (flat) => {
-        "ldr lr, [r7, #144]\n"
+        ""
     };
     (lit) => {
         concat!(
@@ -131,7 +131,7 @@ macro_rules! faces_color {
             "bne 68f\n",
             "ldr r1, [r7, #152]\n",
             "bl {bits}\n",
-            "mov lr, r0\n",
+            "str r0, [r7, #12]\n",
         )
     };
     (raw) => {
@@ -140,7 +140,7 @@ macro_rules! faces_color {
             lit_565_asm!(),
             "lsrs r1, r0, #16\n",
             "bne 68f\n",
-            "mov lr, r0\n",
+            "str r0, [r7, #12]\n",
         )
     };
 }
@@ -159,6 +159,13 @@ macro_rules! faces_body {
             // The entries' address (the x/y words' less 4), kept in r6.
             "ldr r6, [r7, #92]\n",
             "subs r6, #4\n",
+            // The colour (one for all: the block's), its delta and the pitch into the
+            // rows' block once: the set-up's `fused` form does not store them.
+            "ldr r0, [r7, #144]\n",
+            "ldr r1, [r7, #140]\n",
+            "strd r0, r1, [r7, #12]\n",
+            "ldr r0, [r7, #136]\n",
+            "str r0, [r7, #40]\n",
             "60:\n",
             "add r0, r7, #84\n",
             "ldm r0, {{r0, r1, r2, r3, r4, r5, r12, lr}}\n",
@@ -183,10 +190,10 @@ macro_rules! faces_body {
             "add r1, r6, r8, lsl #3\n",
             "add r2, r6, r9, lsl #3\n",
             "add r3, r6, r10, lsl #3\n",
-            "add r0, r7, #116\n",
-            "ldm r0, {{r4, r5, r8, r9, r10, r11, r12}}\n",
+            "ldrd r5, r8, [r7, #120]\n",
             "mov r0, r7\n",
             small_body!(
+                fused,
                 "ldrsh",
                 "6",
                 "ldrsh",
@@ -328,12 +335,15 @@ fn faces_less_dsp<'a, C: Copy>(
     // its value becomes a `C` by `bits_of`, which calls the caller's function (handed
     // over as a pointer, `to_color`) and returns that
     // `C`'s two bytes (`two_bytes`, checked by `kernel_buffers`): only the bits of a
-    // `C` are written; with a `Raw565` (`raw`) the value itself, which is those bytes. The set-up and rows (`small_body`) are `small_less_dsp`'s with
+    // `C` are written; with a `Raw565` (`raw`) the value itself, which is those bytes.
+    // The set-up and rows (`small_body`, its `fused` form) are `small_less_dsp`'s with
     // the same operands (depth row 0's address, the clip, the pitch, the colour's
     // delta, worked out as there from `kernel_buffers`' slices: every row and column
-    // of the clip inside both buffers) and the same block (`RowsLess` at offset 0 of
-    // this block, word-aligned; its SAFETY argument); a triangle it refuses goes to
-    // the caller. The counts are stored into the block by its pinned offsets. r6 and
+    // of the clip inside both buffers; the delta and pitch stored into the rows' block
+    // once before the loop, the colour each face or once, zrow0 and the clip's columns
+    // read from `setup`, none of them written by the rows) and the same block
+    // (`RowsLess` at offset 0 of this block, word-aligned; its SAFETY argument); a
+    // triangle it refuses goes to the caller. The counts are stored into the block by its pinned offsets. r6 and
     // r7 (not allowed as operands) are pushed first and popped last, r7 holding the
     // block meanwhile; the calls (`bits_of`, the set-up's `wide_steps_c`) keep r4–r11
     // and the stack 8-aligned; every other register written is declared, the

@@ -839,16 +839,16 @@ fn rows_less_dsp(
 }
 
 /// The end of [`small_body`]'s set-up: the first row's address (r4) from px0 (r4) and
-/// zrow0 (pushed at sp + 16), the first half's rows (r5), the 16 bytes where r0–r3 were
+/// zrow0 (loaded into r1 by `$zrow`), the first half's rows (r5), the 16 bytes where r0–r3 were
 /// pushed (its scratch: the first corner's address as pushed at sp + 4, n0, xmax)
 /// released.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! rows_start {
-    () => {
+    ($zrow:literal) => {
         concat!(
             "ldr r2, [r0, #40]\n",
-            "ldr r1, [sp, #16]\n",
+            $zrow,
             "mla r1, r5, r2, r1\n",
             "add r4, r1, r4, lsl #1\n",
             "ldr r5, [sp, #8]\n",
@@ -859,18 +859,36 @@ macro_rules! rows_start {
 
 /// The set-up and rows of [`small_less_dsp`] (the assembly template), for corners whose
 /// y and x are read by `$ly`/`$lx` at byte offsets `$oy`/`$ox` and z at `$oz`; `$p0` loads
-/// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z).
+/// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z). With
+/// `fused` first (the face loop's): the colour, its delta and the pitch already in the
+/// block, zrow0 and the clip's columns read from the block at 116 and 128 (not r4, r9,
+/// r10), failed zeroed.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
     ($ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
+        small_body!(
+            @ "strd lr, r12, [r0, #12]\nmovs r12, #0\nstrd r11, r12, [r0, #40]\n",
+            "ldr r1, [sp, #16]\n",
+            "ldrd r8, r10, [sp, #36]\n",
+            $ly, $oy, $lx, $ox, $oz, $p0
+        )
+    };
+    (fused, $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
+        small_body!(
+            @ "movs r12, #0\nstr r12, [r0, #44]\n",
+            "ldr r1, [r0, #116]\n",
+            "ldrd r8, r10, [r0, #128]\n",
+            $ly, $oy, $lx, $ox, $oz, $p0
+        )
+    };
+    (@ $entry:literal, $zrow:literal, $clipx:literal,
+     $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
             // r0–r3 pushed to make the set-up's 16 bytes of scratch (r1, the first
             // corner's address, kept at sp + 4), r4–r12 for the caller.
             "push {{r0-r12}}\n",
-            "strd lr, r12, [r0, #12]\n",
-            "movs r12, #0\n",
-            "strd r11, r12, [r0, #40]\n",
+            $entry,
             // The corners top to bottom (r1, r2, r3; their y in r6, r7, r9), stable.
             concat!($ly, " r6, [r1, #", $oy, "]\n"),
             concat!($ly, " r7, [r2, #", $oy, "]\n"),
@@ -1064,7 +1082,7 @@ macro_rules! small_body {
             // The rows inside the clip's columns when px0 ≥ clip.x0 and
             // ⌊(xmax + 8)/16⌋ ≤ clip.x1 (at 200); else the clip's columns made local
             // for the rows' clamp (clip.x0, clip.x1 as pushed by the entry, at sp + 16 + 20).
-            "ldrd r8, r10, [sp, #36]\n",
+            $clipx,
             "ldr r12, [sp, #12]\n",
             "add r12, r12, #8\n",
             "cmp r4, r8\n",
@@ -1074,7 +1092,7 @@ macro_rules! small_body {
             "sub r8, r8, r4\n",
             "sub r10, r10, r4\n",
             "strd r8, r10, [r0, #28]\n",
-            rows_start!(),
+            rows_start!($zrow),
             rows_body!(clip),
             "b 199f\n",
             // Not drawn (90: for the general path), the steep depth's call (92).
@@ -1103,7 +1121,7 @@ macro_rules! small_body {
             "movs r3, #0\n",
             "b 99f\n",
             "200:\n",
-            rows_start!(),
+            rows_start!($zrow),
             rows_body!(inside),
             "199:\n",
             "ldr r3, [r0, #44]\n",
