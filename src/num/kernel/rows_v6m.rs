@@ -480,45 +480,14 @@ macro_rules! rows_walk_section {
 }
 
 /// The section of `zraster_small_walk_v6m` (the set-up, run once a triangle): the
-/// rows loop's own, so that it joins the loop by a branch; under `zraster_ram_code`
-/// flash (RAM is scarce there), the loop then reached through a register.
-#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
-macro_rules! small_walk_section {
-    () => {
-        ".pushsection .text.zraster_small_walk_v6m,\"ax\",%progbits"
-    };
-}
-#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
-macro_rules! rows_walk_jump {
-    () => {
-        "ldr r4, .Lsw_body\nbx r4"
-    };
-}
-#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
-macro_rules! rows_walk_literal {
-    () => {
-        ".Lsw_body:\n.word .Lzraster_rows_walk_body + 1"
-    };
-}
-#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+/// rows loop's own (RAM under `zraster_ram_code`), so that it joins the loop by a
+/// branch.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! small_walk_section {
     () => {
         rows_walk_section!()
     };
 }
-#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
-macro_rules! rows_walk_jump {
-    () => {
-        "b .Lzraster_rows_walk_body"
-    };
-}
-#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
-macro_rules! rows_walk_literal {
-    () => {
-        ""
-    };
-}
-
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
     /// [`rows_walk_less_u16`]'s loop on ARMv6-M, a whole function in `global_asm!`
@@ -1201,7 +1170,7 @@ core::arch::global_asm!(
     "ldr r1, [sp, #24]",
     "mov r3, r10",
     "add sp, #48",
-    rows_walk_jump!(),
+    "b .Lzraster_rows_walk_body",
     // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: by
     // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r4 = Y =
     // 16·py + 8 − y (≥ 0) and r5 = X = x − 16·px0 − 8. First the step ⌊dx/dy⌋ and its
@@ -1378,7 +1347,6 @@ core::arch::global_asm!(
     ".word 0x07ffffff",
     ".Lsw_range:",
     ".word 0x0fffffff",
-    rows_walk_literal!(),
     ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
     ".popsection",
     lz8 = sym crate::num::armv6m::LEADING_ZEROS8,
