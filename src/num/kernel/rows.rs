@@ -71,6 +71,13 @@ const _: () = {
 };
 
 impl RowsLess {
+    /// The pixels failed since `failed` was last zeroed (the face loop's running sum).
+    #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn failed(&self) -> u32 {
+        self.failed
+    }
+
     /// Rows clipped to the columns `cx0..cx1`, everything else 0 (field by field: each
     /// is written again before the assembly reads it, and the compiler drops these).
     #[inline(always)]
@@ -862,7 +869,7 @@ macro_rules! rows_start {
 /// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z). With
 /// `fused` first (the face loop's): the colour, its delta and the pitch already in the
 /// block, zrow0 and the clip's columns read from the block at 116 and 128 (not r4, r9,
-/// r10), failed zeroed.
+/// r10), failed not zeroed (the face loop's running sum).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -876,7 +883,7 @@ macro_rules! small_body {
     };
     (fused, $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         small_body!(
-            @ "movs r12, #0\nstr r12, [r0, #44]\n",
+            @ "",
             "ldr r1, [r0, #116]\n",
             "ldrd r8, r10, [r0, #128]\n",
             $ly, $oy, $lx, $ox, $oz, $p0
