@@ -100,7 +100,12 @@ struct FacesBlock {
     to_color: *const u8, // 152
     tested: [u32; 2], // 156
     failed: [u32; 2], // 164
-    drawn: u32,     // 172
+    /// Faces to draw before the next flush (8192 down to 1).
+    drawn: u32, // 172
+    /// Pixels tested since the last flush into `tested` (those failed: the rows' `failed`).
+    run: u32, // 176
+    /// Flushes so far (8192 faces drawn each).
+    flushes: u32, // 180
 }
 
 #[cfg(target_pointer_width = "32")]
@@ -112,7 +117,12 @@ const _: () = {
     assert!(offset_of!(B, color) == 144 && offset_of!(B, light) == 148);
     assert!(offset_of!(B, to_color) == 152 && offset_of!(B, tested) == 156);
     assert!(offset_of!(B, failed) == 164 && offset_of!(B, drawn) == 172);
+    assert!(offset_of!(B, run) == 176 && offset_of!(B, flushes) == 180);
 };
+
+/// Faces drawn between the fused loop's flushes of its 32-bit sums (the `8192` there).
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+const FLUSH: u32 = 8192;
 
 /// The colour of a face into the rows' block (at 12): the block's, stored there once
 /// (`flat`), or (`lit`) `lit_565` of the face (r1) through the function making it a
@@ -178,10 +188,9 @@ macro_rules! faces_body {
             "b 69f\n",
             // Drawn: the place after it, its number (r1), its indices (r8–r10).
             "4:\n",
-            "subs r1, #1\n",
-            "strd r0, r1, [r7, #84]\n",
-            "mvn r1, r1\n",
-            "add r1, lr, r1\n",
+            "subs r2, r1, #1\n",
+            "strd r0, r2, [r7, #84]\n",
+            "sub r1, lr, r1\n",
             "ldrh r8, [r0, #-6]\n",
             "ldrh r9, [r0, #-4]\n",
             "ldrh r10, [r0, #-2]\n",
@@ -201,16 +210,32 @@ macro_rules! faces_body {
                 "0",
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
-            // Refused by the set-up: the caller's. Else its counts (64-bit sums, each
-            // one UMLAL of the count times 1).
+            // Refused by the set-up: the caller's. Else its counts: drawn, and tested
+            // into a 32-bit sum (failed the rows add up at 44), both flushed into the
+            // 64-bit sums every 8192 drawn faces (each tests < 2^18.01 pixels: no wrap).
             "cbnz r2, 68f\n",
-            "add r0, r7, #156\n",
-            "ldm r0, {{r4, r5, r8, r9, r10}}\n",
-            "movs r11, #1\n",
-            "umlal r4, r5, r1, r11\n",
-            "umlal r8, r9, r3, r11\n",
-            "add r10, r10, #1\n",
-            "stm r0, {{r4, r5, r8, r9, r10}}\n",
+            "ldrd r4, r5, [r7, #172]\n",
+            "subs r4, #1\n",
+            "add r5, r1\n",
+            "strd r4, r5, [r7, #172]\n",
+            "bne 60b\n",
+            "ldrd r8, r9, [r7, #156]\n",
+            "adds r8, r8, r5\n",
+            "adc r9, r9, #0\n",
+            "ldrd r10, r11, [r7, #164]\n",
+            "ldr r4, [r7, #44]\n",
+            "adds r10, r10, r4\n",
+            "adc r11, r11, #0\n",
+            "strd r8, r9, [r7, #156]\n",
+            "strd r10, r11, [r7, #164]\n",
+            "movs r4, #0\n",
+            "str r4, [r7, #176]\n",
+            "str r4, [r7, #44]\n",
+            "ldr r4, [r7, #180]\n",
+            "adds r4, #1\n",
+            "str r4, [r7, #180]\n",
+            "mov r4, #8192\n",
+            "str r4, [r7, #172]\n",
             "b 60b\n",
             "68:\n",
             "movs r0, #1\n",
@@ -319,7 +344,9 @@ fn faces_less_dsp<'a, C: Copy>(
         to_color: core::ptr::null(),
         tested: [0; 2],
         failed: [0; 2],
-        drawn: 0,
+        drawn: FLUSH,
+        run: 0,
+        flushes: 0,
     };
     let status: u32;
     // SAFETY: the loop composes three blocks whose bounds arguments hold as they do
@@ -405,9 +432,15 @@ fn faces_less_dsp<'a, C: Copy>(
         }
     }
     let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
-    counts.tested = counts.tested.wrapping_add(wide(block.tested));
-    counts.failed = counts.failed.wrapping_add(wide(block.failed));
-    counts.drawn = counts.drawn.wrapping_add(block.drawn);
+    let tested = wide(block.tested).wrapping_add(u64::from(block.run));
+    let failed = wide(block.failed).wrapping_add(u64::from(block.rows.failed()));
+    counts.tested = counts.tested.wrapping_add(tested);
+    counts.failed = counts.failed.wrapping_add(failed);
+    let drawn = block
+        .flushes
+        .wrapping_mul(FLUSH)
+        .wrapping_add(FLUSH - block.drawn);
+    counts.drawn = counts.drawn.wrapping_add(drawn);
     *pos = regs.faces_len - block.left as usize;
     if status == 0 {
         return FacesStop::Scan;

@@ -71,6 +71,13 @@ const _: () = {
 };
 
 impl RowsLess {
+    /// The pixels failed since `failed` was last zeroed (the face loop's running sum).
+    #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn failed(&self) -> u32 {
+        self.failed
+    }
+
     /// Rows clipped to the columns `cx0..cx1`, everything else 0 (field by field: each
     /// is written again before the assembly reads it, and the compiler drops these).
     #[inline(always)]
@@ -862,7 +869,7 @@ macro_rules! rows_start {
 /// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z). With
 /// `fused` first (the face loop's): the colour, its delta and the pitch already in the
 /// block, zrow0 and the clip's columns read from the block at 116 and 128 (not r4, r9,
-/// r10), failed zeroed.
+/// r10), failed neither zeroed nor read (the face loop's running sum; r3 left undefined).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -871,18 +878,20 @@ macro_rules! small_body {
             @ "strd lr, r12, [r0, #12]\nmovs r12, #0\nstrd r11, r12, [r0, #40]\n",
             "ldr r1, [sp, #16]\n",
             "ldrd r8, r10, [sp, #36]\n",
+            "ldr r3, [r0, #44]\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
     (fused, $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         small_body!(
-            @ "movs r12, #0\nstr r12, [r0, #44]\n",
+            @ "",
             "ldr r1, [r0, #116]\n",
             "ldrd r8, r10, [r0, #128]\n",
+            "",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
-    (@ $entry:literal, $zrow:literal, $clipx:literal,
+    (@ $entry:literal, $zrow:literal, $clipx:literal, $failed:literal,
      $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
             // r0–r3 pushed to make the set-up's 16 bytes of scratch (r1, the first
@@ -1124,7 +1133,7 @@ macro_rules! small_body {
             rows_start!($zrow),
             rows_body!(inside),
             "199:\n",
-            "ldr r3, [r0, #44]\n",
+            $failed,
             "movs r2, #0\n",
             "99:\n",
             "pop {{r4-r12}}\n",
