@@ -370,65 +370,42 @@ fn faces_less_dsp<'a, C: Copy>(
     // once before the loop, the colour each face or once, zrow0 and the clip's columns
     // read from `setup`, none of them written by the rows) and the same block
     // (`RowsLess` at offset 0 of this block, word-aligned; its SAFETY argument); a
-    // triangle it refuses goes to the caller. The counts are stored into the block by its pinned offsets. r6 and
-    // r7 (not allowed as operands) are pushed first and popped last, r7 holding the
-    // block meanwhile; the calls (`bits_of`, the set-up's `wide_steps_c`) keep r4–r11
+    // triangle it refuses goes to the caller. The counts are stored into the block by
+    // its pinned offsets. r6 and r7 (not allowed as operands) are pushed first and
+    // popped last, r7 holding the block meanwhile; the calls (`bits_of`, the set-up's `wide_steps_c`) keep r4–r11
     // and the stack 8-aligned; every other register written is declared, the
     // floating-point ones the calls may write among them; the flags are scratch.
     unsafe {
+        // One loop body a colouring, with the same operands (`$extra`: the colour
+        // function where the body calls it).
+        macro_rules! faces_asm {
+            ($kind:ident $($extra:tt)*) => {
+                core::arch::asm!(
+                    faces_body!($kind),
+                    inout("r0") &mut block as *mut FacesBlock => status,
+                    out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+                    out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+                    out("r12") _, out("lr") _,
+                    wide = sym super::rows::wide_steps_c,
+                    $($extra)*
+                    #[cfg(not(zraster_soft_float))] out("d0") _,
+                    #[cfg(not(zraster_soft_float))] out("d1") _,
+                    #[cfg(not(zraster_soft_float))] out("d2") _,
+                    #[cfg(not(zraster_soft_float))] out("d3") _,
+                    #[cfg(not(zraster_soft_float))] out("d4") _,
+                    #[cfg(not(zraster_soft_float))] out("d5") _,
+                    #[cfg(not(zraster_soft_float))] out("d6") _,
+                    #[cfg(not(zraster_soft_float))] out("d7") _,
+                )
+            };
+        }
         if let Some((_, true)) = to_color {
-            core::arch::asm!(
-                faces_body!(raw),
-                inout("r0") &mut block as *mut FacesBlock => status,
-                out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
-                out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                out("r12") _, out("lr") _,
-                wide = sym super::rows::wide_steps_c,
-                #[cfg(not(zraster_soft_float))] out("d0") _,
-                #[cfg(not(zraster_soft_float))] out("d1") _,
-                #[cfg(not(zraster_soft_float))] out("d2") _,
-                #[cfg(not(zraster_soft_float))] out("d3") _,
-                #[cfg(not(zraster_soft_float))] out("d4") _,
-                #[cfg(not(zraster_soft_float))] out("d5") _,
-                #[cfg(not(zraster_soft_float))] out("d6") _,
-                #[cfg(not(zraster_soft_float))] out("d7") _,
-            );
+            faces_asm!(raw);
         } else if let Some((f, _)) = to_color {
             block.to_color = f as *const u8;
-            core::arch::asm!(
-                faces_body!(lit),
-                inout("r0") &mut block as *mut FacesBlock => status,
-                out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
-                out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                out("r12") _, out("lr") _,
-                wide = sym super::rows::wide_steps_c,
-                bits = sym bits_of::<C>,
-                #[cfg(not(zraster_soft_float))] out("d0") _,
-                #[cfg(not(zraster_soft_float))] out("d1") _,
-                #[cfg(not(zraster_soft_float))] out("d2") _,
-                #[cfg(not(zraster_soft_float))] out("d3") _,
-                #[cfg(not(zraster_soft_float))] out("d4") _,
-                #[cfg(not(zraster_soft_float))] out("d5") _,
-                #[cfg(not(zraster_soft_float))] out("d6") _,
-                #[cfg(not(zraster_soft_float))] out("d7") _,
-            );
+            faces_asm!(lit bits = sym bits_of::<C>,);
         } else {
-            core::arch::asm!(
-                faces_body!(flat),
-                inout("r0") &mut block as *mut FacesBlock => status,
-                out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
-                out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                out("r12") _, out("lr") _,
-                wide = sym super::rows::wide_steps_c,
-                #[cfg(not(zraster_soft_float))] out("d0") _,
-                #[cfg(not(zraster_soft_float))] out("d1") _,
-                #[cfg(not(zraster_soft_float))] out("d2") _,
-                #[cfg(not(zraster_soft_float))] out("d3") _,
-                #[cfg(not(zraster_soft_float))] out("d4") _,
-                #[cfg(not(zraster_soft_float))] out("d5") _,
-                #[cfg(not(zraster_soft_float))] out("d6") _,
-                #[cfg(not(zraster_soft_float))] out("d7") _,
-            );
+            faces_asm!(flat);
         }
     }
     let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
