@@ -86,7 +86,7 @@ pub(crate) fn fill_small_cached<C: Copy>(
     color: C,
 ) -> Option<(u32, u32)> {
     if WALK_KERNEL {
-        return walk_cached(b, tri, color);
+        return walk_cached_or_none(b, tri, color);
     }
     if !ROWS_KERNEL {
         return None;
@@ -104,16 +104,20 @@ pub(crate) fn fill_small_cached<C: Copy>(
     }
 }
 
-/// ARMv6-M's small triangle of cache entries `tri` (`Less` with depth writes, a
-/// two-byte colour) by [`small_walk_cached_as_u16`] (set-up and rows in assembly):
-/// (pixels tested, pixels written), or `None` (nothing drawn) for what it leaves to
-/// the general path. Out of line: one copy for every loop, its block in its own frame.
+/// ARMv6-M's small triangle of cache entries `p`, `q`, `r` (`Less` with depth
+/// writes, a two-byte colour) by [`small_walk_cached_as_u16`] (set-up and rows in
+/// assembly): (pixels tested, pixels written), or `u32::MAX` tested (nothing drawn)
+/// for what it leaves to the general path (a small triangle tests under 2¹⁹ pixels).
+/// Out of line: one copy for every loop, its block in its own frame; the corners and
+/// the counts in registers.
 #[inline(never)]
 fn walk_cached<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
-    tri: [&CachedVertex; 3],
+    p: &CachedVertex,
+    q: &CachedVertex,
+    r: &CachedVertex,
     color: C,
-) -> Option<(u32, u32)> {
+) -> (u32, u32) {
     let mut t = SmallTarget {
         z: &mut *b.zdata,
         c: &mut *b.cdata,
@@ -121,10 +125,21 @@ fn walk_cached<C: Copy>(
         first_row: b.first_row,
         clip: b.clip,
     };
-    match small_walk_cached_as_u16(&mut t, tri, color) {
-        SmallDone::Drawn(tested, failed) => Some((tested, tested.wrapping_sub(failed))),
-        SmallDone::General => None,
+    match small_walk_cached_as_u16(&mut t, [p, q, r], color) {
+        SmallDone::Drawn(tested, failed) => (tested, tested.wrapping_sub(failed)),
+        SmallDone::General => (u32::MAX, 0),
     }
+}
+
+/// [`walk_cached`] as an `Option`.
+#[inline(always)]
+fn walk_cached_or_none<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    [p, q, r]: [&CachedVertex; 3],
+    color: C,
+) -> Option<(u32, u32)> {
+    let (tested, written) = walk_cached(b, p, q, r, color);
+    (tested != u32::MAX).then_some((tested, written))
 }
 
 /// ARMv6-M's small path: `Less` with depth writes in a two-byte colour by
@@ -142,7 +157,7 @@ fn fill_small_walk<C: Copy>(
 ) -> Option<(u32, u32)> {
     if write && is_less(&pass) && two_bytes::<C>() {
         if let Some([p, q, r]) = cache_entries(tri) {
-            if let Some(done) = walk_cached(b, [&p, &q, &r], color) {
+            if let Some(done) = walk_cached_or_none(b, [&p, &q, &r], color) {
                 return Some(done);
             }
         }

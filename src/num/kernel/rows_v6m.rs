@@ -267,16 +267,20 @@ pub(crate) fn cache_entries(tri: [&ScreenVertex; 3]) -> Option<[CachedVertex; 3]
 }
 
 /// Whether every row and column of `clip` lies inside buffers of `len` pixels, rows of
-/// `width` from screen row `first_row` (rows and width below 2¹⁶: a 32-bit product):
-/// then so is every pixel the set-up's rows may touch.
+/// `width` from screen row `first_row`: then so is every pixel the set-up's rows may
+/// touch. In 32-bit arithmetic, as the assembly's addresses: a row's offset from the
+/// first is `row − first_row` modulo 2³², those of `y0` and `y1` (`a ≤ b`, both below
+/// 2¹⁶, as the width: a 32-bit product) bound every row between (a row lies in
+/// `y0..y1` by signed compares, so its offset is `a` plus less than `y1 − y0 = b − a`).
 #[inline(always)]
 fn clip_inside(clip: Clip, first_row: i32, width: usize, len: usize) -> bool {
-    let rows = clip.y1.saturating_sub(first_row).max(0) as usize;
-    (rows | width) <= 0xffff
+    let a = clip.y0.wrapping_sub(first_row) as u32;
+    let b = clip.y1.wrapping_sub(first_row) as u32;
+    a <= b
+        && (b as usize | width) <= 0xffff
         && clip.x0 >= 0
         && clip.x1 <= width as i32
-        && clip.y0 >= first_row
-        && rows * width <= len
+        && b as usize * width <= len
 }
 
 /// [`small_walk_less_as_u16`] with the corners as the vertex cache holds them
