@@ -127,8 +127,16 @@ fn walk_cached<C: Copy>(
     };
     match small_walk_cached_as_u16(&mut t, [p, q, r], color) {
         SmallDone::Drawn(tested, failed) => (tested, tested.wrapping_sub(failed)),
-        SmallDone::General => (u32::MAX, 0),
+        SmallDone::General => refused(),
     }
+}
+
+/// [`walk_cached`]'s answer for a triangle it leaves to the general path: cold, so
+/// that the usual path does not set it up.
+#[cold]
+#[inline(never)]
+fn refused() -> (u32, u32) {
+    (u32::MAX, 0)
 }
 
 /// [`walk_cached`] as an `Option`.
