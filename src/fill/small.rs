@@ -9,7 +9,7 @@
 
 use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
-use crate::num::kernel::small_walk_less_as_u16;
+use crate::num::kernel::{cache_entries, small_walk_cached_as_u16};
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
 use crate::num::kernel::{small_less_as_u16, small_less_cached, two_bytes, CachedVertex};
 use crate::num::kernel::{SmallDone, SmallTarget, ROWS_KERNEL};
@@ -74,16 +74,20 @@ pub(crate) fn fill_small<C: Copy>(
     }
 }
 
-/// [`fill_small`] for the depth test `Less` with depth writes where the small
-/// triangles' kernel runs ([`ROWS_KERNEL`]), the corners read in place from the vertex
-/// cache ([`small_less_cached`]); `None` as [`fill_small`] has it (then also for a
-/// colour that is not two bytes, or without the kernel).
+/// [`fill_small`] for the depth test `Less` with depth writes where a small
+/// triangles' kernel runs, the corners as the vertex cache holds them, read in place
+/// by ARMv7E-M's ([`small_less_cached`]) and ARMv6-M's ([`walk_cached`]); `None` as
+/// [`fill_small`] has it (then also for a colour that is not two bytes, or without a
+/// kernel).
 #[inline(always)]
 pub(crate) fn fill_small_cached<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
     tri: [&CachedVertex; 3],
     color: C,
 ) -> Option<(u32, u32)> {
+    if WALK_KERNEL {
+        return walk_cached_or_none(b, tri, color);
+    }
     if !ROWS_KERNEL {
         return None;
     }
@@ -100,10 +104,57 @@ pub(crate) fn fill_small_cached<C: Copy>(
     }
 }
 
+/// ARMv6-M's small triangle of cache entries `p`, `q`, `r` (`Less` with depth
+/// writes, a two-byte colour) by [`small_walk_cached_as_u16`] (set-up and rows in
+/// assembly): (pixels tested, pixels written), or `u32::MAX` tested (nothing drawn)
+/// for what it leaves to the general path (a small triangle tests under 2¹⁹ pixels).
+/// Out of line: one copy for every loop, its block in its own frame; the corners and
+/// the counts in registers.
+#[inline(never)]
+fn walk_cached<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    p: &CachedVertex,
+    q: &CachedVertex,
+    r: &CachedVertex,
+    color: C,
+) -> (u32, u32) {
+    let mut t = SmallTarget {
+        z: &mut *b.zdata,
+        c: &mut *b.cdata,
+        width: b.width,
+        first_row: b.first_row,
+        clip: b.clip,
+    };
+    match small_walk_cached_as_u16(&mut t, [p, q, r], color) {
+        SmallDone::Drawn(tested, failed) => (tested, tested.wrapping_sub(failed)),
+        SmallDone::General => refused(),
+    }
+}
+
+/// [`walk_cached`]'s answer for a triangle it leaves to the general path: cold, so
+/// that the usual path does not set it up.
+#[cold]
+#[inline(never)]
+fn refused() -> (u32, u32) {
+    (u32::MAX, 0)
+}
+
+/// [`walk_cached`] as an `Option`.
+#[inline(always)]
+fn walk_cached_or_none<C: Copy>(
+    b: &mut Buffers<'_, '_, C>,
+    [p, q, r]: [&CachedVertex; 3],
+    color: C,
+) -> Option<(u32, u32)> {
+    let (tested, written) = walk_cached(b, p, q, r, color);
+    (tested != u32::MAX).then_some((tested, written))
+}
+
 /// ARMv6-M's small path: `Less` with depth writes in a two-byte colour by
-/// [`small_walk_less_as_u16`] (set-up and rows in assembly); what it leaves (steep
-/// depth, a clip beyond the buffers) and the other tests by [`fill_small_with`]'s
-/// set-up, its rows through [`rows_walk_less_as_u16`] where it can.
+/// [`walk_cached`] (set-up and rows in assembly) when the corners fit the vertex
+/// cache's form; what it leaves (steep depth, a clip beyond the buffers) and the other
+/// tests by [`fill_small_with`]'s set-up, its rows through [`rows_walk_less_as_u16`]
+/// where it can.
 #[inline(always)]
 fn fill_small_walk<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
@@ -113,15 +164,10 @@ fn fill_small_walk<C: Copy>(
     pass: impl Fn(u16, u16) -> bool + Copy,
 ) -> Option<(u32, u32)> {
     if write && is_less(&pass) && two_bytes::<C>() {
-        let mut t = SmallTarget {
-            z: &mut *b.zdata,
-            c: &mut *b.cdata,
-            width: b.width,
-            first_row: b.first_row,
-            clip: b.clip,
-        };
-        if let SmallDone::Drawn(tested, failed) = small_walk_less_as_u16(&mut t, tri, color) {
-            return Some((tested, tested.wrapping_sub(failed)));
+        if let Some([p, q, r]) = cache_entries(tri) {
+            if let Some(done) = walk_cached_or_none(b, [&p, &q, &r], color) {
+                return Some(done);
+            }
         }
     }
     fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, true)

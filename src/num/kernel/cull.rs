@@ -14,6 +14,7 @@ pub(crate) const CULL_KERNEL: bool = cfg!(all(zraster_thumb, any(zraster_dsp, zr
 /// halfword load each.
 #[cfg(zraster_armv6m)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(transparent)]
 pub(crate) struct XyWord(i32);
 
 #[cfg(zraster_armv6m)]

@@ -7,7 +7,7 @@
 #![allow(unsafe_code)]
 
 use super::rows::{as_u16, check_cases, check_place, next, twin_row, CHECK_W};
-use super::{RowsAt, SmallDone, SmallTarget};
+use super::{CachedVertex, RowsAt, SmallDone, SmallTarget, XyWord};
 use crate::num::floor_div32_pair_small;
 use crate::raster::{Clip, ScreenVertex, DEPTH_BIAS, SMALL};
 
@@ -228,7 +228,10 @@ const _: () = {
     use core::mem::{offset_of, size_of};
     assert!(offset_of!(SmallWalk, clip) == 84 && offset_of!(SmallWalk, first_row) == 100);
     assert!(offset_of!(SmallWalk, zaddr) == 104 && size_of::<SmallWalk>() == 108);
-    assert!(size_of::<ScreenVertex>() == 12 && SMALL == 8192 && DEPTH_BIAS == 32768);
+    assert!(SMALL == 8192 && DEPTH_BIAS == 32768);
+    // The corners as the cache holds them: the depth, then x (low half) and y.
+    assert!(offset_of!(CachedVertex, z) == 0 && offset_of!(CachedVertex, xy) == 4);
+    assert!(size_of::<CachedVertex>() == 8);
 };
 
 /// The small flat triangle `tri` in `color` with the depth test `Less` and depth
@@ -243,20 +246,56 @@ pub(crate) fn small_walk_less_as_u16<C: Copy>(
     tri: [&ScreenVertex; 3],
     color: C,
 ) -> SmallDone {
+    let Some([a, b, c]) = cache_entries(tri) else {
+        return SmallDone::General;
+    };
+    small_walk_cached_as_u16(t, [&a, &b, &c], color)
+}
+
+/// The corners `tri` as the vertex cache holds them (an unmarked entry: x and y in
+/// `i16`), or `None` when one does not fit.
+#[inline(always)]
+pub(crate) fn cache_entries(tri: [&ScreenVertex; 3]) -> Option<[CachedVertex; 3]> {
+    let entry = |v: &ScreenVertex| {
+        let (x, y) = (i16::try_from(v.x()).ok()?, i16::try_from(v.y()).ok()?);
+        Some(CachedVertex {
+            z: v.z(),
+            xy: XyWord::new(x, y),
+        })
+    };
+    Some([entry(tri[0])?, entry(tri[1])?, entry(tri[2])?])
+}
+
+/// Whether every row and column of `clip` lies inside buffers of `len` pixels, rows of
+/// `width` from screen row `first_row`: then so is every pixel the set-up's rows may
+/// touch. In 32-bit arithmetic, as the assembly's addresses: a row's offset from the
+/// first is `row − first_row` modulo 2³², those of `y0` and `y1` (`a ≤ b`, both below
+/// 2¹⁶, as the width: a 32-bit product) bound every row between (a row lies in
+/// `y0..y1` by signed compares, so its offset is `a` plus less than `y1 − y0 = b − a`).
+#[inline(always)]
+fn clip_inside(clip: Clip, first_row: i32, width: usize, len: usize) -> bool {
+    let a = clip.y0.wrapping_sub(first_row) as u32;
+    let b = clip.y1.wrapping_sub(first_row) as u32;
+    a <= b
+        && (b as usize | width) <= 0xffff
+        && clip.x0 >= 0
+        && clip.x1 <= width as i32
+        && b as usize * width <= len
+}
+
+/// [`small_walk_less_as_u16`] with the corners as the vertex cache holds them
+/// (unmarked entries), read in place by the assembly.
+#[inline(always)]
+pub(crate) fn small_walk_cached_as_u16<C: Copy>(
+    t: &mut SmallTarget<'_, '_, C>,
+    tri: [&CachedVertex; 3],
+    color: C,
+) -> SmallDone {
     let Some((words, bits)) = as_u16(&mut *t.c, color) else {
         return SmallDone::General;
     };
-    // Every row and column of the clip inside both buffers (rows and width below
-    // 2¹⁶: a 32-bit product): then so is every pixel the rows may touch.
-    let (clip, width) = (t.clip, t.width);
-    let len = t.z.len().min(words.len());
-    let rows = clip.y1.saturating_sub(t.first_row).max(0) as usize;
-    let inside = (rows | width) <= 0xffff
-        && clip.x0 >= 0
-        && clip.x1 <= width as i32
-        && clip.y0 >= t.first_row
-        && rows * width <= len;
-    if !inside {
+    let (clip, first_row, width) = (t.clip, t.first_row, t.width);
+    if !clip_inside(clip, first_row, width, t.z.len().min(words.len())) {
         return SmallDone::General;
     }
     #[cfg(all(zraster_thumb, zraster_armv6m))]
@@ -267,32 +306,38 @@ pub(crate) fn small_walk_less_as_u16<C: Copy>(
         let mut s = core::mem::MaybeUninit::<SmallWalk>::uninit();
         let p = s.as_mut_ptr();
         // SAFETY: writes to fields of `s`, through a pointer to it (no reference to
-        // uninitialised memory is made).
+        // uninitialised memory is made). Then the call: every row and column of the
+        // clip lies inside both buffers (checked above), and the assembly draws only
+        // inside the clip; its comment says what it touches. `failed` is written
+        // here, and the assembly only adds to it.
         unsafe {
             (&raw mut (*p).rows.color).write(u32::from(bits));
             (&raw mut (*p).rows.delta).write((words.as_mut_ptr() as u32).wrapping_sub(zaddr));
             (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
             (&raw mut (*p).rows.failed).write(0);
             (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
-            (&raw mut (*p).first_row).write(t.first_row);
+            (&raw mut (*p).first_row).write(first_row);
             (&raw mut (*p).zaddr).write(zaddr);
-        }
-        // SAFETY: every row and column of the clip lies inside both buffers (checked
-        // above), and the assembly draws only inside the clip; its comment says what
-        // it touches. `failed` was written above, and the assembly only adds to it.
-        let (tested, failed) = unsafe {
             let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
-            (tested, (&raw const (*p).rows.failed).read())
-        };
-        if tested == u32::MAX {
-            SmallDone::General
-        } else {
-            SmallDone::Drawn(tested, failed)
+            if tested == u32::MAX {
+                SmallDone::General
+            } else {
+                SmallDone::Drawn(tested, (&raw const (*p).rows.failed).read())
+            }
         }
     }
     #[cfg(not(all(zraster_thumb, zraster_armv6m)))]
     {
-        small_walk_portable(tri, &clip, t.first_row, width, &mut *t.z, words, bits)
+        let [p, q, r] = tri.map(CachedVertex::placed);
+        small_walk_portable(
+            [&p, &q, &r],
+            &clip,
+            first_row,
+            width,
+            &mut *t.z,
+            words,
+            bits,
+        )
     }
 }
 
@@ -508,7 +553,9 @@ extern "C" {
     /// buffers (columns `px0 + cx0 .. px0 + cx1`) are inside them ([`RowsAt::check`]).
     fn zraster_rows_walk_v6m(r: *mut RowsWalk, z: u32, base: u32, n0: u32) -> u32;
 
-    /// The set-up of the small triangle of corners `p0`, `p1`, `p2`, in block `s`
+    /// The set-up of the small triangle of corners `p0`, `p1`, `p2` (vertex cache
+    /// entries: the depth, then x in the low half of a word and y in the high), in
+    /// block `s`
     /// (its rows' `color`, `delta`, `pitch` and `failed` set as
     /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address), then
     /// the rows of [`zraster_rows_walk_v6m`] (its frame and registers): the pixels
@@ -520,9 +567,9 @@ extern "C" {
     /// inside both buffers.
     fn zraster_small_walk_v6m(
         s: *mut SmallWalk,
-        p0: &ScreenVertex,
-        p1: &ScreenVertex,
-        p2: &ScreenVertex,
+        p0: &CachedVertex,
+        p1: &CachedVertex,
+        p2: &CachedVertex,
     ) -> u32;
 }
 
@@ -787,9 +834,12 @@ core::arch::global_asm!(
     "sub sp, #48",
     "str r0, [sp, #20]",
     "str r1, [sp]",
-    // The corners top to bottom (a stable sort by y): r1–r3, their y in r4–r6.
+    // The corners top to bottom (a stable sort by y): r1–r3, their y in r4–r6. A
+    // corner is a cache entry: z at 0, x (low half) and y (high half) at 4.
     "ldr r4, [r1, #4]",
+    "asrs r4, r4, #16",
     "ldr r5, [r2, #4]",
+    "asrs r5, r5, #16",
     "cmp r5, r4",
     "bge .Lsw_sort1",
     "mov r6, r1",
@@ -800,6 +850,7 @@ core::arch::global_asm!(
     "mov r5, r6",
     ".Lsw_sort1:",
     "ldr r6, [r3, #4]",
+    "asrs r6, r6, #16",
     "cmp r6, r5",
     "bge .Lsw_sort2",
     "mov r7, r2",
@@ -861,9 +912,12 @@ core::arch::global_asm!(
     "subs r6, r6, r4",
     "mov r12, r6",
     // Columns: dx1, dx2; its width below SMALL, else the general path; no rows, nothing.
-    "ldr r4, [r1]",
-    "ldr r5, [r2]",
-    "ldr r6, [r3]",
+    "ldr r4, [r1, #4]",
+    "sxth r4, r4",
+    "ldr r5, [r2, #4]",
+    "sxth r5, r5",
+    "ldr r6, [r3, #4]",
+    "sxth r6, r6",
     "subs r7, r5, r4",
     "str r7, [sp, #4]",
     "subs r7, r6, r4",
@@ -940,9 +994,9 @@ core::arch::global_asm!(
     "pop {{r4, r5, r6, r7, pc}}",
     // The depths' range: lo (biased) and hi − lo.
     ".Lsw_depths:",
-    "ldr r4, [r1, #8]",
-    "ldr r5, [r2, #8]",
-    "ldr r6, [r3, #8]",
+    "ldr r4, [r1]",
+    "ldr r5, [r2]",
+    "ldr r6, [r3]",
     "mov r7, r4",
     "mov r1, r4",
     "cmp r5, r7",
@@ -1085,18 +1139,19 @@ core::arch::global_asm!(
     // The first row's depth at local column 0, from the first corner given:
     // z + DEPTH_BIAS + q·(16·px0 + 8 − x) + r·(16·start + 8 − y).
     "ldr r2, [sp]",
-    "ldr r4, [r2]",
+    "ldr r6, [r2, #4]",
+    "sxth r4, r6",
     "mov r5, r11",
     "subs r5, r5, r4",
     "muls r0, r5",
-    "ldr r4, [r2, #4]",
+    "asrs r4, r6, #16",
     "mov r5, r8",
     "lsls r5, r5, #4",
     "adds r5, #8",
     "subs r5, r5, r4",
     "muls r1, r5",
     "adds r0, r0, r1",
-    "ldr r4, [r2, #8]",
+    "ldr r4, [r2]",
     "adds r0, r0, r4",
     "ldr r4, .Lsw_bias",
     "adds r0, r0, r4",
@@ -1108,10 +1163,11 @@ core::arch::global_asm!(
     "mov r4, r8",
     "lsls r4, r4, #4",
     "adds r4, #8",
-    "ldr r5, [r2, #4]",
+    "ldr r7, [r2, #4]",
+    "asrs r5, r7, #16",
     "subs r4, r4, r5",
     "str r4, [sp, #40]",
-    "ldr r5, [r2]",
+    "sxth r5, r7",
     "mov r6, r11",
     "subs r5, r5, r6",
     "str r5, [sp, #44]",
@@ -1146,9 +1202,10 @@ core::arch::global_asm!(
     "mov r4, r9",
     "lsls r4, r4, #4",
     "adds r4, #8",
-    "ldr r5, [r6, #4]",
+    "ldr r6, [r6, #4]",
+    "asrs r5, r6, #16",
     "subs r4, r4, r5",
-    "ldr r5, [r6]",
+    "sxth r5, r6",
     "mov r7, r11",
     "subs r5, r5, r7",
     "bl .Lsw_edge",
