@@ -386,72 +386,95 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 fused = None; // the same for every run
             }
             let mut to_clip = None;
-            loop {
-                // A face the fused loop left, and whether it did its carry.
-                let mut left = None;
-                if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
-                    (&fused, &mut target)
-                {
-                    let mut t = SmallTarget {
-                        z: &mut *b.zdata,
-                        c: &mut *b.cdata,
-                        width: b.width,
-                        first_row: b.first_row,
-                        clip: b.clip,
+            // One face (its carry done by the fused loop when `$carried`): `continue`
+            // past it, or `break` at a face to clip.
+            macro_rules! face {
+                ($f:expr, $t:expr, $how:expr, $carried:expr) => {
+                    let (f, how, carried) = ($f, $how, $carried);
+                    if self.see_through_face::<C>(f) {
+                        // Drawn after the opaque faces. Skipped alike as kept and as
+                        // taken, so the carried colours stay in step.
+                        continue;
+                    }
+                    let [a, b, c] = cached_triangle(cache, f, $t)?;
+                    if how == Carry::Tall {
+                        // Drawn in every band: clipped by the general path, or skipped
+                        // when it does not reach this band's rows.
+                        if a.marked() | b.marked() | c.marked() {
+                            to_clip = Some(f);
+                            break;
+                        }
+                    }
+                    if how == Carry::Tall && cached_outside_rows([a, b, c], row0, row1) {
+                        continue;
+                    }
+                    // One call of `shade` (so that it is inlined): carried, or worked
+                    // out; after the fused loop, the colour it took, or worked out.
+                    let taken = match (how, carried) {
+                        (Carry::Take, false) => carry.take(),
+                        (Carry::Take, true) => carry.last_taken(),
+                        _ => None,
                     };
-                    match faces.fused(cache, &mut carry.parts(), color, &mut t, &mut fused_counts) {
-                        BandStop::Done => break,
-                        BandStop::Whole(head) => left = faces.face_of(head).map(|x| (x, false)),
-                        BandStop::Fill(head) => left = faces.face_of(head).map(|x| (x, true)),
-                        BandStop::Refused => fused = None,
+                    let color = match taken {
+                        Some(c) => c,
+                        None => shade(f)?,
+                    };
+                    if how == Carry::Keep && !carried {
+                        carry.keep(color);
                     }
-                }
-                let ((f, t, how), carried) = match left {
-                    Some(face) => face,
-                    None => match faces.next() {
-                        Some(face) => (face, false),
-                        None => break,
-                    },
+                    // Inline, as the whole frame's loop, but out of line on ARMv6-M,
+                    // where its copies in each colouring's loop cost flash (Pico code
+                    // +1.2 KB).
+                    let filled = if crate::num::ARMV6M {
+                        target.fill_cached_or_call([a, b, c], color)
+                    } else {
+                        target.fill_cached([a, b, c], color)
+                    };
+                    counts.add(filled, &mut px);
                 };
-                if self.see_through_face::<C>(f) {
-                    // Drawn after the opaque faces. Skipped alike as kept and as taken,
-                    // so the carried colours stay in step.
-                    continue;
+            }
+            if fused.is_none() {
+                // Without the fused loop (on every run where there is none) a plain
+                // walk: asking for it costs the ARMv6-M band loop 1 k.
+                for (f, t, how) in faces.by_ref() {
+                    face!(f, t, how, false);
                 }
-                let [a, b, c] = cached_triangle(cache, f, t)?;
-                if how == Carry::Tall {
-                    // Drawn in every band: clipped by the general path, or skipped when
-                    // it does not reach this band's rows.
-                    if a.marked() | b.marked() | c.marked() {
-                        to_clip = Some(f);
-                        break;
+            } else {
+                loop {
+                    // A face the fused loop left, and whether it did its carry.
+                    let mut left = None;
+                    if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
+                        (&fused, &mut target)
+                    {
+                        let mut t = SmallTarget {
+                            z: &mut *b.zdata,
+                            c: &mut *b.cdata,
+                            width: b.width,
+                            first_row: b.first_row,
+                            clip: b.clip,
+                        };
+                        match faces.fused(
+                            cache,
+                            &mut carry.parts(),
+                            color,
+                            &mut t,
+                            &mut fused_counts,
+                        ) {
+                            BandStop::Done => break,
+                            BandStop::Whole(head) => left = faces.face_of(head).map(|x| (x, false)),
+                            BandStop::Fill(head) => left = faces.face_of(head).map(|x| (x, true)),
+                            BandStop::Refused => fused = None,
+                        }
                     }
+                    let ((f, t, how), carried) = match left {
+                        Some(face) => face,
+                        None => match faces.next() {
+                            Some(face) => (face, false),
+                            None => break,
+                        },
+                    };
+                    face!(f, t, how, carried);
                 }
-                if how == Carry::Tall && cached_outside_rows([a, b, c], row0, row1) {
-                    continue;
-                }
-                // One call of `shade` (so that it is inlined): carried, or worked out;
-                // by the fused loop (`carried`): the colour it took, or worked out.
-                let taken = match (how, carried) {
-                    (Carry::Take, false) => carry.take(),
-                    (Carry::Take, true) => carry.last_taken(),
-                    _ => None,
-                };
-                let color = match taken {
-                    Some(c) => c,
-                    None => shade(f)?,
-                };
-                if how == Carry::Keep && !carried {
-                    carry.keep(color);
-                }
-                // Inline, as the whole frame's loop, but out of line on ARMv6-M, where
-                // its copies in each colouring's loop cost flash (Pico code +1.2 KB).
-                let filled = if crate::num::ARMV6M {
-                    target.fill_cached_or_call([a, b, c], color)
-                } else {
-                    target.fill_cached([a, b, c], color)
-                };
-                counts.add(filled, &mut px);
             }
             let Some(f) = to_clip else { break };
             let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
