@@ -199,7 +199,6 @@ macro_rules! faces_body {
             "add r1, r6, r8, lsl #3\n",
             "add r2, r6, r9, lsl #3\n",
             "add r3, r6, r10, lsl #3\n",
-            "ldrd r5, r8, [r7, #120]\n",
             "mov r0, r7\n",
             small_body!(
                 fused,
@@ -626,7 +625,6 @@ macro_rules! band_body {
             "str r1, [r7, #172]\n",
             // The corners' indices, each below the cache's length, else the caller's.
             "22:\n",
-            "str r8, [r7, #212]\n",
             "ldrd r0, lr, [r7, #108]\n",
             "lsr r12, r8, #2\n",
             "add r12, r12, r12, lsl #1\n",
@@ -644,7 +642,6 @@ macro_rules! band_body {
             "add r1, r0, r1, lsl #3\n",
             "add r2, r0, r2, lsl #3\n",
             "add r3, r0, r3, lsl #3\n",
-            "ldrd r5, r8, [r7, #120]\n",
             "mov r0, r7\n",
             small_body!(
                 fused,
@@ -685,10 +682,11 @@ macro_rules! band_body {
             "b 69f\n",
             "67:\n",
             "movs r0, #2\n",
-            "b 69f\n",
+            "b 65f\n",
             "68:\n",
-            "str r8, [r7, #212]\n",
             "movs r0, #1\n",
+            "65:\n",
+            "str r8, [r7, #212]\n",
             "69:\n",
             "add r1, r7, #84\n",
             "stm r1, {{r6, r9, r10, r11}}\n",
