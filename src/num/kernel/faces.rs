@@ -590,11 +590,7 @@ macro_rules! band_body {
             // caller's; taken (0): the next carried colour while there is one, else
             // worked out, and counted; kept (1): worked out and kept.
             "cmp r5, #2\n",
-            "bne 24f\n",
-            "lsr r1, r8, #2\n",
-            band_color!($color),
-            "b 22f\n",
-            "24:\n",
+            "beq 27f\n",
             "bhi 68f\n",
             "cbnz r5, 25f\n",
             "ldrd r0, r1, [r7, #168]\n",
@@ -623,6 +619,10 @@ macro_rules! band_body {
             "ldr r1, [r7, #172]\n",
             "adds r1, #1\n",
             "str r1, [r7, #172]\n",
+            "b 22f\n",
+            "27:\n",
+            "lsr r1, r8, #2\n",
+            band_color!($color),
             // The corners' indices, each below the cache's length, else the caller's.
             "22:\n",
             "ldrd r0, lr, [r7, #108]\n",
