@@ -565,14 +565,13 @@ macro_rules! band_body {
             "cmp r4, r1\n",
             "bhs 66f\n",
             "ldrh r1, [r0, r4, lsl #1]\n",
-            "and r5, r6, #3\n",
-            "orr r3, r5, r1, lsl #2\n",
             "mov r8, r6\n",
-            // Its chain's next face (r3) moved down past the heads below it.
-            "cmp r3, r9\n",
-            "itt lo\n",
-            "movlo r6, r3\n",
+            // Its chain's next face (the link in place of the face: r6) moved down
+            // past the heads below it.
+            "bfi r6, r1, #2, #16\n",
+            "cmp r6, r9\n",
             "blo 64f\n",
+            "mov r3, r6\n",
             "mov r6, r9\n",
             "cmp r3, r10\n",
             "itt lo\n",
@@ -589,6 +588,7 @@ macro_rules! band_body {
             // By the chain: its own (2) worked out (r1 the face); tall (3) the
             // caller's; taken (0): the next carried colour while there is one, else
             // worked out, and counted; kept (1): worked out and kept.
+            "and r5, r8, #3\n",
             "cmp r5, #2\n",
             "beq 27f\n",
             "bhi 68f\n",
