@@ -794,14 +794,16 @@ fn band_faces_less_dsp<C: Copy>(
     };
     let status: u32;
     // SAFETY: the loop composes blocks whose bounds arguments hold as they do alone.
-    // The merge reads `links[f]` and `faces[f]` only for a face f below n, the smaller
-    // of the two lengths (so whatever the heads and links hold, hostile bins included:
-    // a head or link is a u16 face number, END and any number past the faces failing
-    // the same test, which ends the loop). A face's three indices are each tested below
-    // the cache's length before its entries' addresses (entries + 8·index: three
-    // `CachedVertex`, 8 bytes each) are formed. The carried colours: one read at
-    // `read[taken]` only when taken < filled ≤ `read`'s length, one written at
-    // `keep[kept]` only when kept < `keep`'s length (`room`); `C` is two bytes aligned
+    // The merge reads `links[f]` and `faces[f]` only for the least head's face f (the
+    // head >> 2) below n, the smaller of the two lengths, whatever the heads and links
+    // hold (hostile bins included: END, or any number past the faces, fails the test
+    // and ends the loop); the chain's next head is that face's 16-bit link put in place
+    // of f by BFI (f < n < 2¹⁶: nothing above it), so again a face and the chain's
+    // number, tested the same way when it is least. A face's three indices are each
+    // tested below the cache's length before its entries' addresses (entries +
+    // 8·index: three `CachedVertex`, 8 bytes each) are formed. The carried colours:
+    // one read at `read[taken]` only when taken < filled ≤ `read`'s length, one written
+    // at `keep[kept]` only when kept < `keep`'s length (`room`); `C` is two bytes aligned
     // to two (checked by `kernel_buffers`), and every value kept is a `C`'s bytes: one
     // taken from `read`, the flat colour's bits, `bits_of`'s bytes of the caller's
     // function's `C`, or (`raw`) the packed value which `Raw565` proves is those
