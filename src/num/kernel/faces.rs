@@ -366,8 +366,8 @@ fn faces_less_dsp<'a, C: Copy>(
     // the same operands (depth row 0's address, the clip, the pitch, the colour's
     // delta, worked out as there from `kernel_buffers`' slices: every row and column
     // of the clip inside both buffers; the delta and pitch stored into the rows' block
-    // once before the loop, the colour each face or once, zrow0 and the clip's columns
-    // read from `setup`, none of them written by the rows) and the same block
+    // once before the loop, the colour each face or once, zrow0 and the clip read
+    // from `setup`, none of them written by the rows) and the same block
     // (`RowsLess` at offset 0 of this block, word-aligned; its SAFETY argument); a
     // triangle it refuses goes to the caller. The counts are stored into the block by
     // its pinned offsets. r6 and r7 (not allowed as operands) are pushed first and
