@@ -15,7 +15,10 @@ use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 use crate::buffer::bins_for;
 use crate::fill::{clip_of, FlatTarget};
 use crate::mesh::Faces;
-use crate::num::kernel::BinChains;
+use crate::num::kernel::{
+    band_faces_less, BandCarry, BandStop, BinChains, CachedVertex, FaceColor, FacesCounts,
+    SmallTarget, FACES_KERNEL,
+};
 use crate::raster::Clip;
 use crate::render::{
     cached_outside_rows, cached_triangle, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
@@ -321,24 +324,42 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             };
         };
         let lambert = self.shading() == Shading::Lambert;
+        // One opaque material, unlit or lit in 5-6-5: for the fused band loop.
+        let lit;
+        let fused = match materials {
+            crate::mesh::Materials::Uniform(m)
+                if FACES_KERNEL && !(M::TRANSLUCENT && m.alpha() < u8::MAX) =>
+            {
+                match self.flat_color(materials, lambert) {
+                    Some(c) => Some(FaceColor::Flat(c)),
+                    None => {
+                        lit = self.light_block(&m);
+                        lit.as_ref().map(|(b, f, raw)| FaceColor::Lit(b, *f, *raw))
+                    }
+                }
+            }
+            _ => None,
+        };
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
         let px = per_colouring!(self, materials, lambert, |shade| {
-            self.band_loop(frame, zbuf, faces.with(indices), carry, shade)?
+            self.band_loop(frame, zbuf, faces.with(indices), carry, shade, fused)?
         });
         self.stats.add_pixel_counts(&px);
         Ok(())
     }
 
     /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
-    /// colours from `shade` unless carried; returns the pixel counts.
+    /// colours from `shade` unless carried (and, where there is a fused band loop,
+    /// `fused`: the same colours for it); returns the pixel counts.
     #[inline(always)]
     fn band_loop<C>(
         &self,
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
-        faces: impl Iterator<Item = (usize, &'m [u16; 3], Carry)>,
+        mut faces: BandTriangles<'_, 'm>,
         carry: &mut ColorCarry<C>,
         shade: impl Fn(usize) -> Result<C, Error>,
+        fused: Option<FaceColor<'_, C>>,
     ) -> Result<FrameStats, Error>
     where
         C: PixelColor,
@@ -350,60 +371,118 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         };
         let clip = clip_of(frame, zbuf);
         let (row0, row1) = clip.subpixel_rows();
-        let mut faces = faces;
         // The pixels of the common faces in u32 registers, into `px` at the end.
         let mut counts = FrameStats::fill_counts();
+        // The common case's faces in one assembly loop (`num::kernel::faces`), where
+        // there is one, up to a face it leaves to this loop.
+        let mut fused = fused.filter(|_| FACES_KERNEL);
+        let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
         // from it alone is worked out once a run, as in the whole frame's loop.
         loop {
             let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            if !matches!(target, FlatTarget::Fused { less: true, .. }) {
+                fused = None; // the same for every run
+            }
             let mut to_clip = None;
-            for (f, t, how) in faces.by_ref() {
-                if self.see_through_face::<C>(f) {
-                    // Drawn after the opaque faces. Skipped alike as kept and as taken,
-                    // so the carried colours stay in step.
-                    continue;
-                }
-                let [a, b, c] = cached_triangle(cache, f, t)?;
-                if how == Carry::Tall {
-                    // Drawn in every band: clipped by the general path, or skipped when
-                    // it does not reach this band's rows.
-                    if a.marked() | b.marked() | c.marked() {
-                        to_clip = Some(f);
-                        break;
+            // One face (its carry done by the fused loop when `$carried`): `continue`
+            // past it, or `break` at a face to clip.
+            macro_rules! face {
+                ($f:expr, $t:expr, $how:expr, $carried:expr) => {
+                    let (f, how, carried) = ($f, $how, $carried);
+                    if self.see_through_face::<C>(f) {
+                        // Drawn after the opaque faces. Skipped alike as kept and as
+                        // taken, so the carried colours stay in step.
+                        continue;
                     }
-                }
-                if how == Carry::Tall && cached_outside_rows([a, b, c], row0, row1) {
-                    continue;
-                }
-                // One call of `shade` (so that it is inlined): carried, or worked out.
-                let carried = if how == Carry::Take {
-                    carry.take()
-                } else {
-                    None
+                    let [a, b, c] = cached_triangle(cache, f, $t)?;
+                    if how == Carry::Tall {
+                        // Drawn in every band: clipped by the general path, or skipped
+                        // when it does not reach this band's rows.
+                        if a.marked() | b.marked() | c.marked() {
+                            to_clip = Some(f);
+                            break;
+                        }
+                    }
+                    if how == Carry::Tall && cached_outside_rows([a, b, c], row0, row1) {
+                        continue;
+                    }
+                    // One call of `shade` (so that it is inlined): carried, or worked
+                    // out; after the fused loop, the colour it took, or worked out.
+                    let taken = match (how, carried) {
+                        (Carry::Take, false) => carry.take(),
+                        (Carry::Take, true) => carry.last_taken(),
+                        _ => None,
+                    };
+                    let color = match taken {
+                        Some(c) => c,
+                        None => shade(f)?,
+                    };
+                    if how == Carry::Keep && !carried {
+                        carry.keep(color);
+                    }
+                    // Inline, as the whole frame's loop, but out of line on ARMv6-M,
+                    // where its copies in each colouring's loop cost flash (Pico code
+                    // +1.2 KB).
+                    let filled = if crate::num::ARMV6M {
+                        target.fill_cached_or_call([a, b, c], color)
+                    } else {
+                        target.fill_cached([a, b, c], color)
+                    };
+                    counts.add(filled, &mut px);
                 };
-                let color = match carried {
-                    Some(c) => c,
-                    None => shade(f)?,
-                };
-                if how == Carry::Keep {
-                    carry.keep(color);
+            }
+            if fused.is_none() {
+                // Without the fused loop (on every run where there is none) a plain
+                // walk: asking for it costs the ARMv6-M band loop 1 k.
+                for (f, t, how) in faces.by_ref() {
+                    face!(f, t, how, false);
                 }
-                // Inline, as the whole frame's loop, but out of line on ARMv6-M, where
-                // its copies in each colouring's loop cost flash (Pico code +1.2 KB).
-                let filled = if crate::num::ARMV6M {
-                    target.fill_cached_or_call([a, b, c], color)
-                } else {
-                    target.fill_cached([a, b, c], color)
-                };
-                counts.add(filled, &mut px);
+            } else {
+                loop {
+                    // A face the fused loop left, and whether it did its carry.
+                    let mut left = None;
+                    if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
+                        (&fused, &mut target)
+                    {
+                        let mut t = SmallTarget {
+                            z: &mut *b.zdata,
+                            c: &mut *b.cdata,
+                            width: b.width,
+                            first_row: b.first_row,
+                            clip: b.clip,
+                        };
+                        match faces.fused(
+                            cache,
+                            &mut carry.parts(),
+                            color,
+                            &mut t,
+                            &mut fused_counts,
+                        ) {
+                            BandStop::Done => break,
+                            BandStop::Whole(head) => left = faces.face_of(head).map(|x| (x, false)),
+                            BandStop::Fill(head) => left = faces.face_of(head).map(|x| (x, true)),
+                            BandStop::Refused => fused = None,
+                        }
+                    }
+                    let ((f, t, how), carried) = match left {
+                        Some(face) => face,
+                        None => match faces.next() {
+                            Some(face) => (face, false),
+                            None => break,
+                        },
+                    };
+                    face!(f, t, how, carried);
+                }
             }
             let Some(f) = to_clip else { break };
             let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
             px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
         }
         counts.flush(&mut px);
+        px.pixels_tested += fused_counts.tested;
+        px.pixels_written += fused_counts.tested - fused_counts.failed;
         Ok(px)
     }
 }
@@ -477,6 +556,33 @@ impl<'a> BandFaces<'a> {
 struct BandTriangles<'a, 'm> {
     faces: BandFaces<'a>,
     indices: &'m [[u16; 3]],
+}
+
+impl<'m> BandTriangles<'_, 'm> {
+    /// The faces the fused band loop ([`band_faces_less`]) takes, drawn from here on
+    /// into `t` over `cache`, up to the end or a face it leaves.
+    #[inline(always)]
+    fn fused<C: Copy>(
+        &mut self,
+        cache: &[CachedVertex],
+        carry: &mut BandCarry<'_, C>,
+        color: &FaceColor<'_, C>,
+        t: &mut SmallTarget<'_, '_, C>,
+        counts: &mut FacesCounts,
+    ) -> BandStop {
+        let BandFaces { links, heads } = &mut self.faces;
+        band_faces_less(heads, (links, self.indices, cache), carry, color, t, counts)
+    }
+
+    /// The face the fused loop stopped at, by its chain's head (as [`next`] gives
+    /// it; `None` for none, as it stops only at a listed face).
+    ///
+    /// [`next`]: Iterator::next
+    fn face_of(&self, head: u32) -> Option<(usize, &'m [u16; 3], Carry)> {
+        let f = (head >> 2) as usize;
+        let t = self.indices.get(f)?;
+        Some((f, t, Carry::of_chain(head & 3)))
+    }
 }
 
 impl<'m> Iterator for BandTriangles<'_, 'm> {

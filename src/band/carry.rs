@@ -1,6 +1,8 @@
 //! The colours of faces that reach into the band below, carried to it ([`ColorCarry`])
 //! so that they are not lit again.
 
+use crate::num::kernel::BandCarry;
+
 /// How many colours [`ColorCarry`] holds; faces beyond it are lit again.
 const CARRY: usize = 64;
 
@@ -48,6 +50,31 @@ impl<C: Copy> ColorCarry<C> {
             self.colors.get(usize::from(self.read))?.get(i).copied()
         } else {
             None
+        }
+    }
+
+    /// The colour the last [`take`](ColorCarry::take) gave, if it gave one.
+    pub(crate) fn last_taken(&self) -> Option<C> {
+        let i = self.taken.checked_sub(1)?;
+        if i < self.filled {
+            self.colors.get(usize::from(self.read))?.get(i).copied()
+        } else {
+            None
+        }
+    }
+
+    /// The halves and cursors for the band loop in assembly
+    /// ([`band_faces_less`](crate::num::kernel::band_faces_less)), which takes and keeps
+    /// as [`take`](ColorCarry::take) and [`keep`](ColorCarry::keep) do.
+    pub(crate) fn parts(&mut self) -> BandCarry<'_, C> {
+        let [a, b] = &mut self.colors;
+        let (read, keep) = if self.read { (b, a) } else { (a, b) };
+        BandCarry {
+            read: &read[..],
+            keep: &mut keep[..],
+            filled: self.filled,
+            taken: &mut self.taken,
+            kept: &mut self.kept,
         }
     }
 

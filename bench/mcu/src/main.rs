@@ -163,6 +163,9 @@ fn main() -> ! {
     // The fused face loop (scan, colour, set-up and rows) likewise: random meshes.
     let bad = zraster::check_faces_kernel(&mut depth[..4096], 4_000);
     hprintln!("faces kernel cases differing from the portable twin: {}", bad);
+    // The fused band loop (merge, carry, colour, set-up and rows) likewise: random bins.
+    let bad = zraster::check_band_faces_kernel(&mut depth[..4096], 4_000);
+    hprintln!("band faces kernel cases differing from the portable twin: {}", bad);
     check_light();
     check_place();
 

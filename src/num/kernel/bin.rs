@@ -263,7 +263,8 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
     // 2 · bands, and `tall` is the last; the tails are addressed from the second
     // (`tails1`, `tails` has at least three), as chain − 1 (2·tb − (bb − tb)).
     // r6 and r7 (not allowed as operands) are pushed and popped with r8–r11 (r7 counts
-    // the drawn faces, stored back at the end); the flags are scratch.
+    // the drawn faces, stored back at the end); the flags are scratch (USAT may set
+    // the sticky Q flag, which nothing in the crate reads).
     unsafe {
         core::arch::asm!(
             "push {{r6-r11}}",
@@ -316,8 +317,7 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "bic r9, r9, r9, asr #31", // max(dy1, dy2, 0)
             "add r8, r11, r8, asr #16",
             "add r9, r11, r9, asr #16",
-            "asr r8, r8, #4",
-            "bic r8, r8, r8, asr #31", // top, at least 0
+            "usat r8, #16, r8, asr #4", // top, at least 0 (and below 2¹¹)
             "asr r9, r9, #4",
             "sub r9, r9, #1",
             "ldrd r10, r11, [r6]", // last_row, rows

@@ -199,7 +199,6 @@ macro_rules! faces_body {
             "add r1, r6, r8, lsl #3\n",
             "add r2, r6, r9, lsl #3\n",
             "add r3, r6, r10, lsl #3\n",
-            "ldrd r5, r8, [r7, #120]\n",
             "mov r0, r7\n",
             small_body!(
                 fused,
@@ -367,8 +366,8 @@ fn faces_less_dsp<'a, C: Copy>(
     // the same operands (depth row 0's address, the clip, the pitch, the colour's
     // delta, worked out as there from `kernel_buffers`' slices: every row and column
     // of the clip inside both buffers; the delta and pitch stored into the rows' block
-    // once before the loop, the colour each face or once, zrow0 and the clip's columns
-    // read from `setup`, none of them written by the rows) and the same block
+    // once before the loop, the colour each face or once, zrow0 and the clip read
+    // from `setup`, none of them written by the rows) and the same block
     // (`RowsLess` at offset 0 of this block, word-aligned; its SAFETY argument); a
     // triangle it refuses goes to the caller. The counts are stored into the block by
     // its pinned offsets. r6 and r7 (not allowed as operands) are pushed first and
@@ -436,6 +435,439 @@ fn faces_less_dsp<'a, C: Copy>(
             *pos = k;
             FacesStop::Scan
         }
+    }
+}
+
+/// A band's colours carried from the band above and kept for the band below (the
+/// band loop's `ColorCarry`, as [`band_faces_less`] uses it): the colours to take, the
+/// half to keep into, how many were kept above, and this band's cursors.
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+pub(crate) struct BandCarry<'k, C> {
+    pub read: &'k [C],
+    pub keep: &'k mut [C],
+    pub filled: usize,
+    pub taken: &'k mut usize,
+    pub kept: &'k mut usize,
+}
+
+/// Where [`band_faces_less`] stopped; a face left to the caller as its chain's head
+/// `face << 2 | chain` (the heads already past it).
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum BandStop {
+    /// At the end of the band's faces.
+    Done,
+    /// At a face it leaves whole to the caller (tall, or no normal for its colour),
+    /// the carry untouched by it.
+    Whole(u32),
+    /// At a face whose carry it has done (a colour taken, a colour kept) but which it
+    /// does not draw (a corner past the cache, or refused by the set-up).
+    Fill(u32),
+    /// Not run: the buffers or the colour are not the loop's (nothing moved).
+    Refused,
+}
+
+/// What the band loop reads and writes, at the offsets in the comments: the rows'
+/// block, the merge's heads and tables, the set-up's operands and the colour at the
+/// offsets of [`FacesBlock`] (the set-up's `fused` form and [`faces_color`] read them
+/// there), the carry, the counts.
+#[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+#[repr(C)]
+struct BandBlock {
+    rows: RowsLess, // 0
+    /// The chains' heads in increasing order (`face << 2 | chain`).
+    heads: [u32; 4], // 84
+    links: *const u16, // 100
+    /// Faces below which both the links and the faces' indices lie.
+    n: u32, // 104
+    faces: *const [u16; 3], // 108
+    /// The cache's entries.
+    len: u32, // 112
+    setup: [u32; 7], // 116
+    color: u32,     // 144
+    light: *const u8, // 148
+    to_color: *const u8, // 152
+    entries: *const CachedVertex, // 156
+    /// The colours to take and the half to keep into.
+    read: *const u16, // 160
+    keep: *mut u16, // 164
+    /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
+    filled: u32, // 168
+    taken: u32,     // 172
+    kept: u32,      // 176
+    room: u32,      // 180
+    tested: [u32; 2], // 184
+    failed: [u32; 2], // 192
+    drawn: u32,     // 200
+    run: u32,       // 204
+    flushes: u32,   // 208
+    /// The head of the face the loop stopped at.
+    least: u32, // 212
+}
+
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::offset_of;
+    type B = BandBlock;
+    assert!(offset_of!(B, heads) == 84 && offset_of!(B, links) == 100);
+    assert!(offset_of!(B, n) == 104 && offset_of!(B, faces) == 108);
+    assert!(offset_of!(B, len) == 112 && offset_of!(B, setup) == 116);
+    assert!(offset_of!(B, color) == 144 && offset_of!(B, light) == 148);
+    assert!(offset_of!(B, to_color) == 152 && offset_of!(B, entries) == 156);
+    assert!(offset_of!(B, read) == 160 && offset_of!(B, keep) == 164);
+    assert!(offset_of!(B, filled) == 168 && offset_of!(B, taken) == 172);
+    assert!(offset_of!(B, kept) == 176 && offset_of!(B, room) == 180);
+    assert!(offset_of!(B, tested) == 184 && offset_of!(B, failed) == 192);
+    assert!(offset_of!(B, drawn) == 200 && offset_of!(B, run) == 204);
+    assert!(offset_of!(B, flushes) == 208 && offset_of!(B, least) == 212);
+};
+
+/// The colour of a face into the rows' block (at 12) and r0 for the band loop: the
+/// block's one colour, or `faces_color`'s.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! band_color {
+    (flat) => {
+        concat!(
+            "ldr r0, [r7, #144]\n",
+            "str r0, [r7, #12]\n",
+        )
+    };
+    ($kind:ident) => {
+        faces_color!($kind)
+    };
+}
+
+/// The band loop (the block in r7, the heads in r6, r9, r10, r11): the least head's
+/// face (the merge: its chain's next face takes the head's place, moved down past the
+/// heads below it), its colour (taken from the band above, or `$color`, and kept for
+/// the band below), set-up and rows (`small_body`), counts, and on. Ends with r0 0 at
+/// the end of the faces, 1 at a face left whole to the caller, 2 at a face whose carry
+/// is done but which it does not draw (its head at 212), the heads stored back.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! band_body {
+    ($color:ident) => {
+        concat!(
+            "push {{r6, r7}}\n",
+            "mov r7, r0\n",
+            "add r0, r7, #84\n",
+            "ldm r0, {{r6, r9, r10, r11}}\n",
+            // The colour's delta and the pitch into the rows' block once.
+            "ldr r0, [r7, #140]\n",
+            "str r0, [r7, #16]\n",
+            "ldr r0, [r7, #136]\n",
+            "str r0, [r7, #40]\n",
+            "60:\n",
+            // The least head (r8): its face f (r4) below n, else the end.
+            "ldrd r0, r1, [r7, #100]\n",
+            "lsr r4, r6, #2\n",
+            "cmp r4, r1\n",
+            "bhs 66f\n",
+            "ldrh r1, [r0, r4, lsl #1]\n",
+            "mov r8, r6\n",
+            // Its chain's next face (the link in place of the face: r6) moved down
+            // past the heads below it.
+            "bfi r6, r1, #2, #16\n",
+            "cmp r6, r9\n",
+            "blo 64f\n",
+            "mov r3, r6\n",
+            "mov r6, r9\n",
+            "cmp r3, r10\n",
+            "itt lo\n",
+            "movlo r9, r3\n",
+            "blo 64f\n",
+            "mov r9, r10\n",
+            "cmp r3, r11\n",
+            "ite lo\n",
+            "movlo r10, r3\n",
+            "movhs r10, r11\n",
+            "it hs\n",
+            "movhs r11, r3\n",
+            "64:\n",
+            // By the chain: its own (2) worked out (r1 the face); tall (3) the
+            // caller's; taken (0): the next carried colour while there is one, else
+            // worked out, and counted; kept (1): worked out and kept.
+            "and r5, r8, #3\n",
+            "cmp r5, #2\n",
+            "beq 27f\n",
+            "bhi 68f\n",
+            "cbnz r5, 25f\n",
+            "ldrd r0, r1, [r7, #168]\n",
+            "cmp r1, r0\n",
+            "bhs 26f\n",
+            "ldr r0, [r7, #160]\n",
+            "ldrh r0, [r0, r1, lsl #1]\n",
+            "adds r1, #1\n",
+            "str r1, [r7, #172]\n",
+            "str r0, [r7, #12]\n",
+            "b 22f\n",
+            "25:\n",
+            "lsr r1, r8, #2\n",
+            band_color!($color),
+            "ldrd r1, r2, [r7, #176]\n",
+            "cmp r1, r2\n",
+            "bhs 22f\n",
+            "ldr r2, [r7, #164]\n",
+            "strh r0, [r2, r1, lsl #1]\n",
+            "adds r1, #1\n",
+            "str r1, [r7, #176]\n",
+            "b 22f\n",
+            "26:\n",
+            "lsr r1, r8, #2\n",
+            band_color!($color),
+            "ldr r1, [r7, #172]\n",
+            "adds r1, #1\n",
+            "str r1, [r7, #172]\n",
+            "b 22f\n",
+            "27:\n",
+            "lsr r1, r8, #2\n",
+            band_color!($color),
+            // The corners' indices, each below the cache's length, else the caller's.
+            "22:\n",
+            "ldrd r0, lr, [r7, #108]\n",
+            "lsr r12, r8, #2\n",
+            "add r12, r12, r12, lsl #1\n",
+            "add r12, r0, r12, lsl #1\n",
+            "ldrh r1, [r12]\n",
+            "ldrh r2, [r12, #2]\n",
+            "ldrh r3, [r12, #4]\n",
+            "cmp r1, lr\n",
+            "itt lo\n",
+            "cmplo r2, lr\n",
+            "cmplo r3, lr\n",
+            "bhs 67f\n",
+            // The set-up's operands (as `small_less_dsp` hands them over).
+            "ldr r0, [r7, #156]\n",
+            "add r1, r0, r1, lsl #3\n",
+            "add r2, r0, r2, lsl #3\n",
+            "add r3, r0, r3, lsl #3\n",
+            "mov r0, r7\n",
+            small_body!(
+                fused,
+                "ldrsh",
+                "6",
+                "ldrsh",
+                "4",
+                "0",
+                "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
+            ),
+            // Refused by the set-up: the caller's. Else the counts, as the face loop's.
+            "cbnz r2, 67f\n",
+            "ldrd r4, r5, [r7, #200]\n",
+            "subs r4, #1\n",
+            "add r5, r1\n",
+            "strd r4, r5, [r7, #200]\n",
+            "bne 60b\n",
+            "ldrd r2, r3, [r7, #184]\n",
+            "adds r2, r2, r5\n",
+            "adc r3, r3, #0\n",
+            "strd r2, r3, [r7, #184]\n",
+            "ldrd r2, r3, [r7, #192]\n",
+            "ldr r4, [r7, #44]\n",
+            "adds r2, r2, r4\n",
+            "adc r3, r3, #0\n",
+            "strd r2, r3, [r7, #192]\n",
+            "movs r4, #0\n",
+            "str r4, [r7, #204]\n",
+            "str r4, [r7, #44]\n",
+            "ldr r4, [r7, #208]\n",
+            "adds r4, #1\n",
+            "str r4, [r7, #208]\n",
+            "mov r4, #8192\n",
+            "str r4, [r7, #200]\n",
+            "b 60b\n",
+            "66:\n",
+            "movs r0, #0\n",
+            "b 69f\n",
+            "67:\n",
+            "movs r0, #2\n",
+            "b 65f\n",
+            "68:\n",
+            "movs r0, #1\n",
+            "65:\n",
+            "str r8, [r7, #212]\n",
+            "69:\n",
+            "add r1, r7, #84\n",
+            "stm r1, {{r6, r9, r10, r11}}\n",
+            "pop {{r6, r7}}\n",
+        )
+    };
+}
+
+/// Draw a band's faces from its merged bin chains (`heads` in increasing order, each
+/// `face << 2 | chain`, the chains linked through `links`), those the common case
+/// covers: each face's colour taken from the band above (chain 0) while `carry` has
+/// one, else coloured by `color`, and kept for the band below (chain 1) while there is
+/// room; drawn by the small triangles' set-up and rows (`small_less_cached`: the depth
+/// test `Less` with depth writes, a two-byte colour); its counts into `counts`. The
+/// heads move past each face it takes. Returns where it stopped ([`BandStop`]). On
+/// ARMv7E-M one assembly loop; elsewhere it leaves every face to the caller
+/// ([`BandStop::Refused`]).
+#[inline(always)]
+pub(crate) fn band_faces_less<C: Copy>(
+    heads: &mut [u32; 4],
+    (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
+    carry: &mut BandCarry<'_, C>,
+    color: &FaceColor<'_, C>,
+    t: &mut SmallTarget<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> BandStop {
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    return band_faces_less_dsp(heads, (links, faces, cache), carry, color, t, counts);
+    #[allow(unreachable_code)]
+    {
+        let _ = (heads, links, faces, cache, carry, color, t, counts);
+        BandStop::Refused
+    }
+}
+
+/// [`band_faces_less`] on ARMv7E-M. Out of line (it runs once for a band's run of
+/// faces): its block is not stacked on the caller's frame.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[inline(never)]
+fn band_faces_less_dsp<C: Copy>(
+    heads: &mut [u32; 4],
+    (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
+    carry: &mut BandCarry<'_, C>,
+    color: &FaceColor<'_, C>,
+    t: &mut SmallTarget<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> BandStop {
+    let (probe, light, to_color) = match *color {
+        FaceColor::Flat(c) => (c, core::ptr::null(), None),
+        FaceColor::Lit(b, f, raw) => (
+            f(0),
+            core::ptr::from_ref(b).cast::<u8>(),
+            Some((f, raw.is_some())),
+        ),
+    };
+    let clip = t.clip;
+    let (first_row, width) = (t.first_row, t.width);
+    // `kernel_buffers` checks `C` is two bytes aligned to two: the carried colours are
+    // read and kept as u16s too.
+    let Some((z, c, bits)) = t.kernel_buffers(probe) else {
+        return BandStop::Refused;
+    };
+    let zaddr = z.as_mut_ptr() as u32;
+    let pitch = (width as u32).wrapping_mul(2);
+    let zrow0 = zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch));
+    let delta = (c.as_mut_ptr() as u32).wrapping_sub(zaddr);
+    let n = links.len().min(faces.len()).min(u32::MAX as usize) as u32;
+    let filled = carry.filled.min(carry.read.len()) as u32;
+    // Only compared with `filled` (at most the read half's length) and counted on: the
+    // delta goes back into the caller's cursor.
+    let taken0 = (*carry.taken).min(carry.read.len() + 1) as u32;
+    let kept0 = (*carry.kept).min(carry.keep.len()) as u32;
+    let mut block = BandBlock {
+        rows: RowsLess::new(0, 0),
+        heads: *heads,
+        links: links.as_ptr(),
+        n,
+        faces: faces.as_ptr(),
+        len: cache.len().min(u32::MAX as usize) as u32,
+        setup: [
+            zrow0,
+            clip.y0 as u32,
+            clip.y1 as u32,
+            clip.x0 as u32,
+            clip.x1 as u32,
+            pitch,
+            delta,
+        ],
+        color: u32::from(bits),
+        light,
+        to_color: core::ptr::null(),
+        entries: cache.as_ptr(),
+        read: carry.read.as_ptr().cast::<u16>(),
+        keep: carry.keep.as_mut_ptr().cast::<u16>(),
+        filled,
+        taken: taken0,
+        kept: kept0,
+        room: carry.keep.len().min(u32::MAX as usize) as u32,
+        tested: [0; 2],
+        failed: [0; 2],
+        drawn: FLUSH,
+        run: 0,
+        flushes: 0,
+        least: 0,
+    };
+    let status: u32;
+    // SAFETY: the loop composes blocks whose bounds arguments hold as they do alone.
+    // The merge reads `links[f]` and `faces[f]` only for the least head's face f (the
+    // head >> 2) below n, the smaller of the two lengths, whatever the heads and links
+    // hold (hostile bins included: END, or any number past the faces, fails the test
+    // and ends the loop); the chain's next head is that face's 16-bit link put in place
+    // of f by BFI (f < n < 2¹⁶: nothing above it), so again a face and the chain's
+    // number, tested the same way when it is least. A face's three indices are each
+    // tested below the cache's length before its entries' addresses (entries +
+    // 8·index: three `CachedVertex`, 8 bytes each) are formed. The carried colours:
+    // one read at `read[taken]` only when taken < filled ≤ `read`'s length, one written
+    // at `keep[kept]` only when kept < `keep`'s length (`room`); `C` is two bytes aligned
+    // to two (checked by `kernel_buffers`), and every value kept is a `C`'s bytes: one
+    // taken from `read`, the flat colour's bits, `bits_of`'s bytes of the caller's
+    // function's `C`, or (`raw`) the packed value which `Raw565` proves is those
+    // bytes. The colour (`faces_color`) reads the light block as `lit_565` does (its
+    // SAFETY argument, r1 the face's number) and leaves a face with no normal to the
+    // caller. The set-up and rows (`small_body`, its `fused` form) are `faces_less`'s
+    // with the same operands at the same offsets of this block (`RowsLess` at 0,
+    // word-aligned; the clip inside both buffers by `kernel_buffers`; its SAFETY
+    // argument); a triangle it refuses goes to the caller. The counts are stored into
+    // the block by its pinned offsets. r6 and r7 (not allowed as operands) are pushed
+    // first and popped last, r7 holding the block meanwhile; the calls (`bits_of`, the
+    // set-up's `wide_steps_c`) keep r4–r11 and the stack 8-aligned; every other
+    // register written is declared, the floating-point ones the calls may write among
+    // them; the flags are scratch.
+    unsafe {
+        macro_rules! band_asm {
+            ($kind:ident $($extra:tt)*) => {
+                core::arch::asm!(
+                    band_body!($kind),
+                    inout("r0") &mut block as *mut BandBlock => status,
+                    out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+                    out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+                    out("r12") _, out("lr") _,
+                    wide = sym super::rows::wide_steps_c,
+                    $($extra)*
+                    #[cfg(not(zraster_soft_float))] out("d0") _,
+                    #[cfg(not(zraster_soft_float))] out("d1") _,
+                    #[cfg(not(zraster_soft_float))] out("d2") _,
+                    #[cfg(not(zraster_soft_float))] out("d3") _,
+                    #[cfg(not(zraster_soft_float))] out("d4") _,
+                    #[cfg(not(zraster_soft_float))] out("d5") _,
+                    #[cfg(not(zraster_soft_float))] out("d6") _,
+                    #[cfg(not(zraster_soft_float))] out("d7") _,
+                )
+            };
+        }
+        if let Some((_, true)) = to_color {
+            band_asm!(raw);
+        } else if let Some((f, _)) = to_color {
+            block.to_color = f as *const u8;
+            band_asm!(lit bits = sym bits_of::<C>,);
+        } else {
+            band_asm!(flat);
+        }
+    }
+    let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
+    let tested = wide(block.tested).wrapping_add(u64::from(block.run));
+    let failed = wide(block.failed).wrapping_add(u64::from(block.rows.failed()));
+    counts.tested = counts.tested.wrapping_add(tested);
+    counts.failed = counts.failed.wrapping_add(failed);
+    let drawn = block
+        .flushes
+        .wrapping_mul(FLUSH)
+        .wrapping_add(FLUSH - block.drawn);
+    counts.drawn = counts.drawn.wrapping_add(drawn);
+    *heads = block.heads;
+    *carry.taken = carry
+        .taken
+        .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
+    *carry.kept = block.kept as usize;
+    match status {
+        0 => BandStop::Done,
+        1 => BandStop::Whole(block.least),
+        _ => BandStop::Fill(block.least),
     }
 }
 
@@ -634,6 +1066,297 @@ pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
     bad
 }
 
+/// On-target check of the fused band loop (`band_faces_less`) against its twin (the
+/// band loop's merge, carry, colour and the set-up's portable twin, face by face), for
+/// the bench firmware: `cases` random bands (buffers, clips, caches, meshes and colours
+/// as [`check_faces_kernel`]'s) walked from random bins: four chains' heads, links
+/// increasing, ending in `END` or a face past the faces, over links shorter or longer
+/// than the faces; tall faces among them; carried colours up to and past the read
+/// half, the keep half sometimes full. The faces the loop leaves are drawn by the twin
+/// as the band loop would. Returns the number of cases whose buffers, pixel counts,
+/// drawn faces, heads or carry differ. `buf` holds four 48 × 16 buffers (a shorter one
+/// is a failure).
+#[inline(never)]
+pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
+    use super::light::lit_565_portable;
+    use super::rows::{small_less_portable, SmallDone};
+    use crate::raster::{Clip, ScreenVertex};
+    const W: usize = 48;
+    const H: usize = 16;
+    const N: usize = W * H;
+    const END: u16 = u16::MAX;
+    /// The band loop's carry (`ColorCarry`) over two halves of eight.
+    #[derive(Clone, PartialEq)]
+    struct Carry8 {
+        read: [u16; 8],
+        keep: [u16; 8],
+        filled: usize,
+        taken: usize,
+        kept: usize,
+    }
+    impl Carry8 {
+        fn take(&mut self) -> Option<u16> {
+            let i = self.taken;
+            self.taken += 1;
+            (i < self.filled)
+                .then(|| self.read.get(i).copied())
+                .flatten()
+        }
+        fn last_taken(&self) -> Option<u16> {
+            let i = self.taken.checked_sub(1)?;
+            (i < self.filled)
+                .then(|| self.read.get(i).copied())
+                .flatten()
+        }
+        fn keep(&mut self, c: u16) {
+            if let Some(slot) = self.keep.get_mut(self.kept) {
+                *slot = c;
+                self.kept += 1;
+            }
+        }
+    }
+    let Some(buf) = buf.get_mut(..4 * N) else {
+        return usize::MAX;
+    };
+    let (mine, theirs) = buf.split_at_mut(2 * N);
+    let (z1, c1) = mine.split_at_mut(N);
+    let (z2, c2) = theirs.split_at_mut(N);
+    let mut rnd = super::xorshift32(0x3c6e_f372);
+    let mut bad = 0;
+    for case in 0..cases {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let off = case / 2 % 2;
+        let first_row = (rnd() % 5) as i32 - 2;
+        let rows = (H - off) as i32;
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (rnd() % 30) as i32,
+                y1: first_row + y0 + (rnd() % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + rows,
+            }
+        };
+        let len = rnd() as usize % 13;
+        let mut cache = [CachedVertex::EMPTY; 12];
+        let span = 64 << (case % 4);
+        let (bx, by) = (
+            (rnd() % (W as u32 * 16)) as i32 - 40,
+            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        for (i, e) in cache.iter_mut().enumerate() {
+            let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
+            let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
+            let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
+            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
+            *e = CachedVertex {
+                z,
+                xy: super::XyWord::new(x, y),
+            };
+            if rnd().is_multiple_of(24) {
+                e.xy = super::XyWord::new(i16::MIN, (rnd() % 64) as i16);
+            }
+        }
+        let cache = cache.get(..len).unwrap_or(&[]);
+        let mut faces = [[0u16; 3]; 16];
+        for t in faces.iter_mut() {
+            for i in t.iter_mut() {
+                *i = (rnd() % (len as u32 + 1).min(12)) as u16;
+                if rnd().is_multiple_of(64) {
+                    *i = (len as u32 + rnd() % 4) as u16; // out of range
+                }
+            }
+        }
+        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
+        // The bins: links increasing (so every chain ends), to END or past the faces.
+        let mut links = [0u16; 18];
+        for (f, l) in links.iter_mut().enumerate() {
+            *l = match rnd() % 8 {
+                0 => END,
+                1 => 16 + (rnd() % 3) as u16,
+                _ => (f as u32 + 1 + rnd() % 3) as u16,
+            };
+        }
+        let links = links.get(..rnd() as usize % 19).unwrap_or(&[]);
+        let mut heads = [0u32; 4];
+        for (c, h) in heads.iter_mut().enumerate() {
+            let f = if rnd().is_multiple_of(5) {
+                END
+            } else {
+                (rnd() % 18) as u16
+            };
+            // Tall faces (chain 3) on some cases only, as a band has few.
+            let c = if c == 3 && case % 4 != 0 { 2 } else { c as u32 };
+            *h = u32::from(f) << 2 | c;
+        }
+        heads.sort_unstable();
+        let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
+        let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
+        let ambient = (rnd() % 131_073) as i32 - 65536;
+        let diffuse = ((rnd() % 131_073) as i32 - 65536) << 3;
+        let channels = [0; 3].map(|_| rnd() as u8);
+        let count = rnd() as usize % (faces.len() + 2);
+        let block = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&normals),
+        );
+        let turn: fn(u16) -> u16 = |c| c.rotate_left(3);
+        let flat = rnd() as u16;
+        let same: fn(u16) -> u16 = |c| c;
+        let color = match case % 4 {
+            3 => FaceColor::Flat(flat),
+            2 => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
+            _ => FaceColor::Lit(&block, turn, None),
+        };
+        let color_of = |k: usize| match color {
+            FaceColor::Flat(c) => c,
+            FaceColor::Lit(b, f, _) => lit_565_portable(k, b).map_or(0x1234, f),
+        };
+        let mut carry = Carry8 {
+            read: [0; 8].map(|_| rnd() as u16),
+            keep: [0; 8].map(|_| rnd() as u16),
+            filled: rnd() as usize % 11,
+            taken: rnd() as usize % 3,
+            kept: rnd() as usize % 9,
+        };
+        let mut carry2 = carry.clone();
+        // One face as the band loop draws it (`carried`: its carry done by the fused
+        // loop); `false` at a corner past the cache (the band loop's error: it stops).
+        let face = |head: u32,
+                    carried: bool,
+                    carry: &mut Carry8,
+                    z: &mut [u16],
+                    c: &mut [u16],
+                    counts: &mut FacesCounts| {
+            let (f, k) = ((head >> 2) as usize, head & 3);
+            let Some(&t) = faces.get(f) else {
+                return false;
+            };
+            let get = |i: u16| cache.get(usize::from(i));
+            let (Some(a), Some(b), Some(e)) = (get(t[0]), get(t[1]), get(t[2])) else {
+                return false;
+            };
+            let taken = match (k, carried) {
+                (0, false) => carry.take(),
+                (0, true) => carry.last_taken(),
+                _ => None,
+            };
+            let col = taken.unwrap_or_else(|| color_of(f));
+            if k == 1 && !carried {
+                carry.keep(col);
+            }
+            let [p, q, r] = [a, b, e].map(|e| {
+                let (x, y) = e.xy();
+                ScreenVertex::from_raw(x, y, e.z)
+            });
+            let done = small_less_portable([&p, &q, &r], &clip, first_row, W, z, c, col);
+            if let SmallDone::Drawn(tested, failed) = done {
+                counts.drawn += 1;
+                counts.tested += u64::from(tested);
+                counts.failed += u64::from(failed);
+            }
+            true
+        };
+        // The band loop's merge: the least head's face, its chain's next in its place.
+        let n = links.len().min(faces.len());
+        let next = |heads: &mut [u32; 4]| {
+            let least = heads[0];
+            let f = (least >> 2) as usize;
+            let &link = links.get(f).filter(|_| f < n)?;
+            let next = u32::from(link) << 2 | least & 3;
+            let mut i = 0;
+            while let Some(&h) = heads.get(i + 1).filter(|&&h| next >= h) {
+                if let Some(slot) = heads.get_mut(i) {
+                    *slot = h;
+                }
+                i += 1;
+            }
+            if let Some(slot) = heads.get_mut(i) {
+                *slot = next;
+            }
+            Some(least)
+        };
+        // The fused loop, the faces it leaves drawn by the twin.
+        let mut mine = FacesCounts::default();
+        let mut heads1 = heads;
+        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
+            return usize::MAX;
+        };
+        let mut t = SmallTarget {
+            z: &mut z1[..],
+            c: ca,
+            width: W,
+            first_row,
+            clip,
+        };
+        let mut stopped = false;
+        loop {
+            let Carry8 {
+                read,
+                keep,
+                filled,
+                taken,
+                kept,
+            } = &mut carry;
+            let mut parts = BandCarry {
+                read: &read[..],
+                keep: &mut keep[..],
+                filled: *filled,
+                taken,
+                kept,
+            };
+            let tables = (links, faces, cache);
+            let (head, carried) =
+                match band_faces_less(&mut heads1, tables, &mut parts, &color, &mut t, &mut mine) {
+                    BandStop::Done => break,
+                    BandStop::Whole(h) => (h, false),
+                    BandStop::Fill(h) => (h, true),
+                    BandStop::Refused => match next(&mut heads1) {
+                        // Only where there is no assembly: the twin's face by face.
+                        Some(h) => (h, false),
+                        None => break,
+                    },
+                };
+            let (z, c) = (&mut *t.z, &mut *t.c);
+            if !face(head, carried, &mut carry, z, c, &mut mine) {
+                stopped = true;
+                break;
+            }
+        }
+        // The twin.
+        let mut theirs = FacesCounts::default();
+        let mut heads2 = heads;
+        let mut stopped2 = false;
+        while let Some(head) = next(&mut heads2) {
+            if !face(head, false, &mut carry2, z2, cb, &mut theirs) {
+                stopped2 = true;
+                break;
+            }
+        }
+        // After a stop (an error: the frame is not drawn on) the carry is not compared.
+        let same_carry = stopped || carry == carry2;
+        let same_draw = mine == theirs && z1 == z2 && c1 == c2 && heads1 == heads2;
+        if !same_draw || stopped != stopped2 || !same_carry {
+            bad += 1;
+        }
+    }
+    bad
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -643,6 +1366,13 @@ mod tests {
         let mut buf = [0u16; 4 * 48 * 16];
         assert_eq!(check_faces_kernel(&mut buf, 2_000), 0);
         assert_eq!(check_faces_kernel(&mut buf[..100], 1), usize::MAX);
+    }
+
+    #[test]
+    fn band_faces_kernel_matches_its_twin() {
+        let mut buf = [0u16; 4 * 48 * 16];
+        assert_eq!(check_band_faces_kernel(&mut buf, 4_000), 0);
+        assert_eq!(check_band_faces_kernel(&mut buf[..100], 1), usize::MAX);
     }
 
     /// `Raw565`'s promise: the colour of every packed value is two bytes holding it.

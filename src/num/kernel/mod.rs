@@ -60,9 +60,12 @@ pub use bin::check_bin_kernel;
 pub(crate) use bin::{bin_scan, BinChains, BIN_KERNEL};
 pub use cull::check_cull_kernel;
 pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, CULL_KERNEL};
-pub use faces::check_faces_kernel;
 pub use faces::Raw565;
-pub(crate) use faces::{faces_less, FaceColor, FacesCounts, FacesStop, FACES_KERNEL};
+pub(crate) use faces::{
+    band_faces_less, faces_less, BandCarry, BandStop, FaceColor, FacesCounts, FacesStop,
+    FACES_KERNEL,
+};
+pub use faces::{check_band_faces_kernel, check_faces_kernel};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;

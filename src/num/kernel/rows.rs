@@ -868,8 +868,9 @@ macro_rules! rows_start {
 /// y and x are read by `$ly`/`$lx` at byte offsets `$oy`/`$ox` and z at `$oz`; `$p0` loads
 /// the first corner given (its address in lr) into r6 (x), r7 (y), r8 (z). With
 /// `fused` first (the face loop's): the colour, its delta and the pitch already in the
-/// block, zrow0 and the clip's columns read from the block at 116 and 128 (not r4, r9,
-/// r10), failed neither zeroed nor read (the face loop's running sum; r3 left undefined).
+/// block, the clip's rows, zrow0 and its columns read from the block at 120, 116 and
+/// 128 (not r5, r8, r4, r9, r10: r5 and r8 come back as they were), failed neither
+/// zeroed nor read (the face loop's running sum; r3 left undefined).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -884,7 +885,7 @@ macro_rules! small_body {
     };
     (fused, $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         small_body!(
-            @ "",
+            @ "ldrd r5, r8, [r0, #120]\n",
             "ldr r1, [r0, #116]\n",
             "ldrd r8, r10, [r0, #128]\n",
             "",
