@@ -6,7 +6,9 @@
 use super::transform::{Clip4, FixedTransform};
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
-use crate::num::kernel::{place_run, CachedVertex, PlaceBlock, PLACE_KERNEL};
+use crate::num::kernel::{
+    place_run, place_run_v6m, CachedVertex, PlaceBlock, PlaceV6m, PLACE_KERNEL, PLACE_V6M_KERNEL,
+};
 use crate::num::{
     bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
     scaled_ratio_parts, shr64, ARMV6M, INTEGER_PROJECTION,
@@ -477,34 +479,56 @@ impl ScreenMap {
         ))
     }
 
+    /// The ARMv6-M vertex kernel's operands ([`PlaceV6m`]) for `fixed` and this
+    /// mapping: `None` unless x and y's scale is 2^e with 0 ≤ e ≤ 20 (where
+    /// [`project_fast`](ScreenMap::project_fast) places no vertex either).
+    pub(crate) fn place_block_v6m(&self, fixed: &FixedTransform) -> Option<PlaceV6m> {
+        let (rows, s) = fixed.words();
+        let bits = s.to_bits();
+        let e = (bits >> 23) as i32 - 127;
+        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) {
+            return None;
+        }
+        // half_w, half_h ≤ 2¹⁶; the origins truncated to i32 as project_fast does.
+        Some(PlaceV6m::new(
+            rows,
+            e as u32,
+            [self.half_w as u32, self.half_h as u32],
+            [self.ox_i as i32, self.oy_i as i32],
+            W_SHIFT_HINT,
+        ))
+    }
+
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
     /// the vertex kernel, `entry` giving each one it does not place; `false` (nothing
-    /// written) where the kernel does not run ([`place_block`](ScreenMap::place_block)).
-    /// Out of line: its operands stay off the stack of the renderer's set-up.
+    /// written) where no kernel runs ([`place_block`](ScreenMap::place_block) on
+    /// ARMv7E-M with an FPU, [`place_block_v6m`](ScreenMap::place_block_v6m) on
+    /// ARMv6-M). Out of line: its operands stay off the stack of the renderer's set-up.
     #[inline(never)]
     pub(crate) fn place_all(
         &self,
         fixed: &FixedTransform,
         positions: &[[i16; 3]],
         cache: &mut [CachedVertex],
-        mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
+        entry: impl FnMut(&[i16; 3]) -> CachedVertex,
     ) -> bool {
-        if !PLACE_KERNEL {
-            return false;
-        }
-        let Some(mut block) = self.place_block(fixed) else {
-            return false;
-        };
-        let mut at = 0;
-        while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
-            at += place_run(&mut block, p, c);
-            let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
-                break;
+        if PLACE_KERNEL {
+            let Some(mut block) = self.place_block(fixed) else {
+                return false;
             };
-            *e = entry(p);
-            at += 1;
+            fill_runs(positions, cache, entry, |p, c| place_run(&mut block, p, c));
+            true
+        } else if PLACE_V6M_KERNEL {
+            let Some(mut block) = self.place_block_v6m(fixed) else {
+                return false;
+            };
+            fill_runs(positions, cache, entry, |p, c| {
+                place_run_v6m(&mut block, p, c)
+            });
+            true
+        } else {
+            false
         }
-        true
     }
 
     /// Project a clip-space point inside the guard band and depth range (outcode 0).
@@ -519,6 +543,27 @@ impl ScreenMap {
             return None;
         }
         ScreenVertex::new(round_f32(x), round_f32(y), (z + 0.5) as u32).ok()
+    }
+}
+
+/// Fills `cache` with the entries of `positions` (as many as the shorter holds): runs
+/// by `run` (which writes entries from the first on and returns how many), each
+/// position it stops at by `entry`.
+#[inline(always)]
+fn fill_runs(
+    positions: &[[i16; 3]],
+    cache: &mut [CachedVertex],
+    mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
+    mut run: impl FnMut(&[[i16; 3]], &mut [CachedVertex]) -> usize,
+) {
+    let mut at = 0;
+    while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
+        at += run(p, c);
+        let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
+            break;
+        };
+        *e = entry(p);
+        at += 1;
     }
 }
 
@@ -909,6 +954,58 @@ mod tests {
             placed >= usual - usual / 50 && placed > 0,
             "{placed} of {usual}"
         );
+    }
+
+    /// The ARMv6-M vertex kernel's twin is `project_fast` then `CachedVertex::placing`,
+    /// the hint carried alike: for cameras from inside the model to far away, turned,
+    /// fields of view from narrow to wide, viewports large and small, off the origin,
+    /// mesh scales that put w's bits beyond 31 anywhere from 1 to 14.
+    #[test]
+    fn place_v6m_twin_is_the_fast_path() {
+        use crate::num::kernel::place_v6m_portable;
+        let mut next = crate::testing::xorshift32(0x4f6c_dd1d);
+        let (mut placed, mut blocks) = (0u64, 0);
+        let per = crate::num::tests::fast_cases() / 400;
+        for case in 0..400u32 {
+            let (w, h) =
+                [(320, 240), (240, 240), (16, 9), (2048, 1536), (8192, 8192)][case as usize % 5];
+            let vp =
+                Viewport::at((case % 7) as i32 * 301 - 900, (case % 3) as i32 * 50, w, h).unwrap();
+            let dist = [1.6, 0.9, 3.0, 40.0, 0.3, 2.2, 0.05][case as usize % 7];
+            let fov = [60.0, 10.0, 120.0, 45.0][case as usize % 4];
+            let cam = Camera::look_at(Vec3::new(0.2, -0.1, dist), Vec3::default(), Vec3::Y)
+                .unwrap()
+                .perspective(radians(fov), 0.1, 10.0, vp)
+                .unwrap()
+                .with_model(
+                    Mat4::rotation_y(radians(case as f32 * 13.7))
+                        * Mat4::rotation_x(radians(case as f32 * 5.3)),
+                );
+            let scale = [1.0 / 32767.0, 1.0 / 1000.0, 3.0 / 32767.0, 1e-7, 40.0][case as usize % 5];
+            let Ok(fixed) = FixedTransform::new(&cam.model_view_projection(), scale) else {
+                continue;
+            };
+            let map = ScreenMap::new(&vp);
+            let Some(mut block) = map.place_block_v6m(&fixed) else {
+                continue;
+            };
+            blocks += 1;
+            let mut hint = W_SHIFT_HINT;
+            for i in 0..per {
+                let r = next();
+                let p = match i % 4 {
+                    0 => [r as i16, next() as i16, next() as i16],
+                    _ => [(r as i16) >> 2, (next() as i16) >> 2, (next() as i16) >> 2],
+                };
+                let want = map
+                    .project_fast(&fixed.apply(&p), &mut hint)
+                    .and_then(CachedVertex::placing);
+                let got = place_v6m_portable(&mut block, &p);
+                assert_eq!(got, want, "{p:?} case {case}");
+                placed += u64::from(got.is_some());
+            }
+        }
+        assert!(blocks > 200 && placed > 1000, "{blocks} {placed}");
     }
 
     #[test]

@@ -401,7 +401,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             let c = self.fixed.apply(p);
             let usual = if !crate::num::INTEGER_PROJECTION {
                 self.map.project_float_inside(c.to_f32())
-            } else if crate::num::ARMV6M {
+            } else if crate::num::ARMV6M && !crate::num::kernel::PLACE_V6M_KERNEL {
                 self.map.project_fast(&c, &mut sh_hint)
             } else {
                 None
