@@ -479,11 +479,15 @@ impl ScreenMap {
         ))
     }
 
-    /// The ARMv6-M vertex kernel's operands ([`PlaceV6m`]) for `fixed` and this
-    /// mapping: `None` unless x and y's scale is 2^e with 0 ≤ e ≤ 20 (where
-    /// [`project_fast`](ScreenMap::project_fast) places no vertex either).
-    pub(crate) fn place_block_v6m(&self, fixed: &FixedTransform) -> Option<PlaceV6m> {
-        let (rows, s) = fixed.words();
+    /// The ARMv6-M vertex kernel's operands ([`PlaceV6m`]) for a transform's rows
+    /// (`FixedTransform::with_rows_v6m`) and scale and this mapping: `None` unless the scale
+    /// is 2^e with 0 ≤ e ≤ 20 (where [`project_fast`](ScreenMap::project_fast) places
+    /// no vertex either).
+    pub(crate) fn place_block_v6m<'a>(
+        &self,
+        rows: &'a [[i32; 4]; 6],
+        s: f32,
+    ) -> Option<PlaceV6m<'a>> {
         let bits = s.to_bits();
         let e = (bits >> 23) as i32 - 127;
         if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) {
@@ -501,9 +505,9 @@ impl ScreenMap {
 
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
     /// the vertex kernel, `entry` giving each one it does not place; `false` (nothing
-    /// written) where no kernel runs ([`place_block`](ScreenMap::place_block) on
-    /// ARMv7E-M with an FPU, [`place_block_v6m`](ScreenMap::place_block_v6m) on
-    /// ARMv6-M). Out of line: its operands stay off the stack of the renderer's set-up.
+    /// written) where no kernel runs: on targets other than ARMv7E-M with an FPU
+    /// ([`place_block`](ScreenMap::place_block)) and ARMv6-M (always, by
+    /// [`place_block_v6m`](ScreenMap::place_block_v6m)), or without the former's block. Out of line: its operands stay off the stack of the renderer's set-up.
     #[inline(never)]
     pub(crate) fn place_all(
         &self,
@@ -519,11 +523,12 @@ impl ScreenMap {
             fill_runs(positions, cache, entry, |p, c| place_run(&mut block, p, c));
             true
         } else if PLACE_V6M_KERNEL {
-            let Some(mut block) = self.place_block_v6m(fixed) else {
-                return false;
-            };
-            fill_runs(positions, cache, entry, |p, c| {
-                place_run_v6m(&mut block, p, c)
+            // Without a block (a scale project_fast refuses too) every entry by `entry`.
+            fixed.with_rows_v6m(|rows| match self.place_block_v6m(rows, fixed.scale()) {
+                Some(mut b) => {
+                    fill_runs(positions, cache, entry, |p, c| place_run_v6m(&mut b, p, c))
+                }
+                None => fill_runs(positions, cache, entry, |_, _| 0),
             });
             true
         } else {
@@ -986,7 +991,8 @@ mod tests {
                 continue;
             };
             let map = ScreenMap::new(&vp);
-            let Some(mut block) = map.place_block_v6m(&fixed) else {
+            let rows = fixed.with_rows_v6m(|r| *r);
+            let Some(mut block) = map.place_block_v6m(&rows, fixed.scale()) else {
                 continue;
             };
             blocks += 1;

@@ -23,9 +23,9 @@ pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m
 /// The operands of [`place_run_v6m`], read by the loop at fixed offsets (`repr(C)`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
-pub(crate) struct PlaceV6m {
-    /// The rows x, y, z high, z low, w high, w low: `c₀`, `c₁`, `c₂`, `t` each.
-    rows: [[i32; 4]; 6],
+pub(crate) struct PlaceV6m<'a> {
+    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
+    rows: &'a [[i32; 4]; 6],
     /// 16 + w's bits beyond 31 at the last vertex that changed it (the hint, 17..=30).
     hint: u32,
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
@@ -37,14 +37,17 @@ pub(crate) struct PlaceV6m {
     xs: [u32; 6],
 }
 
-// The loop reads the rows at 0, the hint at 96, e at 100, y's operands at 104 and x's
-// at 128.
+// The loop reads the rows' address at 0, the hint at 4, e at 8, y's operands at 12 and
+// x's at 36 (addresses of 32 bits).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
-    core::mem::offset_of!(PlaceV6m, hint) == 96
-        && core::mem::offset_of!(PlaceV6m, e) == 100
-        && core::mem::offset_of!(PlaceV6m, ys) == 104
-        && core::mem::offset_of!(PlaceV6m, xs) == 128
-        && core::mem::size_of::<PlaceV6m>() == 152
+    core::mem::offset_of!(PlaceV6m<'_>, rows) == 0
+        && core::mem::offset_of!(PlaceV6m<'_>, hint) == 4
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 8
+        && core::mem::offset_of!(PlaceV6m<'_>, ys) == 12
+        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 36
+        && core::mem::size_of::<PlaceV6m<'_>>() == 60
+        && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
 /// Where in `ys` and `xs` the half extent, the rounding constant and the origin go.
@@ -52,30 +55,21 @@ const HALF: usize = 3;
 const ROUND: usize = 4;
 const ORIGIN: usize = 5;
 
-impl PlaceV6m {
-    /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `c₀c₁`
-    /// packed, `c₂`, `t`, as `FixedTransform::words` gives them), x and y's scale
-    /// exponent `e` (0..=20), the half width and height `half` (1/16 pixel, at most
-    /// 2¹⁶) and the origin `org`, w's bits beyond 31 guessed as `sh` (1..=14).
+impl<'a> PlaceV6m<'a> {
+    /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
+    /// c₂, t]`, as `FixedTransform::with_rows_v6m` gives them), x and y's scale exponent `e`
+    /// (0..=20), the half width and height `half` (1/16 pixel, at most 2¹⁶) and the
+    /// origin `org`, w's bits beyond 31 guessed as `sh` (1..=14).
     pub(crate) fn new(
-        rows: [[u32; 3]; 6],
+        rows: &'a [[i32; 4]; 6],
         e: u32,
         half: [u32; 2],
         org: [i32; 2],
         sh: u32,
-    ) -> PlaceV6m {
-        let unpack = |[c01, c2, t]: [u32; 3]| {
-            [
-                i32::from(c01 as i16),
-                (c01 as i32) >> 16,
-                c2 as i32,
-                t as i32,
-            ]
-        };
-        let [x, y, zh, wh, zl, wl] = rows.map(unpack);
+    ) -> PlaceV6m<'a> {
         let operands = |h: u32, o: i32| [0, 31, 0, h, (1 << 13) + 3, o as u32];
         let mut b = PlaceV6m {
-            rows: [x, y, zh, zl, wh, wl],
+            rows,
             hint: 0,
             e,
             ys: operands(half[1], org[1]),
@@ -165,7 +159,7 @@ fn fits(c: i32) -> bool {
 
 /// The entry of position `p`, or `None` where the loop stops: the portable twin of one
 /// vertex of [`place_run_v6m`]'s loop (every step the same, the hint updated alike).
-pub(crate) fn place_v6m_portable(b: &mut PlaceV6m, p: &[i16; 3]) -> Option<CachedVertex> {
+pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<CachedVertex> {
     let [px, py, pz] = p.map(i32::from);
     let row = |[c0, c1, c2, t]: [i32; 4]| {
         c0.wrapping_mul(px)
@@ -173,7 +167,7 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m, p: &[i16; 3]) -> Option<Cache
             .wrapping_add(c2.wrapping_mul(pz))
             .wrapping_add(t)
     };
-    let [x, y, zh, zl, wh, wl] = b.rows.map(row);
+    let [x, y, zh, wh, zl, wl] = b.rows.map(row);
     let (zt, wt) = (zh.wrapping_add(zl >> 14), wh.wrapping_add(wl >> 14));
     let (zl, wl) = ((zl & 0x3fff) as u32, (wl & 0x3fff) as u32);
     // w ≥ 2³¹ and z strictly between −w and w with a unit of room (a negative wt fails
@@ -235,7 +229,7 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m, p: &[i16; 3]) -> Option<Cache
 /// most the shorter length). On ARMv6-M the assembly loop; elsewhere the twin.
 #[inline]
 pub(crate) fn place_run_v6m(
-    b: &mut PlaceV6m,
+    b: &mut PlaceV6m<'_>,
     positions: &[[i16; 3]],
     out: &mut [CachedVertex],
 ) -> usize {
@@ -261,7 +255,11 @@ pub(crate) fn place_run_v6m(
 }
 
 /// [`place_run_v6m`] by its twin.
-fn place_run_portable(b: &mut PlaceV6m, positions: &[[i16; 3]], out: &mut [CachedVertex]) -> usize {
+fn place_run_portable(
+    b: &mut PlaceV6m<'_>,
+    positions: &[[i16; 3]],
+    out: &mut [CachedVertex],
+) -> usize {
     for (i, (p, e)) in positions.iter().zip(out.iter_mut()).enumerate() {
         match place_v6m_portable(b, p) {
             Some(v) => *e = v,
@@ -282,7 +280,7 @@ extern "C" {
     /// `b` points to a valid block; `p` to at least as many positions as there are
     /// entries from `out` to `end`, all valid.
     fn zraster_place_v6m(
-        b: *mut PlaceV6m,
+        b: *mut PlaceV6m<'_>,
         p: *const [i16; 3],
         out: *mut u32,
         end: *mut u32,
@@ -407,7 +405,8 @@ core::arch::global_asm!(
     "ldrh r6, [r7, #4]",
     "sxth r6, r6",
     "mov r7, r8",
-    // x, y, z high, z low, w high pushed; w low in r0.
+    "ldr r7, [r7, #0]",
+    // x, y, z high, w high, z low pushed; w low in r0.
     place_row!(),
     "push {{r0}}",
     place_row!(),
@@ -420,54 +419,54 @@ core::arch::global_asm!(
     "push {{r0}}",
     place_row!(),
     "pop {{r1, r2, r3}}",
-    // r0 = w low, r1 = w high, r2 = z low, r3 = z high; y, x on the stack.
+    // r0 = w low, r1 = z low, r2 = w high, r3 = z high; y, x on the stack. Then
+    // r2 = wt, r3 = zt, r0 and r1 the low 14 bits of w and z.
     "asrs r4, r0, #14",
-    "adds r1, r1, r4",
+    "adds r2, r2, r4",
     "lsls r0, r0, #18",
     "lsrs r0, r0, #18",
-    "asrs r4, r2, #14",
+    "asrs r4, r1, #14",
     "adds r3, r3, r4",
-    "lsls r2, r2, #18",
-    "lsrs r2, r2, #18",
+    "lsls r1, r1, #18",
+    "lsrs r1, r1, #18",
     // wt ≥ 2¹⁷ (or negative), zt + wt > 0 (the sum's true sign), zt < wt − 1.
-    "lsrs r4, r1, #17",
+    "lsrs r4, r2, #17",
     "bne 9f",
     "b 8f",
     "9:",
-    "adds r5, r3, r1",
+    "adds r5, r3, r2",
     "bgt 9f",
     "b 8f",
     "9:",
-    "subs r4, r1, #1",
+    "subs r4, r2, #1",
     "cmp r3, r4",
     "blt 9f",
     "b 8f",
     "9:",
     // wt >> (16 + sh) = 1 for the hint's sh, else the search.
     "mov r7, r8",
-    "ldr r6, [r7, #96]",
-    "movs r4, r1",
+    "ldr r6, [r7, #4]",
+    "movs r4, r2",
     "lsrs r4, r4, r6",
     "cmp r4, #1",
-    "beq 9f",
+    "beq 3f",
     "b 5f",
-    "9:",
+    // un = (ut << up) + ((zl + wl) >> sh), wn = (wt << up) + (wl >> sh).
     "3:",
     "subs r6, #16",
     "movs r3, #14",
     "subs r3, r3, r6",
-    "lsls r1, r1, r3",
-    "movs r4, r0",
-    "lsrs r4, r4, r6",
-    "adds r1, r1, r4",
+    "adds r1, r1, r0",
+    "lsrs r1, r1, r6",
+    "lsls r5, r5, r3",
+    "adds r5, r5, r1",
+    "lsls r2, r2, r3",
+    "lsrs r0, r0, r6",
+    "adds r1, r2, r0",
     "lsls r4, r1, #2",
     "bne 9f",
     "b 8f",
     "9:",
-    "adds r2, r2, r0",
-    "lsrs r2, r2, r6",
-    "lsls r5, r5, r3",
-    "adds r5, r5, r2",
     // r1 = wn, r5 = un. The reciprocal: the table, one Newton step, a correction.
     "lsls r0, r1, #2",
     "lsrs r0, r0, #23",
@@ -560,11 +559,11 @@ core::arch::global_asm!(
     "mov r12, r3",
     // y, then x.
     "mov r7, r8",
-    "adds r7, #104",
+    "adds r7, #12",
     place_coordinate!("subs r3, r6, r3", "7f"),
     "mov lr, r3",
     "mov r7, r8",
-    "adds r7, #128",
+    "adds r7, #36",
     place_coordinate!("adds r3, r6, r3", "6f"),
     // The entry: the depth, then x | y << 16.
     "uxth r3, r3",
@@ -583,7 +582,7 @@ core::arch::global_asm!(
     "b 2b",
     // The search: 16 + sh for sh = 1 + ⌊log₂(wt/2¹⁷)⌋, then the shifts for k = sh − e.
     "5:",
-    "lsrs r4, r1, #17",
+    "lsrs r4, r2, #17",
     "movs r6, #17",
     "lsrs r3, r4, #8",
     "beq 1f",
@@ -604,35 +603,33 @@ core::arch::global_asm!(
     "beq 1f",
     "adds r6, #1",
     "1:",
-    "str r6, [r7, #96]",
-    "ldr r3, [r7, #100]",
-    "adds r7, #104",
+    "str r6, [r7, #4]",
+    "ldr r3, [r7, #8]",
     "subs r4, r6, r3",
     "subs r4, #16",
     "bmi 1f",
-    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's and x's at r7 + 0
-    // and + 24).
-    "str r4, [r7, #0]",
-    "str r4, [r7, #24]",
+    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 12, x's at 36).
+    "str r4, [r7, #12]",
+    "str r4, [r7, #36]",
     "movs r4, #31",
-    "str r4, [r7, #4]",
-    "str r4, [r7, #28]",
+    "str r4, [r7, #16]",
+    "str r4, [r7, #40]",
     "movs r4, #0",
-    "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
+    "str r4, [r7, #20]",
+    "str r4, [r7, #44]",
     "b 3b",
     "1:",
     // k < 0: right by 0, the magnitude below 2^(31 + k), left by −k.
     "rsbs r4, r4, #0",
-    "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
+    "str r4, [r7, #20]",
+    "str r4, [r7, #44]",
     "movs r3, #31",
     "subs r3, r3, r4",
-    "str r3, [r7, #4]",
-    "str r3, [r7, #28]",
+    "str r3, [r7, #16]",
+    "str r3, [r7, #40]",
     "movs r4, #0",
-    "str r4, [r7, #0]",
-    "str r4, [r7, #24]",
+    "str r4, [r7, #12]",
+    "str r4, [r7, #36]",
     "b 3b",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
     "8:",
@@ -677,9 +674,9 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
     let mut run = [[0i16; 3]; 8];
     let mut got = [CachedVertex::EMPTY; 8];
     let mut want = [CachedVertex::EMPTY; 8];
-    let mut rows = [[0; 3]; 6];
+    let mut rows = [[0; 4]; 6];
     for case in 0..24u32 {
-        // A value within ±2^bits.
+        // A value within ±2^bits (c₀, c₁ of x and y within ±16383).
         let mut within = |bits: u32| (rnd() as i32) >> (31 - bits);
         for (r, row) in rows.iter_mut().enumerate() {
             let (c, t) = match r {
@@ -692,11 +689,7 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
                 _ => ([0; 3].map(|_| within(14) & 0x3fff), within(14) & 0x3fff),
             };
             let [c0, c1, c2] = c;
-            *row = [
-                crate::num::pack_i16(c0 as i16, c1 as i16),
-                c2 as u32,
-                t as u32,
-            ];
+            *row = [c0, c1, c2, t];
         }
         let half = match case % 4 {
             0 => [2560, 1920],
@@ -712,7 +705,7 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
             _ => 16,
         };
         let org = [(case % 3) as i32 * 592 - 640, (case % 5) as i32 * 176];
-        let mut mine = PlaceV6m::new(rows, e, half, org, 1 + case % 14);
+        let mut mine = PlaceV6m::new(&rows, e, half, org, 1 + case % 14);
         let mut twin = mine;
         for _ in 0..n.div_ceil(8) {
             for p in &mut run {
