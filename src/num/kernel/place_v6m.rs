@@ -26,8 +26,11 @@ pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m
 pub(crate) struct PlaceV6m<'a> {
     /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
     rows: &'a [[i32; 4]; 6],
-    /// 16 + w's bits beyond 31 at the last vertex that changed it (the hint, 17..=30).
+    /// sh − 1 for w's bits sh beyond 31 at the last vertex that changed it (the hint,
+    /// 0..=13).
     hint: u32,
+    /// 14 − sh.
+    up: u32,
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
     /// y's operands: right shift, overflow shift, left shift (of the normalisation
@@ -37,16 +40,17 @@ pub(crate) struct PlaceV6m<'a> {
     xs: [u32; 6],
 }
 
-// The loop reads the rows' address at 0, the hint at 4, e at 8, y's operands at 12 and
-// x's at 36 (addresses of 32 bits).
+// The loop reads the rows' address at 0, the hint at 4, 14 − sh at 8, e at 12, y's
+// operands at 16 and x's at 40 (addresses of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
     core::mem::offset_of!(PlaceV6m<'_>, rows) == 0
         && core::mem::offset_of!(PlaceV6m<'_>, hint) == 4
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 8
-        && core::mem::offset_of!(PlaceV6m<'_>, ys) == 12
-        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 36
-        && core::mem::size_of::<PlaceV6m<'_>>() == 60
+        && core::mem::offset_of!(PlaceV6m<'_>, up) == 8
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 12
+        && core::mem::offset_of!(PlaceV6m<'_>, ys) == 16
+        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 40
+        && core::mem::size_of::<PlaceV6m<'_>>() == 64
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
@@ -71,20 +75,23 @@ impl<'a> PlaceV6m<'a> {
         let mut b = PlaceV6m {
             rows,
             hint: 0,
+            up: 0,
             e,
             ys: operands(half[1], org[1]),
             xs: operands(half[0], org[0]),
         };
-        b.set_hint(16 + sh);
+        b.set_sh(sh);
         b
     }
 
-    /// The hint `hint` (16 + sh) and the normalisation's shifts for k = sh − e: right
-    /// by k when k ≥ 0, else left by −k, the magnitude first checked below 2^(31 + k).
-    fn set_hint(&mut self, hint: u32) {
-        let k = hint as i32 - 16 - self.e as i32;
+    /// The hint for w's bits `sh` beyond 31 (1..=14), and the normalisation's shifts
+    /// for k = sh − e: right by k when k ≥ 0, else left by −k, the magnitude first
+    /// checked below 2^(31 + k).
+    fn set_sh(&mut self, sh: u32) {
+        let k = sh as i32 - self.e as i32;
         let (right, left) = (k.max(0) as u32, (-k).max(0) as u32);
-        self.hint = hint;
+        self.hint = sh - 1;
+        self.up = 14 - sh;
         for s in [&mut self.ys, &mut self.xs] {
             s[0] = right;
             s[1] = 31 - left;
@@ -175,19 +182,19 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
     if (wt as u32) >> 17 == 0 || i64::from(zt) + i64::from(wt) <= 0 || zt >= wt.wrapping_sub(1) {
         return None;
     }
-    if (wt as u32) >> b.hint != 1 {
+    // wt >> (16 + sh) = 1 for the hint's sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
+    if (wt as u32) >> 17 >> b.hint != 1 {
         let mut t = (wt as u32) >> 17;
-        let mut hint = 17;
+        let mut sh = 1;
         for k in [8, 4, 2, 1] {
             if t >> k != 0 {
                 t >>= k;
-                hint += k;
+                sh += k;
             }
         }
-        b.set_hint(hint);
+        b.set_sh(sh);
     }
-    let sh = b.hint - 16;
-    let up = 14 - sh;
+    let (sh, up) = (b.hint + 1, b.up);
     let wn = ((wt as u32) << up).wrapping_add(wl >> sh);
     if wn << 2 == 0 {
         return None; // wn = 2³⁰
@@ -303,7 +310,7 @@ macro_rules! place_row {
 }
 
 /// One screen coordinate (the twin's `ratio`, then the origin and `fits`): the
-/// operands at r7 (the block plus 104 for y, 128 for x), the coordinate's row value
+/// operands at r7 (the block plus 16 for y, 40 for x), the coordinate's row value
 /// popped, r's halves in r0 (high) and r1 (low); the coordinate in r3. `$org` is the
 /// origin's operation (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail`
 /// where a refusal goes.
@@ -369,13 +376,14 @@ macro_rules! place_coordinate {
     };
 }
 
-// SAFETY (for `place_run_v6m`): the loop reads the block through r8 (rows 0..96 by
-// LDM, the hint at 96 and e at 100, the operands at 104..152) and writes only its hint
-// and shifts (96, 104..112, 128..136) on a search; reads three halfwords at r9 and
+// SAFETY (for `place_run_v6m`): the loop reads the block through r8 (64 bytes: the
+// rows' address at 0, the hint, 14 − sh, e, the operands at 16..64) and the rows
+// through that address (96 bytes by LDM), and writes only the block's hint, 14 − sh
+// and shifts (4, 8, 16..28, 40..52) on a search; reads three halfwords at r9 and
 // writes two words at r10 a turn, r9 advancing 6 and r10 8, and stops when r10 reaches
 // r11 (checked after each entry; the caller passes end > out) or before an entry it
 // does not place. It reads RECIP16 at an index below 512. The stack: r4–r7, lr and
-// r8–r11 saved and restored as AAPCS wants; a turn pushes up to two row values and
+// r8–r11 saved and restored as AAPCS wants; a turn pushes up to five row values and
 // pops them (a refusal drops what is left by the label it takes).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
@@ -404,6 +412,8 @@ core::arch::global_asm!(
     "sxth r5, r5",
     "ldrh r6, [r7, #4]",
     "sxth r6, r6",
+    "adds r7, #6",
+    "mov r9, r7",
     "mov r7, r8",
     "ldr r7, [r7, #0]",
     // x, y, z high, w high, z low pushed; w low in r0.
@@ -438,24 +448,22 @@ core::arch::global_asm!(
     "bgt 9f",
     "b 8f",
     "9:",
-    "subs r4, r2, #1",
-    "cmp r3, r4",
+    "subs r6, r2, #1",
+    "cmp r3, r6",
     "blt 9f",
     "b 8f",
     "9:",
-    // wt >> (16 + sh) = 1 for the hint's sh, else the search.
+    // (wt >> 17) >> (sh − 1) = 1 for the hint's sh, else the search.
     "mov r7, r8",
     "ldr r6, [r7, #4]",
-    "movs r4, r2",
     "lsrs r4, r4, r6",
     "cmp r4, #1",
     "beq 3f",
     "b 5f",
     // un = (ut << up) + ((zl + wl) >> sh), wn = (wt << up) + (wl >> sh).
     "3:",
-    "subs r6, #16",
-    "movs r3, #14",
-    "subs r3, r3, r6",
+    "ldr r3, [r7, #8]",
+    "adds r6, #1",
     "adds r1, r1, r0",
     "lsrs r1, r1, r6",
     "lsls r5, r5, r3",
@@ -475,8 +483,7 @@ core::arch::global_asm!(
     "ldrh r2, [r2, r0]",
     "lsrs r0, r1, #15",
     "adds r0, r0, #1",
-    "movs r3, #1",
-    "lsls r3, r3, #31",
+    "ldr r3, =0x80000000",
     "movs r4, r0",
     "muls r4, r2, r4",
     "subs r4, r3, r4",
@@ -540,8 +547,7 @@ core::arch::global_asm!(
     "adds r3, r3, r5",
     "lsrs r5, r7, #16",
     "adds r3, r3, r5",
-    "movs r5, #1",
-    "lsls r5, r5, #15",
+    "ldr r5, =0x8000",
     "adds r4, r4, r5",
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
@@ -559,11 +565,11 @@ core::arch::global_asm!(
     "mov r12, r3",
     // y, then x.
     "mov r7, r8",
-    "adds r7, #12",
+    "adds r7, #16",
     place_coordinate!("subs r3, r6, r3", "7f"),
     "mov lr, r3",
     "mov r7, r8",
-    "adds r7, #36",
+    "adds r7, #40",
     place_coordinate!("adds r3, r6, r3", "6f"),
     // The entry: the depth, then x | y << 16.
     "uxth r3, r3",
@@ -574,16 +580,14 @@ core::arch::global_asm!(
     "mov r7, r10",
     "stm r7!, {{r1, r2}}",
     "mov r10, r7",
-    "mov r7, r9",
-    "adds r7, #6",
-    "mov r9, r7",
     "cmp r10, r11",
     "beq 6f",
     "b 2b",
-    // The search: 16 + sh for sh = 1 + ⌊log₂(wt/2¹⁷)⌋, then the shifts for k = sh − e.
+    // The search: sh − 1 = ⌊log₂(wt/2¹⁷)⌋ and up = 14 − sh, then the shifts for
+    // k = sh − e.
     "5:",
     "lsrs r4, r2, #17",
-    "movs r6, #17",
+    "movs r6, #0",
     "lsrs r3, r4, #8",
     "beq 1f",
     "movs r4, r3",
@@ -604,32 +608,35 @@ core::arch::global_asm!(
     "adds r6, #1",
     "1:",
     "str r6, [r7, #4]",
-    "ldr r3, [r7, #8]",
+    "movs r3, #13",
+    "subs r3, r3, r6",
+    "str r3, [r7, #8]",
+    "ldr r3, [r7, #12]",
     "subs r4, r6, r3",
-    "subs r4, #16",
+    "adds r4, #1",
     "bmi 1f",
-    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 12, x's at 36).
-    "str r4, [r7, #12]",
-    "str r4, [r7, #36]",
-    "movs r4, #31",
+    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 16, x's at 40).
     "str r4, [r7, #16]",
     "str r4, [r7, #40]",
-    "movs r4, #0",
+    "movs r4, #31",
     "str r4, [r7, #20]",
     "str r4, [r7, #44]",
+    "movs r4, #0",
+    "str r4, [r7, #24]",
+    "str r4, [r7, #48]",
     "b 3b",
     "1:",
     // k < 0: right by 0, the magnitude below 2^(31 + k), left by −k.
     "rsbs r4, r4, #0",
-    "str r4, [r7, #20]",
-    "str r4, [r7, #44]",
+    "str r4, [r7, #24]",
+    "str r4, [r7, #48]",
     "movs r3, #31",
     "subs r3, r3, r4",
-    "str r3, [r7, #16]",
-    "str r3, [r7, #40]",
+    "str r3, [r7, #20]",
+    "str r3, [r7, #44]",
     "movs r4, #0",
-    "str r4, [r7, #12]",
-    "str r4, [r7, #36]",
+    "str r4, [r7, #16]",
+    "str r4, [r7, #40]",
     "b 3b",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
     "8:",
