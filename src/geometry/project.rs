@@ -961,15 +961,17 @@ mod tests {
         );
     }
 
-    /// The ARMv6-M vertex kernel's twin is `project_fast` then `CachedVertex::placing`,
-    /// the hint carried alike: for cameras from inside the model to far away, turned,
+    /// The ARMv6-M vertex kernel's twin gives `project_fast` then
+    /// `CachedVertex::placing` where it gives an entry, and gives one wherever they do
+    /// but next to a screen coordinate's rounding boundary (one value in 16,384 more
+    /// than `project_fast` leaves), the hint carried alike: for cameras from inside the model to far away, turned,
     /// fields of view from narrow to wide, viewports large and small, off the origin,
     /// mesh scales that put w's bits beyond 31 anywhere from 1 to 14.
     #[test]
     fn place_v6m_twin_is_the_fast_path() {
         use crate::num::kernel::place_v6m_portable;
         let mut next = crate::testing::xorshift32(0x4f6c_dd1d);
-        let (mut placed, mut blocks) = (0u64, 0);
+        let (mut placed, mut blocks, mut refused) = (0u64, 0, 0);
         let per = crate::num::tests::fast_cases() / 400;
         for case in 0..400u32 {
             let (w, h) =
@@ -1007,11 +1009,16 @@ mod tests {
                     .project_fast(&fixed.apply(&p), &mut hint)
                     .and_then(CachedVertex::placing);
                 let got = place_v6m_portable(&mut block, &p);
-                assert_eq!(got, want, "{p:?} case {case}");
+                if got.is_some() || want.is_none() {
+                    assert_eq!(got, want, "{p:?} case {case}");
+                } else {
+                    refused += 1;
+                }
                 placed += u64::from(got.is_some());
             }
         }
         assert!(blocks > 200 && placed > 1000, "{blocks} {placed}");
+        assert!(refused <= placed / 2000, "{refused} refused of {placed}");
     }
 
     #[test]

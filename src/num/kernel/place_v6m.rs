@@ -6,8 +6,9 @@
 //! sums each), the near, far and w planes on z and w in units of 2¹⁴, w's bits beyond
 //! 31 against the hint the block carries (a four-step search on a miss), w and z + w
 //! normalised, x and y normalised by one shift each, the reciprocal ⌊2⁶²/wn⌋, the
-//! screen coordinates by five 16 × 16-bit products each (`None` within 3 of a rounding
-//! boundary) and the depth by the rounded high word of four. The reciprocal's first
+//! screen coordinates by five 16 × 16-bit products each and the depth by the rounded
+//! high word of four. It refuses one value more next to a screen coordinate's rounding
+//! boundary (4 in 16,384 instead of 3), which a shorter test finds. The reciprocal's first
 //! step starts from the 512-entry table `recip32_small` reads (one Newton step and a
 //! correction instead of a line and two steps: the same ⌊2³¹/(v + 1)⌋, checked for
 //! every v). Any vertex it does not place stops the loop for the caller's exact path.
@@ -34,7 +35,7 @@ pub(crate) struct PlaceV6m<'a> {
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
     /// y's operands: right shift, overflow shift, left shift (of the normalisation
-    /// by 2^(sh − e)), the half height, 2¹³ + 3, the y origin (1/16 pixel).
+    /// by 2^(sh − e)), the half height, 2¹³ + 4, the y origin (1/16 pixel).
     ys: [u32; 6],
     /// x's operands, as `ys` with the half width and the x origin.
     xs: [u32; 6],
@@ -71,7 +72,7 @@ impl<'a> PlaceV6m<'a> {
         org: [i32; 2],
         sh: u32,
     ) -> PlaceV6m<'a> {
-        let operands = |h: u32, o: i32| [0, 31, 0, h, (1 << 13) + 3, o as u32];
+        let operands = |h: u32, o: i32| [0, 31, 0, h, (1 << 13) + 4, o as u32];
         let mut b = PlaceV6m {
             rows,
             hint: 0,
@@ -133,8 +134,8 @@ fn recip62_table(d: u32) -> u32 {
 
 /// One screen coordinate's offset from its origin: `v·2^e/2^sh · h/wn` rounded (the
 /// operands `s` of [`PlaceV6m`]), through r = ⌊2⁶²/wn⌋ in halves `rh`, `rl`, as
-/// `project::signed_ratio`; `None` where that cannot tell or the normalised v
-/// reaches 2³¹.
+/// `project::signed_ratio` where it gives one; `None` where that cannot tell (or one
+/// value more) or the normalised v reaches 2³¹.
 #[inline(always)]
 fn ratio(v: i32, s: &[u32; 6], rh: u32, rl: u32) -> Option<i32> {
     let sign = v >> 31;
@@ -152,7 +153,8 @@ fn ratio(v: i32, s: &[u32; 6], rh: u32, rl: u32) -> Option<i32> {
         .wrapping_mul(h)
         .wrapping_add((p & 0xffff).wrapping_mul(h) >> 16)
         .wrapping_add(s[ROUND]);
-    if f & 0x3fff < 3 {
+    // None within 4 of a rounding boundary (project::signed_ratio's 3 and one more).
+    if f & 0x3fff < 4 {
         return None;
     }
     Some(((f >> 14) as i32 ^ sign).wrapping_sub(sign))
@@ -215,8 +217,13 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
         .wrapping_add(m1 >> 16)
         .wrapping_add(m2 >> 16)
         .wrapping_add(low >> 16);
+    // Above q30 = 2³¹ (where it is MAX_DEPTH) the depth is clamped.
     let d = q30.wrapping_add((1 << 14) - 1) >> 15;
-    let sz = q30.wrapping_add(q30.wrapping_sub(d)).min(MAX_DEPTH);
+    let sz = if q30 > 1 << 31 {
+        MAX_DEPTH
+    } else {
+        q30.wrapping_add(q30.wrapping_sub(d))
+    };
     let sy = (b.ys[ORIGIN] as i32).wrapping_sub(ratio(y, &b.ys, rh, rl)?);
     if !fits(sy) {
         return None;
@@ -233,7 +240,8 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
 
 /// Writes the entries of `positions` into `out` from the first on, up to the first
 /// position [`place_v6m_portable`] does not place, and returns how many it wrote (at
-/// most the shorter length). On ARMv6-M the assembly loop; elsewhere the twin.
+/// most the shorter length; the entry after those may be written in part, for the
+/// caller to write). On ARMv6-M the assembly loop; elsewhere the twin.
 #[inline]
 pub(crate) fn place_run_v6m(
     b: &mut PlaceV6m<'_>,
@@ -247,13 +255,14 @@ pub(crate) fn place_run_v6m(
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
         let start = out.as_mut_ptr().cast::<u32>();
-        // SAFETY: the loop reads the block (`repr(C)`, 152 bytes, 4-aligned) and writes
-        // its hint words, reads one position a turn (three halfwords, 2-aligned as
-        // `[i16; 3]` is) from `positions`' start and writes one entry a turn (two words
-        // by one STM, 4-aligned as `CachedVertex` is) from `out`'s start, and stops when
-        // the entry pointer reaches `start + n` (n ≥ 1, at most either length) or before
-        // a position it does not place (writing nothing for it): n turns at most, every
-        // access inside the slices. See `zraster_place_v6m` for its registers.
+        // SAFETY: the loop reads the block (`repr(C)`, 64 bytes, 4-aligned) and the rows
+        // it borrows (96 bytes) and writes the block's hint words, reads one position a
+        // turn (three halfwords, 2-aligned as `[i16; 3]` is) from `positions`' start and
+        // writes one entry a turn (a word and two halfwords, 4-aligned as
+        // `CachedVertex` is; any bits are a valid entry) from `out`'s start, and stops
+        // when the entry pointer reaches `start + n` (n ≥ 1, at most either length) or
+        // at a position it does not place: n turns at most, every access inside the
+        // slices. See `zraster_place_v6m` for its registers.
         let end = unsafe { zraster_place_v6m(b, positions.as_ptr(), start, start.add(2 * n)) };
         return (end as usize - start as usize) / 8;
     }
@@ -342,7 +351,7 @@ macro_rules! place_coordinate {
             "lsrs r4, r4, #16\n",
             "adds r3, r3, r2\n",
             "adds r3, r3, r4\n",
-            // f + 3 = ⌊P·h/2¹⁶⌋ + 2¹³ + 3.
+            // f + 4 = ⌊P·h/2¹⁶⌋ + 2¹³ + 4.
             "ldm r7!, {{r2, r4, r6}}\n",
             "uxth r7, r3\n",
             "lsrs r3, r3, #16\n",
@@ -352,9 +361,8 @@ macro_rules! place_coordinate {
             "adds r3, r3, r7\n",
             "adds r3, r3, r4\n",
             "lsls r7, r3, #18\n",
-            "lsrs r7, r7, #18\n",
-            "cmp r7, #3\n",
-            "bhs 9f\n",
+            "lsrs r7, r7, #20\n",
+            "bne 9f\n",
             "b ",
             $fail,
             "\n9:\n",
@@ -376,13 +384,14 @@ macro_rules! place_coordinate {
     };
 }
 
-// SAFETY (for `place_run_v6m`): the loop reads the block through r8 (64 bytes: the
+// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (64 bytes: the
 // rows' address at 0, the hint, 14 − sh, e, the operands at 16..64) and the rows
-// through that address (96 bytes by LDM), and writes only the block's hint, 14 − sh
-// and shifts (4, 8, 16..28, 40..52) on a search; reads three halfwords at r9 and
-// writes two words at r10 a turn, r9 advancing 6 and r10 8, and stops when r10 reaches
-// r11 (checked after each entry; the caller passes end > out) or before an entry it
-// does not place. It reads RECIP16 at an index below 512. The stack: r4–r7, lr and
+// through r8, that address (96 bytes by LDM), and writes only the block's hint,
+// 14 − sh and shifts (4, 8, 16..28, 40..52) on a search; reads three halfwords at r9
+// and writes the entry at r10 a turn (its depth word, then the halves of y and x), r9
+// advancing 6 and r10 8, and stops when r10 reaches r11 (checked after each entry; the
+// caller passes end > out) or at an entry it does not place (r10 still below r11; that
+// entry may hold its depth and y). It reads RECIP16 at an index below 512. The stack: r4–r7, lr and
 // r8–r11 saved and restored as AAPCS wants; a turn pushes up to five row values and
 // pops them (a refusal drops what is left by the label it takes).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
@@ -400,7 +409,9 @@ core::arch::global_asm!(
     "mov r6, r10",
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
-    "mov r8, r0",
+    "mov r12, r0",
+    "ldr r4, [r0, #0]",
+    "mov r8, r4",
     "mov r9, r1",
     "mov r10, r2",
     "mov r11, r3",
@@ -415,7 +426,6 @@ core::arch::global_asm!(
     "adds r7, #6",
     "mov r9, r7",
     "mov r7, r8",
-    "ldr r7, [r7, #0]",
     // x, y, z high, w high, z low pushed; w low in r0.
     place_row!(),
     "push {{r0}}",
@@ -454,7 +464,7 @@ core::arch::global_asm!(
     "b 8f",
     "9:",
     // (wt >> 17) >> (sh − 1) = 1 for the hint's sh, else the search.
-    "mov r7, r8",
+    "mov r7, r12",
     "ldr r6, [r7, #4]",
     "lsrs r4, r4, r6",
     "cmp r4, #1",
@@ -551,34 +561,33 @@ core::arch::global_asm!(
     "adds r4, r4, r5",
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
-    // sz = min(2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋, MAX_DEPTH), into r12.
+    // sz = 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋, or MAX_DEPTH where q30 > 2³¹ (sz grows with
+    // q30, and is MAX_DEPTH at 2³¹; q30 ≥ 1 as un·r ≥ 2³¹), into the entry.
+    "subs r4, r3, #1",
+    "bpl 1f",
+    "ldr r3, ={max_depth}",
+    "b 4f",
+    "1:",
     "ldr r4, ={k}",
     "adds r4, r4, r3",
     "lsrs r4, r4, #15",
     "subs r4, r3, r4",
     "adds r3, r3, r4",
-    "ldr r4, ={max_depth}",
-    "cmp r3, r4",
-    "bls 4f",
-    "movs r3, r4",
     "4:",
-    "mov r12, r3",
-    // y, then x.
-    "mov r7, r8",
+    "mov r7, r10",
+    "str r3, [r7, #0]",
+    // y, then x, each into its half of the entry's second word.
+    "mov r7, r12",
     "adds r7, #16",
     place_coordinate!("subs r3, r6, r3", "7f"),
-    "mov lr, r3",
-    "mov r7, r8",
+    "mov r7, r10",
+    "strh r3, [r7, #6]",
+    "mov r7, r12",
     "adds r7, #40",
     place_coordinate!("adds r3, r6, r3", "6f"),
-    // The entry: the depth, then x | y << 16.
-    "uxth r3, r3",
-    "mov r2, lr",
-    "lsls r2, r2, #16",
-    "orrs r2, r2, r3",
-    "mov r1, r12",
     "mov r7, r10",
-    "stm r7!, {{r1, r2}}",
+    "strh r3, [r7, #4]",
+    "adds r7, #8",
     "mov r10, r7",
     "cmp r10, r11",
     "beq 6f",
