@@ -486,10 +486,11 @@ core::arch::global_asm!(
     "b 8f",
     "9:",
     // r1 = wn, r5 = un. The reciprocal: the table, one Newton step, a correction.
-    "lsls r0, r1, #2",
-    "lsrs r0, r0, #23",
+    // The table's entry 512 + d's bits 29..21 less 512, by an address 1,024 bytes
+    // below the table (d < 2³¹).
+    "lsrs r0, r1, #21",
     "lsls r0, r0, #1",
-    "ldr r2, ={recip16}",
+    "ldr r2, ={recip16} - 1024",
     "ldrh r2, [r2, r0]",
     "lsrs r0, r1, #15",
     "adds r0, r0, #1",
