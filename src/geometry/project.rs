@@ -7,7 +7,8 @@ use super::transform::{Clip4, FixedTransform};
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
 use crate::num::kernel::{
-    place_run, place_run_v6m, CachedVertex, PlaceBlock, PlaceV6m, PLACE_KERNEL, PLACE_V6M_KERNEL,
+    place_run, place_run_v6m, recip62_low, CachedVertex, PlaceBlock, PlaceV6m, PLACE_KERNEL,
+    PLACE_V6M_KERNEL,
 };
 use crate::num::{
     bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
@@ -130,41 +131,6 @@ fn rounded_high(a: u32, b: u32) -> u32 {
     let low = (m1 & 0xffff) + (m2 & 0xffff) + ((a0 * b0) >> 16) + (1 << 15);
     // The sum is the rounded high word of a·b, below 2³²: no partial sum wraps.
     a1 * b1 + (m1 >> 16) + (m2 >> 16) + (low >> 16)
-}
-
-/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table or a division (on
-/// ARMv6-M, 64-bit products are long). Each step's error is
-/// read off the low word of a product, exact because the step keeps it in `[0, 2³²)`:
-///
-/// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v: a line through 1/x (error below 1/17),
-///    two Newton steps and a correction by the remainder (a test checks every v).
-///    Then y ≤ 2⁴⁶/d and e = 2⁴⁶ − d·y < 2⁴⁶/(v + 1) + v·2¹⁵ ≤ 2³².
-/// 2. With ε = e/2⁴⁶ < 2⁻¹⁴, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the
-///    last term below 2⁻⁹: y' = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋ lies within [2⁴⁹/d − 2, 2⁴⁹/d]
-///    (1 + 2⁻¹⁶ + 2⁻⁹ dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
-/// 3. Likewise 2⁶²/d = 2¹³y' + y'·e'/2³⁶ + t with t = 2¹³y'·ε'²/(1 − ε') < ¼
-///    (ε' < 2⁻¹⁷, y' < 2¹⁹); x = 2¹³y' + ⌊(y'/8)·e'/2³³⌋ (the product from 16-bit
-///    halves of e', y'/8 < 2¹⁶) drops below 0.5 + 2⁻¹⁷ + 1, so 2⁶²/d − x ∈ [0, 2).
-///    The remainder 2⁶² − d·x is then in [0, 2d) ⊂ [0, 2³²): x or x + 1.
-#[inline(always)]
-fn recip62_low(d: u32) -> u32 {
-    // 1. (|products| < 2³⁰ and w·y ≤ 2³¹ for every v: checked by the test.)
-    let v = d >> 15;
-    let w = v + 1;
-    let mut y = 92521 - ((v * 61681) >> 16);
-    for (down, up) in [(13, 18), (9, 22)] {
-        let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(y)) as i32;
-        y = y.wrapping_add_signed(((y as i32) * (e >> down)) >> up);
-    }
-    y += u32::from((1 << 31) - w * y >= w);
-    // 2.
-    let e = d.wrapping_mul(y).wrapping_neg();
-    let y = 8 * y + ((y * (e >> 16)) >> 27);
-    // 3.
-    let e = d.wrapping_mul(y).wrapping_neg();
-    let h = y >> 3;
-    let x = (y << 13) + ((h * (e >> 16) + ((h * (e & 0xffff)) >> 16)) >> 17);
-    x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
 /// Screen mapping of a viewport, precomputed.
@@ -830,46 +796,6 @@ mod tests {
             let (a, b) = (v as u32, (v >> 32) as u32);
             let want = ((u64::from(a) * u64::from(b) + (1 << 31)) >> 32) as u32;
             assert_eq!(rounded_high(a, b), want, "{a} {b}");
-        }
-    }
-
-    #[test]
-    fn low_word_reciprocal_is_exact() {
-        for v in 1u32 << 15..1 << 16 {
-            let w = v + 1;
-            let mut y = 92521 - ((v * 61681) >> 16);
-            for (down, up) in [(13, 18), (9, 22)] {
-                let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(y)) as i32;
-                let p = i64::from(y) * i64::from(e >> down);
-                assert!(p.unsigned_abs() < 1 << 30, "v {v}");
-                y = (i64::from(y) + (p >> up)) as u32;
-            }
-            assert!(u64::from(w) * u64::from(y) <= 1 << 31, "v {v}");
-            y += u32::from((1 << 31) - w * y >= w);
-            assert_eq!(y, (1 << 31) / w, "v {v}");
-            for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
-                if d > 1 << 30 && d < 1 << 31 {
-                    assert_eq!(u64::from(recip62_low(d)), (1 << 62) / u64::from(d), "d {d}");
-                }
-            }
-        }
-        let mut rnd = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
-        for _ in 0..crate::num::tests::fast_cases() {
-            let d = (rnd() as u32 >> 1 | 1 << 30).max((1 << 30) + 1);
-            assert_eq!(
-                u64::from(recip62_low(d)),
-                (1u64 << 62) / u64::from(d),
-                "d {d}"
-            );
-        }
-        if std::env::var_os("ZRASTER_EXHAUSTIVE").is_some() {
-            for d in (1u32 << 30) + 1..1 << 31 {
-                assert_eq!(
-                    u64::from(recip62_low(d)),
-                    (1u64 << 62) / u64::from(d),
-                    "d {d}"
-                );
-            }
         }
     }
 

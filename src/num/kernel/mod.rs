@@ -80,7 +80,7 @@ pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
 pub use place_v6m::check_place_v6m_kernel;
 #[cfg(test)]
 pub(crate) use place_v6m::place_v6m_portable;
-pub(crate) use place_v6m::{place_run_v6m, PlaceV6m, PLACE_V6M_KERNEL};
+pub(crate) use place_v6m::{place_run_v6m, recip62_low, PlaceV6m, PLACE_V6M_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{

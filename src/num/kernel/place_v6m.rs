@@ -8,10 +8,10 @@
 //! normalised, x and y normalised by one shift each, the reciprocal ⌊2⁶²/wn⌋, the
 //! screen coordinates by five 16 × 16-bit products each and the depth by the rounded
 //! high word of four. It refuses one value more next to a screen coordinate's rounding
-//! boundary (4 in 16,384 instead of 3), which a shorter test finds. The reciprocal's first
-//! step starts from the 512-entry table `recip32_small` reads (one Newton step and a
-//! correction instead of a line and two steps: the same ⌊2³¹/(v + 1)⌋, checked for
-//! every v). Any vertex it does not place stops the loop for the caller's exact path.
+//! boundary (4 in 16,384 instead of 3), which a shorter test finds. The reciprocal is
+//! [`recip62_low`] (the integer projection's too), its first step from the 512-entry
+//! table `recip32_small` reads. Any vertex it does not place stops the loop for the
+//! caller's exact path.
 #![allow(unsafe_code)]
 
 use super::{CachedVertex, XyWord};
@@ -115,20 +115,31 @@ fn recip31_table(v: u32) -> u32 {
     y + u32::from((1u32 << 31).wrapping_sub(w.wrapping_mul(y)) >= w)
 }
 
-/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹: `project::recip62_low`'s steps 2 and 3 after
-/// [`recip31_table`] (its step 1's result).
+/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a division (on ARMv6-M,
+/// 64-bit products are long): the integer projection's reciprocal, here beside the
+/// vertex loop that does the same. Each step's error is read off the low word of a
+/// product, exact because the step keeps it in `[0, 2³²)`:
+///
+/// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v ([`recip31_table`]: a test checks every
+///    v). Then y ≤ 2⁴⁶/d and e = 2⁴⁶ − d·y < 2⁴⁶/(v + 1) + v·2¹⁵ ≤ 2³².
+/// 2. With ε = e/2⁴⁶ < 2⁻¹⁴, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the
+///    last term below 2⁻⁹: y' = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋ lies within [2⁴⁹/d − 2, 2⁴⁹/d]
+///    (1 + 2⁻¹⁶ + 2⁻⁹ dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
+/// 3. Likewise 2⁶²/d = 2¹³y' + y'·e'/2³⁶ + t with t = 2¹³y'·ε'²/(1 − ε') < ¼
+///    (ε' < 2⁻¹⁷, y' < 2¹⁹); x = 2¹³y' + ⌊(y'/8)·e'/2³³⌋ (the product from 16-bit
+///    halves of e', y'/8 < 2¹⁶) drops below 0.5 + 2⁻¹⁷ + 1, so 2⁶²/d − x ∈ [0, 2).
+///    The remainder 2⁶² − d·x is then in [0, 2d) ⊂ [0, 2³²): x or x + 1.
 #[inline(always)]
-fn recip62_table(d: u32) -> u32 {
+pub(crate) fn recip62_low(d: u32) -> u32 {
+    // 1.
     let y = recip31_table(d >> 15);
+    // 2.
     let e = d.wrapping_mul(y).wrapping_neg();
-    let y = (y << 3).wrapping_add(y.wrapping_mul(e >> 16) >> 27);
+    let y = 8 * y + ((y * (e >> 16)) >> 27);
+    // 3.
     let e = d.wrapping_mul(y).wrapping_neg();
     let h = y >> 3;
-    let x = (y << 13).wrapping_add(
-        h.wrapping_mul(e >> 16)
-            .wrapping_add(h.wrapping_mul(e & 0xffff) >> 16)
-            >> 17,
-    );
+    let x = (y << 13) + ((h * (e >> 16) + ((h * (e & 0xffff)) >> 16)) >> 17);
     x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
@@ -203,7 +214,7 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
     }
     let ut = (zt as u32).wrapping_add(wt as u32);
     let un = (ut << up).wrapping_add((zl + wl) >> sh);
-    let r = recip62_table(wn);
+    let r = recip62_low(wn);
     let (rh, rl) = (r >> 16, r & 0xffff);
     // Depth: the rounded high word of un·r (q30), then 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋.
     let (a1, a0) = (un >> 16, un & 0xffff);
@@ -756,7 +767,9 @@ mod tests {
     use super::*;
 
     /// The table's first step is ⌊2³¹/(v + 1)⌋ for every v (its products within
-    /// `u32`), and the reciprocal ⌊2⁶²/d⌋ at every step's edges and 10⁶ random d.
+    /// `u32`), and the reciprocal ⌊2⁶²/d⌋ at every step's edges and 10⁷ random d;
+    /// `ZRASTER_EXHAUSTIVE=1` checks every d (2³⁰ of them; in a release build, some
+    /// seconds).
     #[test]
     fn table_reciprocal_is_exact() {
         for v in 1u32 << 15..1 << 16 {
@@ -768,14 +781,19 @@ mod tests {
             assert_eq!(recip31_table(v), (1 << 31) / w, "v {v}");
             for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
                 if d > 1 << 30 && d < 1 << 31 {
-                    assert_eq!(u64::from(recip62_table(d)), (1 << 62) / u64::from(d));
+                    assert_eq!(u64::from(recip62_low(d)), (1 << 62) / u64::from(d));
                 }
             }
         }
         let mut rnd = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
-        for _ in 0..crate::num::tests::fast_cases() / 10 {
+        for _ in 0..crate::num::tests::fast_cases() {
             let d = (rnd() as u32 >> 1 | 1 << 30).max((1 << 30) + 1);
-            assert_eq!(u64::from(recip62_table(d)), (1u64 << 62) / u64::from(d));
+            assert_eq!(u64::from(recip62_low(d)), (1u64 << 62) / u64::from(d));
+        }
+        if std::env::var_os("ZRASTER_EXHAUSTIVE").is_some() {
+            for d in (1u32 << 30) + 1..1 << 31 {
+                assert_eq!(u64::from(recip62_low(d)), (1u64 << 62) / u64::from(d));
+            }
         }
     }
 
