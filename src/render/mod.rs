@@ -367,9 +367,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// [`CachedVertex`] per mesh vertex, 8 bytes each).
     ///
     /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
-    // Out of line: inlined into a caller (with the vertex loop out of line on ARMv6-M, it
-    // is small), its locals would join the caller's frame, under every draw.
-    #[inline(never)]
+    // Out of line on ARMv6-M: inlined into a caller (with the vertex loop out of line,
+    // it is small), its locals would join the caller's frame, under every draw.
+    #[cfg_attr(zraster_armv6m, inline(never))]
     pub fn with_cache(
         mesh: &Mesh<'m, M>,
         xf: &Camera,
