@@ -25,6 +25,11 @@ pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(crate) struct PlaceV6m<'a> {
+    /// y's operands: right shift, overflow shift, left shift (of the normalisation
+    /// by 2^(sh − e)), the half height, 2¹³ + 4, the y origin (1/16 pixel).
+    ys: [u32; 6],
+    /// x's operands, as `ys` with the half width and the x origin.
+    xs: [u32; 6],
     /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
     rows: &'a [[i32; 4]; 6],
     /// sh − 1 for w's bits sh beyond 31 at the last vertex that changed it (the hint,
@@ -34,23 +39,18 @@ pub(crate) struct PlaceV6m<'a> {
     up: u32,
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
-    /// y's operands: right shift, overflow shift, left shift (of the normalisation
-    /// by 2^(sh − e)), the half height, 2¹³ + 4, the y origin (1/16 pixel).
-    ys: [u32; 6],
-    /// x's operands, as `ys` with the half width and the x origin.
-    xs: [u32; 6],
 }
 
-// The loop reads the rows' address at 0, the hint at 4, 14 − sh at 8, e at 12, y's
-// operands at 16 and x's at 40 (addresses of 32 bits).
+// The loop reads y's operands at 0, x's at 24, the rows' address at 48, the hint at
+// 52, 14 − sh at 56 and e at 60 (addresses of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
-    core::mem::offset_of!(PlaceV6m<'_>, rows) == 0
-        && core::mem::offset_of!(PlaceV6m<'_>, hint) == 4
-        && core::mem::offset_of!(PlaceV6m<'_>, up) == 8
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 12
-        && core::mem::offset_of!(PlaceV6m<'_>, ys) == 16
-        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 40
+    core::mem::offset_of!(PlaceV6m<'_>, ys) == 0
+        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 24
+        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 48
+        && core::mem::offset_of!(PlaceV6m<'_>, hint) == 52
+        && core::mem::offset_of!(PlaceV6m<'_>, up) == 56
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
         && core::mem::size_of::<PlaceV6m<'_>>() == 64
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
@@ -74,12 +74,12 @@ impl<'a> PlaceV6m<'a> {
     ) -> PlaceV6m<'a> {
         let operands = |h: u32, o: i32| [0, 31, 0, h, (1 << 13) + 4, o as u32];
         let mut b = PlaceV6m {
+            ys: operands(half[1], org[1]),
+            xs: operands(half[0], org[0]),
             rows,
             hint: 0,
             up: 0,
             e,
-            ys: operands(half[1], org[1]),
-            xs: operands(half[0], org[0]),
         };
         b.set_sh(sh);
         b
@@ -330,7 +330,7 @@ macro_rules! place_row {
 }
 
 /// One screen coordinate (the twin's `ratio`, then the origin and `fits`): the
-/// operands at r7 (the block plus 16 for y, 40 for x), the coordinate's row value
+/// operands at r7 (the block for y, plus 24 for x), the coordinate's row value
 /// popped, r's halves in r0 (high) and r1 (low); the coordinate in r3. `$org` is the
 /// origin's operation (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail`
 /// where a refusal goes.
@@ -396,9 +396,9 @@ macro_rules! place_coordinate {
 }
 
 // SAFETY (for `place_run_v6m`): the loop reads the block through r12 (64 bytes: the
-// rows' address at 0, the hint, 14 − sh, e, the operands at 16..64) and the rows
-// through r8, that address (96 bytes by LDM), and writes only the block's hint,
-// 14 − sh and shifts (4, 8, 16..28, 40..52) on a search; reads three halfwords at r9
+// operands at 0..48, the rows' address, the hint, 14 − sh, e) and the rows through
+// r8, that address (96 bytes by LDM), and writes only the block's shifts, hint and
+// 14 − sh (0..12, 24..36, 52, 56) on a search; reads three halfwords at r9
 // and writes the entry at r10 a turn (its depth word, then the halves of y and x), r9
 // advancing 6 and r10 8, and stops when r10 reaches r11 (checked after each entry; the
 // caller passes end > out) or at an entry it does not place (r10 still below r11; that
@@ -421,7 +421,7 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
     "mov r12, r0",
-    "ldr r4, [r0, #0]",
+    "ldr r4, [r0, #48]",
     "mov r8, r4",
     "mov r9, r1",
     "mov r10, r2",
@@ -476,14 +476,14 @@ core::arch::global_asm!(
     "9:",
     // (wt >> 17) >> (sh − 1) = 1 for the hint's sh, else the search.
     "mov r7, r12",
-    "ldr r6, [r7, #4]",
+    "ldr r6, [r7, #52]",
     "lsrs r4, r4, r6",
     "cmp r4, #1",
     "beq 3f",
     "b 5f",
     // un = (ut << up) + ((zl + wl) >> sh), wn = (wt << up) + (wl >> sh).
     "3:",
-    "ldr r3, [r7, #8]",
+    "ldr r3, [r7, #56]",
     "adds r6, #1",
     "adds r1, r1, r0",
     "lsrs r1, r1, r6",
@@ -590,12 +590,11 @@ core::arch::global_asm!(
     "str r3, [r7, #0]",
     // y, then x, each into its half of the entry's second word.
     "mov r7, r12",
-    "adds r7, #16",
     place_coordinate!("subs r3, r6, r3", "7f"),
     "mov r7, r10",
     "strh r3, [r7, #6]",
     "mov r7, r12",
-    "adds r7, #40",
+    "adds r7, #24",
     place_coordinate!("adds r3, r6, r3", "6f"),
     "mov r7, r10",
     "strh r3, [r7, #4]",
@@ -628,36 +627,36 @@ core::arch::global_asm!(
     "beq 1f",
     "adds r6, #1",
     "1:",
-    "str r6, [r7, #4]",
+    "str r6, [r7, #52]",
     "movs r3, #13",
     "subs r3, r3, r6",
-    "str r3, [r7, #8]",
-    "ldr r3, [r7, #12]",
+    "str r3, [r7, #56]",
+    "ldr r3, [r7, #60]",
     "subs r4, r6, r3",
     "adds r4, #1",
     "bmi 1f",
-    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 16, x's at 40).
-    "str r4, [r7, #16]",
-    "str r4, [r7, #40]",
-    "movs r4, #31",
-    "str r4, [r7, #20]",
-    "str r4, [r7, #44]",
-    "movs r4, #0",
+    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 0, x's at 24).
+    "str r4, [r7, #0]",
     "str r4, [r7, #24]",
-    "str r4, [r7, #48]",
+    "movs r4, #31",
+    "str r4, [r7, #4]",
+    "str r4, [r7, #28]",
+    "movs r4, #0",
+    "str r4, [r7, #8]",
+    "str r4, [r7, #32]",
     "b 3b",
     "1:",
     // k < 0: right by 0, the magnitude below 2^(31 + k), left by −k.
     "rsbs r4, r4, #0",
-    "str r4, [r7, #24]",
-    "str r4, [r7, #48]",
+    "str r4, [r7, #8]",
+    "str r4, [r7, #32]",
     "movs r3, #31",
     "subs r3, r3, r4",
-    "str r3, [r7, #20]",
-    "str r3, [r7, #44]",
+    "str r3, [r7, #4]",
+    "str r3, [r7, #28]",
     "movs r4, #0",
-    "str r4, [r7, #16]",
-    "str r4, [r7, #40]",
+    "str r4, [r7, #0]",
+    "str r4, [r7, #24]",
     "b 3b",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
     "8:",
