@@ -408,6 +408,8 @@ pub use num::kernel::check_faces_kernel;
 pub use num::kernel::check_light_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_place_kernel;
+#[doc(hidden)]
+pub use num::kernel::check_place_v6m_kernel;
 /// For the bench firmware: check the assembly fill and span loops against their
 /// portable twins on the target (the number of differing cases; see
 /// `src/num/kernel/`).

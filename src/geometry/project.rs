@@ -6,7 +6,10 @@
 use super::transform::{Clip4, FixedTransform};
 use crate::camera::Viewport;
 use crate::fixed::{GUARD_BAND, MAX_DEPTH, SUBPIXEL};
-use crate::num::kernel::{place_run, CachedVertex, PlaceBlock, PLACE_KERNEL};
+use crate::num::kernel::{
+    place_run, place_run_v6m, recip62_low, CachedVertex, PlaceBlock, PlaceV6m, PLACE_KERNEL,
+    PLACE_V6M_KERNEL,
+};
 use crate::num::{
     bits_beyond_31, div_floor, mul_i64_i32, mul_wide, mul_wide_narrow, round_f32,
     scaled_ratio_parts, shr64, ARMV6M, INTEGER_PROJECTION,
@@ -128,41 +131,6 @@ fn rounded_high(a: u32, b: u32) -> u32 {
     let low = (m1 & 0xffff) + (m2 & 0xffff) + ((a0 * b0) >> 16) + (1 << 15);
     // The sum is the rounded high word of a·b, below 2³²: no partial sum wraps.
     a1 * b1 + (m1 >> 16) + (m2 >> 16) + (low >> 16)
-}
-
-/// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a table or a division (on
-/// ARMv6-M, 64-bit products are long). Each step's error is
-/// read off the low word of a product, exact because the step keeps it in `[0, 2³²)`:
-///
-/// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v: a line through 1/x (error below 1/17),
-///    two Newton steps and a correction by the remainder (a test checks every v).
-///    Then y ≤ 2⁴⁶/d and e = 2⁴⁶ − d·y < 2⁴⁶/(v + 1) + v·2¹⁵ ≤ 2³².
-/// 2. With ε = e/2⁴⁶ < 2⁻¹⁴, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the
-///    last term below 2⁻⁹: y' = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋ lies within [2⁴⁹/d − 2, 2⁴⁹/d]
-///    (1 + 2⁻¹⁶ + 2⁻⁹ dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
-/// 3. Likewise 2⁶²/d = 2¹³y' + y'·e'/2³⁶ + t with t = 2¹³y'·ε'²/(1 − ε') < ¼
-///    (ε' < 2⁻¹⁷, y' < 2¹⁹); x = 2¹³y' + ⌊(y'/8)·e'/2³³⌋ (the product from 16-bit
-///    halves of e', y'/8 < 2¹⁶) drops below 0.5 + 2⁻¹⁷ + 1, so 2⁶²/d − x ∈ [0, 2).
-///    The remainder 2⁶² − d·x is then in [0, 2d) ⊂ [0, 2³²): x or x + 1.
-#[inline(always)]
-fn recip62_low(d: u32) -> u32 {
-    // 1. (|products| < 2³⁰ and w·y ≤ 2³¹ for every v: checked by the test.)
-    let v = d >> 15;
-    let w = v + 1;
-    let mut y = 92521 - ((v * 61681) >> 16);
-    for (down, up) in [(13, 18), (9, 22)] {
-        let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(y)) as i32;
-        y = y.wrapping_add_signed(((y as i32) * (e >> down)) >> up);
-    }
-    y += u32::from((1 << 31) - w * y >= w);
-    // 2.
-    let e = d.wrapping_mul(y).wrapping_neg();
-    let y = 8 * y + ((y * (e >> 16)) >> 27);
-    // 3.
-    let e = d.wrapping_mul(y).wrapping_neg();
-    let h = y >> 3;
-    let x = (y << 13) + ((h * (e >> 16) + ((h * (e & 0xffff)) >> 16)) >> 17);
-    x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
 /// Screen mapping of a viewport, precomputed.
@@ -477,34 +445,61 @@ impl ScreenMap {
         ))
     }
 
+    /// The ARMv6-M vertex kernel's operands ([`PlaceV6m`]) for a transform's rows
+    /// (`FixedTransform::with_rows_v6m`) and scale and this mapping: `None` unless the scale
+    /// is 2^e with 0 ≤ e ≤ 20 (where [`project_fast`](ScreenMap::project_fast) places
+    /// no vertex either).
+    pub(crate) fn place_block_v6m<'a>(
+        &self,
+        rows: &'a [[i32; 4]; 6],
+        s: f32,
+    ) -> Option<PlaceV6m<'a>> {
+        let bits = s.to_bits();
+        let e = (bits >> 23) as i32 - 127;
+        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) {
+            return None;
+        }
+        // half_w, half_h ≤ 2¹⁶; the origins truncated to i32 as project_fast does.
+        Some(PlaceV6m::new(
+            rows,
+            e as u32,
+            [self.half_w as u32, self.half_h as u32],
+            [self.ox_i as i32, self.oy_i as i32],
+            W_SHIFT_HINT,
+        ))
+    }
+
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
     /// the vertex kernel, `entry` giving each one it does not place; `false` (nothing
-    /// written) where the kernel does not run ([`place_block`](ScreenMap::place_block)).
-    /// Out of line: its operands stay off the stack of the renderer's set-up.
+    /// written) where no kernel runs: on targets other than ARMv7E-M with an FPU
+    /// ([`place_block`](ScreenMap::place_block)) and ARMv6-M (always, by
+    /// [`place_block_v6m`](ScreenMap::place_block_v6m)), or without the former's block. Out of line: its operands stay off the stack of the renderer's set-up.
     #[inline(never)]
     pub(crate) fn place_all(
         &self,
         fixed: &FixedTransform,
         positions: &[[i16; 3]],
         cache: &mut [CachedVertex],
-        mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
+        entry: impl FnMut(&[i16; 3]) -> CachedVertex,
     ) -> bool {
-        if !PLACE_KERNEL {
-            return false;
-        }
-        let Some(mut block) = self.place_block(fixed) else {
-            return false;
-        };
-        let mut at = 0;
-        while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
-            at += place_run(&mut block, p, c);
-            let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
-                break;
+        if PLACE_KERNEL {
+            let Some(mut block) = self.place_block(fixed) else {
+                return false;
             };
-            *e = entry(p);
-            at += 1;
+            fill_runs(positions, cache, entry, |p, c| place_run(&mut block, p, c));
+            true
+        } else if PLACE_V6M_KERNEL {
+            // Without a block (a scale project_fast refuses too) every entry by `entry`.
+            fixed.with_rows_v6m(|rows| match self.place_block_v6m(rows, fixed.scale()) {
+                Some(mut b) => {
+                    fill_runs(positions, cache, entry, |p, c| place_run_v6m(&mut b, p, c))
+                }
+                None => fill_runs(positions, cache, entry, |_, _| 0),
+            });
+            true
+        } else {
+            false
         }
-        true
     }
 
     /// Project a clip-space point inside the guard band and depth range (outcode 0).
@@ -519,6 +514,27 @@ impl ScreenMap {
             return None;
         }
         ScreenVertex::new(round_f32(x), round_f32(y), (z + 0.5) as u32).ok()
+    }
+}
+
+/// Fills `cache` with the entries of `positions` (as many as the shorter holds): runs
+/// by `run` (which writes entries from the first on and returns how many), each
+/// position it stops at by `entry`.
+#[inline(always)]
+fn fill_runs(
+    positions: &[[i16; 3]],
+    cache: &mut [CachedVertex],
+    mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
+    mut run: impl FnMut(&[[i16; 3]], &mut [CachedVertex]) -> usize,
+) {
+    let mut at = 0;
+    while let (Some(p), Some(c)) = (positions.get(at..), cache.get_mut(at..)) {
+        at += run(p, c);
+        let (Some(p), Some(e)) = (positions.get(at), cache.get_mut(at)) else {
+            break;
+        };
+        *e = entry(p);
+        at += 1;
     }
 }
 
@@ -783,46 +799,6 @@ mod tests {
         }
     }
 
-    #[test]
-    fn low_word_reciprocal_is_exact() {
-        for v in 1u32 << 15..1 << 16 {
-            let w = v + 1;
-            let mut y = 92521 - ((v * 61681) >> 16);
-            for (down, up) in [(13, 18), (9, 22)] {
-                let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(y)) as i32;
-                let p = i64::from(y) * i64::from(e >> down);
-                assert!(p.unsigned_abs() < 1 << 30, "v {v}");
-                y = (i64::from(y) + (p >> up)) as u32;
-            }
-            assert!(u64::from(w) * u64::from(y) <= 1 << 31, "v {v}");
-            y += u32::from((1 << 31) - w * y >= w);
-            assert_eq!(y, (1 << 31) / w, "v {v}");
-            for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
-                if d > 1 << 30 && d < 1 << 31 {
-                    assert_eq!(u64::from(recip62_low(d)), (1 << 62) / u64::from(d), "d {d}");
-                }
-            }
-        }
-        let mut rnd = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
-        for _ in 0..crate::num::tests::fast_cases() {
-            let d = (rnd() as u32 >> 1 | 1 << 30).max((1 << 30) + 1);
-            assert_eq!(
-                u64::from(recip62_low(d)),
-                (1u64 << 62) / u64::from(d),
-                "d {d}"
-            );
-        }
-        if std::env::var_os("ZRASTER_EXHAUSTIVE").is_some() {
-            for d in (1u32 << 30) + 1..1 << 31 {
-                assert_eq!(
-                    u64::from(recip62_low(d)),
-                    (1u64 << 62) / u64::from(d),
-                    "d {d}"
-                );
-            }
-        }
-    }
-
     /// At w = 2³¹ (normalised to exactly 2³⁰, where the reciprocal 2³² is a shift) the
     /// integer projection gives the exactly rounded quotients.
     #[test]
@@ -909,6 +885,66 @@ mod tests {
             placed >= usual - usual / 50 && placed > 0,
             "{placed} of {usual}"
         );
+    }
+
+    /// The ARMv6-M vertex kernel's twin gives `project_fast` then
+    /// `CachedVertex::placing` where it gives an entry, and gives one wherever they do
+    /// but next to a screen coordinate's rounding boundary (one value in 16,384 more
+    /// than `project_fast` leaves), the hint carried alike: for cameras from inside the model to far away, turned,
+    /// fields of view from narrow to wide, viewports large and small, off the origin,
+    /// mesh scales that put w's bits beyond 31 anywhere from 1 to 14.
+    #[test]
+    fn place_v6m_twin_is_the_fast_path() {
+        use crate::num::kernel::place_v6m_portable;
+        let mut next = crate::testing::xorshift32(0x4f6c_dd1d);
+        let (mut placed, mut blocks, mut refused) = (0u64, 0, 0);
+        let per = crate::num::tests::fast_cases() / 400;
+        for case in 0..400u32 {
+            let (w, h) =
+                [(320, 240), (240, 240), (16, 9), (2048, 1536), (8192, 8192)][case as usize % 5];
+            let vp =
+                Viewport::at((case % 7) as i32 * 301 - 900, (case % 3) as i32 * 50, w, h).unwrap();
+            let dist = [1.6, 0.9, 3.0, 40.0, 0.3, 2.2, 0.05][case as usize % 7];
+            let fov = [60.0, 10.0, 120.0, 45.0][case as usize % 4];
+            let cam = Camera::look_at(Vec3::new(0.2, -0.1, dist), Vec3::default(), Vec3::Y)
+                .unwrap()
+                .perspective(radians(fov), 0.1, 10.0, vp)
+                .unwrap()
+                .with_model(
+                    Mat4::rotation_y(radians(case as f32 * 13.7))
+                        * Mat4::rotation_x(radians(case as f32 * 5.3)),
+                );
+            let scale = [1.0 / 32767.0, 1.0 / 1000.0, 3.0 / 32767.0, 1e-7, 40.0][case as usize % 5];
+            let Ok(fixed) = FixedTransform::new(&cam.model_view_projection(), scale) else {
+                continue;
+            };
+            let map = ScreenMap::new(&vp);
+            let rows = fixed.with_rows_v6m(|r| *r);
+            let Some(mut block) = map.place_block_v6m(&rows, fixed.scale()) else {
+                continue;
+            };
+            blocks += 1;
+            let mut hint = W_SHIFT_HINT;
+            for i in 0..per {
+                let r = next();
+                let p = match i % 4 {
+                    0 => [r as i16, next() as i16, next() as i16],
+                    _ => [(r as i16) >> 2, (next() as i16) >> 2, (next() as i16) >> 2],
+                };
+                let want = map
+                    .project_fast(&fixed.apply(&p), &mut hint)
+                    .and_then(CachedVertex::placing);
+                let got = place_v6m_portable(&mut block, &p);
+                if got.is_some() || want.is_none() {
+                    assert_eq!(got, want, "{p:?} case {case}");
+                } else {
+                    refused += 1;
+                }
+                placed += u64::from(got.is_some());
+            }
+        }
+        assert!(blocks > 200 && placed > 1000, "{blocks} {placed}");
+        assert!(refused <= placed / 2000, "{refused} refused of {placed}");
     }
 
     #[test]

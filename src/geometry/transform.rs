@@ -94,18 +94,18 @@ impl Clip4 {
 /// `|T_hi| ≤ 2²⁹`), so both partial sums stay exact in `i32`:
 /// `Σ hi·p + T_hi ≤ 3·2¹³·2¹⁵ + 2²⁹ < 2³¹` and `Σ lo·p + T_lo < 3·2¹⁴·2¹⁵ + 2¹⁴ < 2³¹`.
 /// The M0+'s single-cycle `MULS` suffices for all of it; a core with the DSP extension
-/// takes `c₀·x + c₁·y` in one dual multiply-accumulate ([`Row`]).
+/// takes `c₀·x + c₁·y` in one dual multiply-accumulate ([`RowOps::at`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct FixedTransform {
-    xy: [Row; 2],
-    hi: [Row; 2],
-    lo: [Row; 2],
+    /// x, y, z high, w high, z low, w low.
+    rows: [Row; 6],
     s: f32,
 }
 
 /// One row of [`FixedTransform`], `c₀·x + c₁·y + c₂·z + t`. Every coefficient fits 16
 /// bits (|c| ≤ 16383): `c₀` and `c₁` are kept packed ([`pack_i16`]), for the dual
 /// multiply-accumulate of cores that have one ([`dot2_add`]).
+#[cfg(not(zraster_armv6m))]
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Row {
     c01: u32,
@@ -113,8 +113,42 @@ struct Row {
     t: i32,
 }
 
-impl Row {
+/// One row of [`FixedTransform`] on ARMv6-M: `[c₀, c₁, c₂, t]`, as the vertex kernel
+/// (`num::kernel::place_v6m`) reads the rows in place.
+#[cfg(zraster_armv6m)]
+type Row = [i32; 4];
+
+/// What a row of [`FixedTransform`] does, whichever its form.
+trait RowOps {
     /// The row of coefficients `c` (each within ±16383) and translation `t`.
+    fn new(c: [i32; 3], t: i32) -> Self;
+    /// `[c₀, c₁, c₂, t]`.
+    fn coefficients(&self) -> [i32; 4];
+    /// `c₀`, `c₁` packed ([`pack_i16`]).
+    fn c01(&self) -> u32;
+
+    /// `c₀c₁` packed ([`pack_i16`]), `c₂`, `t`.
+    #[inline(always)]
+    fn words(&self) -> [u32; 3] {
+        let [_, _, c2, t] = self.coefficients();
+        [self.c01(), c2 as u32, t as u32]
+    }
+
+    /// The row at `(x, y, z)`, with `xy` the pair `(x, y)` packed ([`pack_i16`]).
+    #[inline(always)]
+    fn at(&self, xy: u32, [x, y, z]: [i32; 3]) -> i32 {
+        let [c0, c1, c2, t] = self.coefficients();
+        let zt = c2 * z + t;
+        if DUAL_MAC {
+            dot2_add(xy, self.c01(), zt)
+        } else {
+            c0 * x + c1 * y + zt
+        }
+    }
+}
+
+#[cfg(not(zraster_armv6m))]
+impl RowOps for Row {
     fn new([c0, c1, c2]: [i32; 3], t: i32) -> Row {
         Row {
             c01: pack_i16(c0 as i16, c1 as i16),
@@ -123,16 +157,32 @@ impl Row {
         }
     }
 
-    /// The row at `(x, y, z)`, with `xy` the pair `(x, y)` packed ([`pack_i16`]).
     #[inline(always)]
-    fn at(&self, xy: u32, [x, y, z]: [i32; 3]) -> i32 {
-        let zt = self.c2 * z + self.t;
-        if DUAL_MAC {
-            dot2_add(xy, self.c01, zt)
-        } else {
-            let (c0, c1) = (i32::from(self.c01 as i16), (self.c01 as i32) >> 16);
-            c0 * x + c1 * y + zt
-        }
+    fn coefficients(&self) -> [i32; 4] {
+        let (c0, c1) = (i32::from(self.c01 as i16), (self.c01 as i32) >> 16);
+        [c0, c1, self.c2, self.t]
+    }
+
+    #[inline(always)]
+    fn c01(&self) -> u32 {
+        self.c01
+    }
+}
+
+#[cfg(zraster_armv6m)]
+impl RowOps for Row {
+    fn new([c0, c1, c2]: [i32; 3], t: i32) -> Row {
+        [c0, c1, c2, t]
+    }
+
+    #[inline(always)]
+    fn coefficients(&self) -> [i32; 4] {
+        *self
+    }
+
+    #[inline(always)]
+    fn c01(&self) -> u32 {
+        pack_i16(self[0] as i16, self[1] as i16)
     }
 }
 
@@ -189,22 +239,34 @@ impl FixedTransform {
 
     /// The transform of the rows `[c₀, c₁, c₂, t]` (coefficients within ±16383).
     fn from_rows(xy: [[i32; 4]; 2], hi: [[i32; 4]; 2], lo: [[i32; 4]; 2], s: f32) -> Self {
-        let rows = |m: [[i32; 4]; 2]| m.map(|[c0, c1, c2, t]| Row::new([c0, c1, c2], t));
-        FixedTransform {
-            xy: rows(xy),
-            hi: rows(hi),
-            lo: rows(lo),
-            s,
-        }
+        let [[x, y], [zh, wh], [zl, wl]] = [xy, hi, lo];
+        let rows = [x, y, zh, wh, zl, wl].map(|[c0, c1, c2, t]| Row::new([c0, c1, c2], t));
+        FixedTransform { rows, s }
     }
 
     /// The rows x, y, z high, w high, z low, w low as words (`c₀c₁` packed, `c₂`, `t`
     /// each), and the scale `s` of x and y to z and w: the vertex kernel's operands.
     pub(crate) fn words(&self) -> ([[u32; 3]; 6], f32) {
-        let [x, y] = self.xy;
-        let ([zh, wh], [zl, wl]) = (self.hi, self.lo);
-        let words = |r: Row| [r.c01, r.c2 as u32, r.t as u32];
-        ([x, y, zh, wh, zl, wl].map(words), self.s)
+        (self.rows.map(|r| r.words()), self.s)
+    }
+
+    /// `f` of the rows x, y, z high, w high, z low, w low as `[c₀, c₁, c₂, t]` each: the
+    /// ARMv6-M vertex kernel's operands (there the rows themselves, elsewhere a copy).
+    #[inline(always)]
+    pub(crate) fn with_rows_v6m<R>(&self, f: impl FnOnce(&[[i32; 4]; 6]) -> R) -> R {
+        #[cfg(zraster_armv6m)]
+        {
+            f(&self.rows)
+        }
+        #[cfg(not(zraster_armv6m))]
+        {
+            f(&self.rows.map(|r| r.coefficients()))
+        }
+    }
+
+    /// The scale `s` of x and y to z and w.
+    pub(crate) fn scale(&self) -> f32 {
+        self.s
     }
 
     /// Transform one position to clip space.
@@ -212,10 +274,11 @@ impl FixedTransform {
     pub(crate) fn apply(&self, p: &[i16; 3]) -> Clip4 {
         let xy = pack_i16(p[0], p[1]);
         let p = p.map(i32::from);
+        let [x, y, zh, wh, zl, wl] = &self.rows;
         Clip4 {
-            xy: [self.xy[0].at(xy, p), self.xy[1].at(xy, p)],
-            hi: [self.hi[0].at(xy, p), self.hi[1].at(xy, p)],
-            lo: [self.lo[0].at(xy, p), self.lo[1].at(xy, p)],
+            xy: [x.at(xy, p), y.at(xy, p)],
+            hi: [zh.at(xy, p), wh.at(xy, p)],
+            lo: [zl.at(xy, p), wl.at(xy, p)],
             s: self.s,
         }
     }

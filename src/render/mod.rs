@@ -367,6 +367,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// [`CachedVertex`] per mesh vertex, 8 bytes each).
     ///
     /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
+    // Out of line on ARMv6-M: inlined into a caller (with the vertex loop out of line,
+    // it is small), its locals would join the caller's frame, under every draw.
+    #[cfg_attr(zraster_armv6m, inline(never))]
     pub fn with_cache(
         mesh: &Mesh<'m, M>,
         xf: &Camera,
@@ -387,10 +390,12 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// Fills `cache` with the entries of the mesh's positions (as many as it holds).
     fn fill_cache(&self, cache: &mut [CachedVertex]) {
         let positions = self.mesh.positions;
-        // The usual vertex by the vertex kernel, any other out of line.
+        // The usual vertex by the vertex kernel, any other out of line (on ARMv6-M
+        // always: the loop below is not built there).
         if self
             .map
             .place_all(&self.fixed, positions, cache, |p| self.cache_entry(p))
+            || crate::num::kernel::PLACE_V6M_KERNEL
         {
             return;
         }

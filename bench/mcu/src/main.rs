@@ -168,6 +168,7 @@ fn main() -> ! {
     hprintln!("band faces kernel cases differing from the portable twin: {}", bad);
     check_light();
     check_place();
+    check_place_v6m();
 
     // ---- bunny-320, full frame.
     let mut frame = Frame::new(&mut pixels[..], &mut depth[..], W, H).unwrap();
@@ -266,4 +267,13 @@ fn check_light() {
 fn check_place() {
     let bad = zraster::check_place_kernel(800);
     hprintln!("place kernel cases differing from the portable twin: {}", bad);
+}
+
+/// The ARMv6-M vertex loop against its portable twin (random transforms and
+/// positions; bench/mcu.sh fails unless none differ; 0 where there is no such loop).
+/// Out of line, as `check_place`.
+#[inline(never)]
+fn check_place_v6m() {
+    let bad = zraster::check_place_v6m_kernel(800);
+    hprintln!("place v6m kernel cases differing from the portable twin: {}", bad);
 }

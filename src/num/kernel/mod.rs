@@ -12,7 +12,8 @@
 //! by `check_cull_kernel`), and the same scan binning the drawn faces of a banded frame
 //! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`); the vertex cache's
 //! usual vertex, transform, projection and entry ([`place_run`](place::place_run),
-//! ARMv7E-M with an FPU, checked by `check_place_kernel`);
+//! ARMv7E-M with an FPU, checked by `check_place_kernel`; on ARMv6-M
+//! [`place_run_v6m`](place_v6m::place_run_v6m), checked by `check_place_v6m_kernel`);
 //! a face's flat Lambert colour in 5-6-5 ([`lit_565`](light::lit_565), ARMv7E-M,
 //! checked by `check_light_kernel`); the whole frame's face loop, scan, colour, set-up
 //! and rows composed from those ([`faces_less`](faces::faces_less), ARMv7E-M, checked
@@ -21,7 +22,7 @@
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `faces`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `place_v6m`, `light`, `faces`, `mac` and `texel`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
@@ -47,6 +48,7 @@ mod fill;
 mod light;
 mod mac;
 mod place;
+mod place_v6m;
 // Before `rows`, which uses its SIMD pixel macros.
 #[macro_use]
 mod span;
@@ -78,6 +80,10 @@ pub use place::check_place_kernel;
 pub(crate) use place::place_portable;
 pub use place::CachedVertex;
 pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
+pub use place_v6m::check_place_v6m_kernel;
+#[cfg(test)]
+pub(crate) use place_v6m::place_v6m_portable;
+pub(crate) use place_v6m::{place_run_v6m, recip62_low, PlaceV6m, PLACE_V6M_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{
