@@ -65,6 +65,26 @@ pub(crate) struct FacesCounts {
     pub drawn: u32,
 }
 
+impl FacesCounts {
+    /// Add what a fused loop counted in its block: the 64-bit tested and failed sums
+    /// (two words each) with the running 32-bit ones not yet flushed into them, and the
+    /// drawn faces as its flushes of [`FLUSH`] and the countdown to the next.
+    #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+    fn add_loop(
+        &mut self,
+        (tested, run, failed, rows_failed): ([u32; 2], u32, [u32; 2], u32),
+        (flushes, countdown): (u32, u32),
+    ) {
+        let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
+        let tested = wide(tested).wrapping_add(u64::from(run));
+        let failed = wide(failed).wrapping_add(u64::from(rows_failed));
+        self.tested = self.tested.wrapping_add(tested);
+        self.failed = self.failed.wrapping_add(failed);
+        let drawn = flushes.wrapping_mul(FLUSH).wrapping_add(FLUSH - countdown);
+        self.drawn = self.drawn.wrapping_add(drawn);
+    }
+}
+
 /// Where [`faces_less`] stopped.
 #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -254,6 +274,45 @@ extern "C" fn bits_of<C: Copy>(c: u32, to: *const u8) -> u32 {
     super::rows::as_u16(&mut [], f(c as u16)).map_or(0, |(_, bits)| u32::from(bits))
 }
 
+/// A fused loop's `asm!` for the colouring `to_color` names (raw 5-6-5, lit through
+/// the caller's function, or one flat colour): the loop `$body!` with its block in r0
+/// (its status back), every register it and its calls write declared, the floating-point
+/// ones too. The SAFETY argument is each caller's.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+macro_rules! fused_asm {
+    ($body:ident, $block:ident, $to_color:expr) => {{
+        let status: u32;
+        if let Some((_, true)) = $to_color {
+            fused_asm!(@one $body raw, $block, status);
+        } else if let Some((f, _)) = $to_color {
+            $block.to_color = f as *const u8;
+            fused_asm!(@one $body lit, $block, status, bits = sym bits_of::<C>,);
+        } else {
+            fused_asm!(@one $body flat, $block, status);
+        }
+        status
+    }};
+    (@one $body:ident $kind:ident, $block:ident, $status:ident $(, $($extra:tt)*)?) => {
+        core::arch::asm!(
+            $body!($kind),
+            inout("r0") &mut $block as *mut _ => $status,
+            out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
+            out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+            out("r12") _, out("lr") _,
+            wide = sym super::rows::wide_steps_c,
+            $($($extra)*)?
+            #[cfg(not(zraster_soft_float))] out("d0") _,
+            #[cfg(not(zraster_soft_float))] out("d1") _,
+            #[cfg(not(zraster_soft_float))] out("d2") _,
+            #[cfg(not(zraster_soft_float))] out("d3") _,
+            #[cfg(not(zraster_soft_float))] out("d4") _,
+            #[cfg(not(zraster_soft_float))] out("d5") _,
+            #[cfg(not(zraster_soft_float))] out("d6") _,
+            #[cfg(not(zraster_soft_float))] out("d7") _,
+        )
+    };
+}
+
 /// Draw the faces of `scan` from `*pos` on into `t`, those the common case covers: the
 /// scan past the dropped faces, each drawn face coloured by `color` and drawn by the
 /// small triangles' set-up and rows (`small_less_cached`: the depth test `Less` with
@@ -375,48 +434,12 @@ fn faces_less_dsp<'a, C: Copy>(
     // and the stack 8-aligned; every other register written is declared, the
     // floating-point ones the calls may write among them; the flags are scratch.
     unsafe {
-        // One loop body a colouring, with the same operands (`$extra`: the colour
-        // function where the body calls it).
-        macro_rules! faces_asm {
-            ($kind:ident $($extra:tt)*) => {
-                core::arch::asm!(
-                    faces_body!($kind),
-                    inout("r0") &mut block as *mut FacesBlock => status,
-                    out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
-                    out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                    out("r12") _, out("lr") _,
-                    wide = sym super::rows::wide_steps_c,
-                    $($extra)*
-                    #[cfg(not(zraster_soft_float))] out("d0") _,
-                    #[cfg(not(zraster_soft_float))] out("d1") _,
-                    #[cfg(not(zraster_soft_float))] out("d2") _,
-                    #[cfg(not(zraster_soft_float))] out("d3") _,
-                    #[cfg(not(zraster_soft_float))] out("d4") _,
-                    #[cfg(not(zraster_soft_float))] out("d5") _,
-                    #[cfg(not(zraster_soft_float))] out("d6") _,
-                    #[cfg(not(zraster_soft_float))] out("d7") _,
-                )
-            };
-        }
-        if let Some((_, true)) = to_color {
-            faces_asm!(raw);
-        } else if let Some((f, _)) = to_color {
-            block.to_color = f as *const u8;
-            faces_asm!(lit bits = sym bits_of::<C>,);
-        } else {
-            faces_asm!(flat);
-        }
+        status = fused_asm!(faces_body, block, to_color);
     }
-    let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
-    let tested = wide(block.tested).wrapping_add(u64::from(block.run));
-    let failed = wide(block.failed).wrapping_add(u64::from(block.rows.failed()));
-    counts.tested = counts.tested.wrapping_add(tested);
-    counts.failed = counts.failed.wrapping_add(failed);
-    let drawn = block
-        .flushes
-        .wrapping_mul(FLUSH)
-        .wrapping_add(FLUSH - block.drawn);
-    counts.drawn = counts.drawn.wrapping_add(drawn);
+    counts.add_loop(
+        (block.tested, block.run, block.failed, block.rows.failed()),
+        (block.flushes, block.drawn),
+    );
     *pos = regs.faces_len - block.left as usize;
     if status == 0 {
         return FacesStop::Scan;
@@ -819,46 +842,12 @@ fn band_faces_less_dsp<C: Copy>(
     // register written is declared, the floating-point ones the calls may write among
     // them; the flags are scratch.
     unsafe {
-        macro_rules! band_asm {
-            ($kind:ident $($extra:tt)*) => {
-                core::arch::asm!(
-                    band_body!($kind),
-                    inout("r0") &mut block as *mut BandBlock => status,
-                    out("r1") _, out("r2") _, out("r3") _, out("r4") _, out("r5") _,
-                    out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                    out("r12") _, out("lr") _,
-                    wide = sym super::rows::wide_steps_c,
-                    $($extra)*
-                    #[cfg(not(zraster_soft_float))] out("d0") _,
-                    #[cfg(not(zraster_soft_float))] out("d1") _,
-                    #[cfg(not(zraster_soft_float))] out("d2") _,
-                    #[cfg(not(zraster_soft_float))] out("d3") _,
-                    #[cfg(not(zraster_soft_float))] out("d4") _,
-                    #[cfg(not(zraster_soft_float))] out("d5") _,
-                    #[cfg(not(zraster_soft_float))] out("d6") _,
-                    #[cfg(not(zraster_soft_float))] out("d7") _,
-                )
-            };
-        }
-        if let Some((_, true)) = to_color {
-            band_asm!(raw);
-        } else if let Some((f, _)) = to_color {
-            block.to_color = f as *const u8;
-            band_asm!(lit bits = sym bits_of::<C>,);
-        } else {
-            band_asm!(flat);
-        }
+        status = fused_asm!(band_body, block, to_color);
     }
-    let wide = |w: [u32; 2]| u64::from(w[0]) | u64::from(w[1]) << 32;
-    let tested = wide(block.tested).wrapping_add(u64::from(block.run));
-    let failed = wide(block.failed).wrapping_add(u64::from(block.rows.failed()));
-    counts.tested = counts.tested.wrapping_add(tested);
-    counts.failed = counts.failed.wrapping_add(failed);
-    let drawn = block
-        .flushes
-        .wrapping_mul(FLUSH)
-        .wrapping_add(FLUSH - block.drawn);
-    counts.drawn = counts.drawn.wrapping_add(drawn);
+    counts.add_loop(
+        (block.tested, block.run, block.failed, block.rows.failed()),
+        (block.flushes, block.drawn),
+    );
     *heads = block.heads;
     *carry.taken = carry
         .taken
