@@ -47,6 +47,7 @@ mod fill;
 mod light;
 mod mac;
 mod place;
+mod place4;
 // Before `rows`, which uses its SIMD pixel macros.
 #[macro_use]
 mod span;
@@ -75,6 +76,7 @@ pub use place::check_place_kernel;
 pub(crate) use place::place_portable;
 pub use place::CachedVertex;
 pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
+pub(crate) use place4::{place_quads, PLACE4_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{
