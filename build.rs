@@ -13,11 +13,12 @@
 //! - `zraster_dsp`: the DSP extension's SIMD instructions (ARMv7E-M: Cortex-M4, M7; the
 //!   target name starts with `thumbv7em`, since stable Rust does not expose Arm target
 //!   features to `cfg`), for `src/num/kernel.rs`'s span loop;
-//! - `zraster_sse2`: x86-64, whose SSE2 `src/num/kernel/` uses for the vertex cache;
+//! - `zraster_x86_64`: x86-64 (SSE2 always there), for `src/num/kernel/`'s vertex and
+//!   row loops;
 //! - `zraster_ram_code`: the `ram-code` feature on a bare-metal target (`target_os =
 //!   "none"`), where the innermost loops go to the `.data.zraster` section.
 fn main() {
-    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb, zraster_dsp, zraster_ram_code, zraster_sse2)");
+    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb, zraster_dsp, zraster_ram_code, zraster_x86_64)");
     println!("cargo::rerun-if-changed=build.rs");
     let var = |k: &str| std::env::var(k).unwrap_or_default();
     let arm = var("CARGO_CFG_TARGET_ARCH") == "arm";
@@ -43,7 +44,7 @@ fn main() {
             && var("CARGO_CFG_TARGET_OS") == "none",
     );
     // SSE2 (part of x86-64), for `src/num/kernel/`'s vertex loop.
-    set("zraster_sse2", var("CARGO_CFG_TARGET_ARCH") == "x86_64");
+    set("zraster_x86_64", var("CARGO_CFG_TARGET_ARCH") == "x86_64");
     set(
         "zraster_wide",
         var("CARGO_CFG_TARGET_POINTER_WIDTH") == "64",

@@ -11,8 +11,8 @@ use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::small_walk_less_as_u16;
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
+use crate::num::kernel::{rows_x86, SmallDone, SmallTarget, ROWS_KERNEL, ROWS_X86_KERNEL};
 use crate::num::kernel::{small_less_as_u16, small_less_cached, two_bytes, CachedVertex};
-use crate::num::kernel::{SmallDone, SmallTarget, ROWS_KERNEL};
 use crate::num::{div_floor_pair, floor_div32, floor_div32_pair_small, ARMV6M, DIVIDE, WIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
@@ -433,6 +433,20 @@ fn rows_divide<C: Copy, const WRITE: bool>(
     color: C,
     pass: impl Fn(u16, u16) -> bool,
 ) {
+    if ROWS_X86_KERNEL && WRITE && is_less(&pass) {
+        // x86-64: the assembly loop, where the rows lie inside the buffers.
+        let (l, r) = (
+            (&mut left.t, left.dt, left.d),
+            (&mut right.t, right.dt, right.d),
+        );
+        let steps = [d.sx, d.sy, d.lo, d.hi];
+        let at = (&mut row.z, &mut row.base, width);
+        if let Some((t, f)) = rows_x86((l, r), n, steps, (cx0, cx1), at, z, c, color) {
+            row.tested += t;
+            row.failed += f;
+            return;
+        }
+    }
     let (mut zrow, mut base) = (row.z, row.base);
     let (mut tested, mut failed) = (row.tested, row.failed);
     let mut n = n;

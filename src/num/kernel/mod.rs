@@ -55,6 +55,7 @@ mod span;
 mod rows;
 mod faces;
 mod rows_v6m;
+mod rows_x86;
 mod texel;
 
 pub use bin::check_bin_kernel;
@@ -86,6 +87,7 @@ pub use rows_v6m::check_rows_walk_kernel;
 pub(crate) use rows_v6m::{
     rows_walk_less_as_u16, small_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
 };
+pub(crate) use rows_x86::{rows_x86, ROWS_X86_KERNEL};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;

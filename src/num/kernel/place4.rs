@@ -11,7 +11,7 @@ use super::place::{place_portable, PlaceBlock};
 use super::CachedVertex;
 
 /// Whether [`place_quads`] runs SSE2 (x86-64); elsewhere the renderer does not call it.
-pub(crate) const PLACE4_KERNEL: bool = cfg!(zraster_sse2);
+pub(crate) const PLACE4_KERNEL: bool = cfg!(zraster_x86_64);
 
 /// Four entries of `p` (`Some` where [`place_portable`] places the position) by the
 /// twin, one lane at a time.
@@ -58,9 +58,9 @@ pub(crate) fn place_quads(
 
 /// [`PlaceBlock`]'s operands for [`Quad::place4`].
 struct Quad<'b> {
-    #[cfg_attr(zraster_sse2, allow(dead_code))]
+    #[cfg_attr(zraster_x86_64, allow(dead_code))]
     block: &'b PlaceBlock,
-    #[cfg(zraster_sse2)]
+    #[cfg(zraster_x86_64)]
     sse: sse::Operands,
 }
 
@@ -69,8 +69,8 @@ impl<'b> Quad<'b> {
     fn new(block: &'b PlaceBlock) -> Self {
         Quad {
             block,
-            // SAFETY: SSE2 is part of x86-64, the only target `zraster_sse2` names.
-            #[cfg(zraster_sse2)]
+            // SAFETY: SSE2 is part of x86-64, the only target `zraster_x86_64` names.
+            #[cfg(zraster_x86_64)]
             sse: unsafe { sse::Operands::new(block) },
         }
     }
@@ -79,7 +79,7 @@ impl<'b> Quad<'b> {
     #[inline(always)]
     fn place4(&self, p: &[[i16; 3]; 4]) -> ([CachedVertex; 4], u32) {
         // SAFETY: as in `new`: SSE2 is there.
-        #[cfg(zraster_sse2)]
+        #[cfg(zraster_x86_64)]
         return unsafe { self.sse.place4(p) };
         #[allow(unreachable_code)]
         {
@@ -93,7 +93,7 @@ impl<'b> Quad<'b> {
     }
 }
 
-#[cfg(zraster_sse2)]
+#[cfg(zraster_x86_64)]
 mod sse {
     use super::super::place::PlaceBlock;
     use super::super::{CachedVertex, XyWord};
