@@ -89,7 +89,7 @@ pub(crate) use rows_v6m::{
     rows_walk_less_as_u16, small_walk_less_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
 };
 pub(crate) use rows_x86::{rows_x86, ROWS_X86_KERNEL};
-pub(crate) use small_x86::{small_x86, SmallX86, SMALL_X86_KERNEL};
+pub(crate) use small_x86::{small_x86, SmallRun, SmallX86, SMALL_X86_KERNEL};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;
