@@ -115,8 +115,8 @@ impl PlaceBlock {
     /// the screen offsets (x, y): the operands of the SSE2 loop (`place4`).
     #[cfg_attr(not(any(zraster_x86_64, test)), allow(dead_code))]
     pub(super) fn parts(&self) -> ([[u32; 3]; 6], [f32; 4], [f32; 2]) {
-        let start = |k: usize| f32::from_bits(self.start[k]);
-        (self.rows, self.scales, [start(0), start(1)])
+        let [ox, oy, ..] = self.start;
+        (self.rows, self.scales, [ox, oy].map(f32::from_bits))
     }
 }
 

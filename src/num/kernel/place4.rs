@@ -42,12 +42,8 @@ pub(crate) fn place_quads(
         if placed == 0xf {
             *o = got;
         } else {
-            for (k, (e, p)) in o.iter_mut().zip(p).enumerate() {
-                *e = if placed >> k & 1 != 0 {
-                    got[k]
-                } else {
-                    entry(p)
-                };
+            for (k, ((e, p), g)) in o.iter_mut().zip(p).zip(got).enumerate() {
+                *e = if placed >> k & 1 != 0 { g } else { entry(p) };
             }
         }
     }
@@ -105,9 +101,8 @@ mod sse {
     /// The rows as `PMADDWD` operands (`c₀c₁` and `c₂`, 0 in every lane) and `t`, and
     /// the projection's constants, each in all four lanes.
     pub(super) struct Operands {
-        c01: [__m128i; 6],
-        c2: [__m128i; 6],
-        t: [__m128i; 6],
+        /// Each row's `c₀c₁`, `c₂` and `t`.
+        rows: [[__m128i; 3]; 6],
         sx: __m128,
         sy: __m128,
         ox: __m128,
@@ -122,9 +117,7 @@ mod sse {
             let (rows, [_, sx, sy, depth_half], [ox, oy]) = b.parts();
             let lanes = |v: u32| _mm_set1_epi32(v as i32);
             Operands {
-                c01: rows.map(|[c01, _, _]| lanes(c01)),
-                c2: rows.map(|[_, c12, _]| lanes(c12 >> 16)),
-                t: rows.map(|[_, _, t]| lanes(t)),
+                rows: rows.map(|[c01, c12, t]| [lanes(c01), lanes(c12 >> 16), lanes(t)]),
                 sx: _mm_set1_ps(sx),
                 sy: _mm_set1_ps(sy),
                 ox: _mm_set1_ps(ox),
@@ -144,14 +137,14 @@ mod sse {
             let pxy = _mm_setr_epi32(xy(a), xy(b), xy(c), xy(d));
             let pz = _mm_setr_epi32(z(a), z(b), z(c), z(d));
             // c₀·x + c₁·y + c₂·z + t, exact in 32 bits (wrapping as the twin).
-            let row = |r: usize| {
-                let s = _mm_add_epi32(_mm_madd_epi16(pxy, self.c01[r]), self.t[r]);
-                _mm_cvtepi32_ps(_mm_add_epi32(s, _mm_madd_epi16(pz, self.c2[r])))
+            let row = |[c01, c2, t]: [__m128i; 3]| {
+                let s = _mm_add_epi32(_mm_madd_epi16(pxy, c01), t);
+                _mm_cvtepi32_ps(_mm_add_epi32(s, _mm_madd_epi16(pz, c2)))
             };
-            let (x, y) = (row(0), row(1));
+            let [x, y, zh, wh, zl, wl] = self.rows.map(row);
             let unit = _mm_set1_ps(1.0 / 16384.0);
-            let zf = _mm_add_ps(row(2), _mm_mul_ps(row(4), unit));
-            let wf = _mm_add_ps(row(3), _mm_mul_ps(row(5), unit));
+            let zf = _mm_add_ps(zh, _mm_mul_ps(zl, unit));
+            let wf = _mm_add_ps(wh, _mm_mul_ps(wl, unit));
             let one = _mm_set1_ps(1.0);
             let inv = _mm_div_ps(one, wf);
             let cx = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(x, inv), self.sx), self.ox);
