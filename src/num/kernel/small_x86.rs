@@ -41,6 +41,7 @@ const _: () = {
 };
 
 /// What [`small_x86`] did.
+#[cfg_attr(not(zraster_x86_64), allow(dead_code))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum SmallX86 {
     /// Drawn (perhaps nothing): pixels tested and failed.
