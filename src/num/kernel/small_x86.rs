@@ -26,7 +26,7 @@ struct Block {
     zbase: usize,    // 64
     delta: isize,    // 72
     width: isize,    // 80
-    /// First row, clip x0, y0, x1, y1, lower rows, lower t, dt, d, spare.
+    /// First row, clip x0, y0, x1, y1, lower rows, spare.
     at: [i32; 10], // 88
     /// dxl, dyl, dxs, dys, area, start, mid, n0, px0, ya, ym, xa', q, r.
     set: [i32; 14], // 128
@@ -341,26 +341,6 @@ impl SmallRun {
                     "mov r14d, dword ptr [rdi + 172]",
                     "imul r14d, dword ptr [rdi + 140]",
                     "lea r13d, [r13 + r14 - 1]",
-                    // The lower short edge: s1 = 16·mid + 8 − ym, from xa' + dxs, by
-                    // (dxl − dxs, dyl − dys).
-                    "mov r9d, dword ptr [rdi + 152]",
-                    "shl r9d, 4",
-                    "add r9d, 8",
-                    "sub r9d, dword ptr [rdi + 168]",
-                    "mov r14d, dword ptr [rdi + 128]",
-                    "sub r14d, dword ptr [rdi + 136]",
-                    "imul r9d, r14d",
-                    "shl r14d, 4",
-                    "mov dword ptr [rdi + 116], r14d",
-                    "mov r14d, dword ptr [rdi + 132]",
-                    "sub r14d, dword ptr [rdi + 140]",
-                    "mov edx, dword ptr [rdi + 172]",
-                    "add edx, dword ptr [rdi + 136]",
-                    "imul edx, r14d",
-                    "lea r9d, [r9 + rdx - 1]",
-                    "mov dword ptr [rdi + 112], r9d",
-                    "shl r14d, 4",
-                    "mov dword ptr [rdi + 120], r14d",
                     // The first row's address; the clip's columns, local.
                     "mov r9d, dword ptr [rdi + 148]",
                     "sub r9d, dword ptr [rdi + 88]",
@@ -463,18 +443,34 @@ impl SmallRun {
                     "test eax, eax",
                     "jle 90f",
                     "mov dword ptr [rdi + 40], eax",
-                    "mov eax, dword ptr [rdi + 116]",
-                    "mov edx, dword ptr [rdi + 120]",
+                    // Its short edge (only now: the rows' registers r8–r11, r14, r15 kept):
+                    // s1 = 16·mid + 8 − ym, from xa' + dxs, by (dxl − dxs, dyl − dys);
+                    // t in r12, its step in r13, its divisor in esi.
+                    "mov r12d, dword ptr [rdi + 152]",
+                    "shl r12d, 4",
+                    "add r12d, 8",
+                    "sub r12d, dword ptr [rdi + 168]",
+                    "mov r13d, dword ptr [rdi + 128]",
+                    "sub r13d, dword ptr [rdi + 136]",
+                    "imul r12d, r13d",
+                    "shl r13d, 4",
+                    "mov esi, dword ptr [rdi + 132]",
+                    "sub esi, dword ptr [rdi + 140]",
+                    "mov edx, dword ptr [rdi + 172]",
+                    "add edx, dword ptr [rdi + 136]",
+                    "imul edx, esi",
+                    "lea r12d, [r12 + rdx - 1]",
+                    "shl esi, 4",
                     "cmp dword ptr [rdi + 144], 0",
                     "jle 41f",
-                    "mov r9d, dword ptr [rdi + 112]",
-                    "mov dword ptr [rdi + 28], eax",
-                    "mov dword ptr [rdi + 48], edx",
+                    "mov r9d, r12d",
+                    "mov dword ptr [rdi + 28], r13d",
+                    "mov dword ptr [rdi + 48], esi",
                     "jmp 2b",
                     "41:",
-                    "mov r8d, dword ptr [rdi + 112]",
-                    "mov dword ptr [rdi + 24], eax",
-                    "mov dword ptr [rdi + 44], edx",
+                    "mov r8d, r12d",
+                    "mov dword ptr [rdi + 24], r13d",
+                    "mov dword ptr [rdi + 44], esi",
                     "jmp 2b",
                     "6:",
                     "inc dword ptr [rdi + 36]",
