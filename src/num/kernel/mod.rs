@@ -19,10 +19,14 @@
 //! by `check_faces_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
+//! On x86-64, checked against their twins by host tests: the vertex cache's usual
+//! vertex four at a time in SSE2 ([`place_quads`](place4::place_quads)), a small
+//! triangle's rows ([`rows_x86`](rows_x86::rows_x86)) and its set-up with them
+//! ([`small_x86`](small_x86::small_x86)).
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `faces`, `mac` and `texel`, each with
-//! `#![allow(unsafe_code)]`).
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `light`, `faces`, `mac`, `texel`,
+//! `place4`, `rows_x86` and `small_x86`, each with `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
 /// also returns. The reproducible inputs of the kernels' checks, on target as in tests.
