@@ -38,12 +38,12 @@ pub(crate) fn place_quads(
         let (Ok(p), Ok(o)) = (<&[[i16; 3]; 4]>::try_from(p), <&mut [_; 4]>::try_from(o)) else {
             continue;
         };
-        let (got, placed) = q.place4(p);
-        if placed == 0xf {
-            *o = got;
-        } else {
-            for (k, ((e, p), g)) in o.iter_mut().zip(p).zip(got).enumerate() {
-                *e = if placed >> k & 1 != 0 { g } else { entry(p) };
+        let placed = q.place4(p, o);
+        if placed != 0xf {
+            for (k, (e, p)) in o.iter_mut().zip(p).enumerate() {
+                if placed >> k & 1 == 0 {
+                    *e = entry(p);
+                }
             }
         }
     }
@@ -71,20 +71,21 @@ impl<'b> Quad<'b> {
         }
     }
 
-    /// The entries of four positions and which of them are placed (bit k for lane k).
+    /// The entries of four positions into `out` and which of them are placed (bit k for
+    /// lane k; the other lanes' entries are to be replaced).
     #[inline(always)]
-    fn place4(&self, p: &[[i16; 3]; 4]) -> ([CachedVertex; 4], u32) {
+    fn place4(&self, p: &[[i16; 3]; 4], out: &mut [CachedVertex; 4]) -> u32 {
         // SAFETY: as in `new`: SSE2 is there.
         #[cfg(zraster_x86_64)]
-        return unsafe { self.sse.place4(p) };
+        return unsafe { self.sse.place4(p, out) };
         #[allow(unreachable_code)]
         {
-            let got = place4_portable(self.block, p);
             let mut placed = 0;
-            for (k, g) in got.iter().enumerate() {
+            for (k, (g, o)) in place4_portable(self.block, p).iter().zip(out).enumerate() {
                 placed |= u32::from(g.is_some()) << k;
+                *o = g.unwrap_or(CachedVertex::EMPTY);
             }
-            (got.map(|g| g.unwrap_or(CachedVertex::EMPTY)), placed)
+            placed
         }
     }
 }
@@ -92,7 +93,7 @@ impl<'b> Quad<'b> {
 #[cfg(zraster_x86_64)]
 mod sse {
     use super::super::place::PlaceBlock;
-    use super::super::{CachedVertex, XyWord};
+    use super::super::CachedVertex;
     #[cfg(target_arch = "x86")]
     use core::arch::x86::*;
     #[cfg(target_arch = "x86_64")]
@@ -130,10 +131,12 @@ mod sse {
         /// for each lane it places.
         #[inline]
         #[target_feature(enable = "sse2")]
-        pub(super) fn place4(&self, p: &[[i16; 3]; 4]) -> ([CachedVertex; 4], u32) {
-            let xy = |[x, y, _]: [i16; 3]| i32::from(x as u16) | i32::from(y) << 16;
-            let z = |[_, _, z]: [i16; 3]| i32::from(z as u16);
-            let [a, b, c, d] = *p;
+        pub(super) fn place4(&self, p: &[[i16; 3]; 4], out: &mut [CachedVertex; 4]) -> u32 {
+            // x and y of a position as one word (x low), by one load.
+            // SAFETY: reads the first 4 of the position's 6 bytes (any bits are a u32).
+            let xy = |p: &[i16; 3]| unsafe { core::ptr::read_unaligned(p.as_ptr().cast::<i32>()) };
+            let z = |&[_, _, z]: &[i16; 3]| i32::from(z as u16);
+            let [a, b, c, d] = p;
             let pxy = _mm_setr_epi32(xy(a), xy(b), xy(c), xy(d));
             let pz = _mm_setr_epi32(z(a), z(b), z(c), z(d));
             // c₀·x + c₁·y + c₂·z + t, exact in 32 bits (wrapping as the twin).
@@ -185,20 +188,14 @@ mod sse {
             );
             // Entries (depth, then x/y): lanes 0, 1 and 2, 3 as 64-bit words.
             let (e01, e23) = (_mm_unpacklo_epi32(zi, xyw), _mm_unpackhi_epi32(zi, xyw));
-            let entry = |w: i64| CachedVertex {
-                z: w as u32,
-                xy: XyWord::new((w >> 32) as i16, (w >> 48) as i16),
-            };
-            let high64 = |v: __m128i| _mm_cvtsi128_si64(_mm_unpackhi_epi64(v, v));
-            (
-                [
-                    entry(_mm_cvtsi128_si64(e01)),
-                    entry(high64(e01)),
-                    entry(_mm_cvtsi128_si64(e23)),
-                    entry(high64(e23)),
-                ],
-                placed,
-            )
+            // SAFETY: `out` is four 8-byte entries (`repr(C)`: the depth word, then x and
+            // y, any bits valid): two unaligned 16-byte stores cover them exactly.
+            unsafe {
+                let o = out.as_mut_ptr().cast::<__m128i>();
+                _mm_storeu_si128(o, e01);
+                _mm_storeu_si128(o.wrapping_add(1), e23);
+            }
+            placed
         }
     }
 }
@@ -239,9 +236,10 @@ mod tests {
             let q = Quad::new(&block);
             for _ in 0..2000 {
                 let p = [0; 4].map(|_| [rnd() as i16, rnd() as i16, rnd() as i16]);
-                let (got, mask) = q.place4(&p);
-                for (k, want) in place4_portable(&block, &p).into_iter().enumerate() {
-                    let lane = (mask >> k & 1 != 0).then_some(got[k]);
+                let mut got = [CachedVertex::EMPTY; 4];
+                let mask = q.place4(&p, &mut got);
+                for (k, (want, g)) in place4_portable(&block, &p).into_iter().zip(got).enumerate() {
+                    let lane = (mask >> k & 1 != 0).then_some(g);
                     assert_eq!(lane, want, "case {case}, {p:?} lane {k}");
                     placed += usize::from(want.is_some());
                     left += usize::from(want.is_none());
