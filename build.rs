@@ -43,7 +43,7 @@ fn main() {
         std::env::var_os("CARGO_FEATURE_RAM_CODE").is_some()
             && var("CARGO_CFG_TARGET_OS") == "none",
     );
-    // SSE2 (part of x86-64), for `src/num/kernel/`'s vertex loop.
+    // x86-64 (SSE2 always there), for `src/num/kernel/`'s vertex and row loops.
     set("zraster_x86_64", var("CARGO_CFG_TARGET_ARCH") == "x86_64");
     set(
         "zraster_wide",
