@@ -13,10 +13,12 @@
 //! - `zraster_dsp`: the DSP extension's SIMD instructions (ARMv7E-M: Cortex-M4, M7; the
 //!   target name starts with `thumbv7em`, since stable Rust does not expose Arm target
 //!   features to `cfg`), for `src/num/kernel.rs`'s span loop;
+//! - `zraster_x86_64`: x86-64 (SSE2 always there), for `src/num/kernel/`'s vertex and
+//!   row loops;
 //! - `zraster_ram_code`: the `ram-code` feature on a bare-metal target (`target_os =
 //!   "none"`), where the innermost loops go to the `.data.zraster` section.
 fn main() {
-    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb, zraster_dsp, zraster_ram_code)");
+    println!("cargo::rustc-check-cfg=cfg(zraster_armv6m, zraster_thumb2, zraster_soft_float, zraster_wide, zraster_thumb, zraster_dsp, zraster_ram_code, zraster_x86_64)");
     println!("cargo::rerun-if-changed=build.rs");
     let var = |k: &str| std::env::var(k).unwrap_or_default();
     let arm = var("CARGO_CFG_TARGET_ARCH") == "arm";
@@ -41,6 +43,8 @@ fn main() {
         std::env::var_os("CARGO_FEATURE_RAM_CODE").is_some()
             && var("CARGO_CFG_TARGET_OS") == "none",
     );
+    // x86-64 (SSE2 always there), for `src/num/kernel/`'s vertex and row loops.
+    set("zraster_x86_64", var("CARGO_CFG_TARGET_ARCH") == "x86_64");
     set(
         "zraster_wide",
         var("CARGO_CFG_TARGET_POINTER_WIDTH") == "64",

@@ -11,8 +11,9 @@ use super::span::is_less;
 use crate::fixed::{SUBPIXEL, SUBPIXEL_BITS};
 use crate::num::kernel::{cache_entries, small_walk_cached_as_u16};
 use crate::num::kernel::{rows_walk_less_as_u16, RowsAt, RowsWalk, WalkEdge, WALK_KERNEL};
+use crate::num::kernel::{rows_x86, SmallDone, SmallTarget, ROWS_KERNEL, ROWS_X86_KERNEL};
 use crate::num::kernel::{small_less_as_u16, small_less_cached, two_bytes, CachedVertex};
-use crate::num::kernel::{SmallDone, SmallTarget, ROWS_KERNEL};
+use crate::num::kernel::{small_x86, SmallX86, SMALL_X86_KERNEL};
 use crate::num::{div_floor_pair, floor_div32, floor_div32_pair_small, ARMV6M, DIVIDE, WIDE};
 use crate::raster::{
     small_steps, Clip, EdgeDivide, EdgeWalk, ScreenVertex, SmallEdge, DEPTH_BIAS, SMALL,
@@ -89,7 +90,21 @@ pub(crate) fn fill_small_cached<C: Copy>(
         return walk_cached_or_none(b, tri, color);
     }
     if !ROWS_KERNEL {
-        return None;
+        if !SMALL_X86_KERNEL {
+            return None;
+        }
+        // x86-64: set-up and rows in one assembly block.
+        let mut t = SmallTarget {
+            z: &mut *b.zdata,
+            c: &mut *b.cdata,
+            width: b.width,
+            first_row: b.first_row,
+            clip: b.clip,
+        };
+        return match small_x86(&mut t, tri, color) {
+            SmallX86::Drawn(tested, failed) => Some((tested, tested.wrapping_sub(failed))),
+            SmallX86::Refused => None,
+        };
     }
     let mut t = SmallTarget {
         z: &mut *b.zdata,
@@ -479,6 +494,20 @@ fn rows_divide<C: Copy, const WRITE: bool>(
     color: C,
     pass: impl Fn(u16, u16) -> bool,
 ) {
+    if ROWS_X86_KERNEL && WRITE && is_less(&pass) {
+        // x86-64: the assembly loop, where the rows lie inside the buffers.
+        let (l, r) = (
+            (&mut left.t, left.dt, left.d),
+            (&mut right.t, right.dt, right.d),
+        );
+        let steps = [d.sx, d.sy, d.lo, d.hi];
+        let at = (&mut row.z, &mut row.base, width);
+        if let Some((t, f)) = rows_x86((l, r), n, steps, (cx0, cx1), at, z, c, color) {
+            row.tested += t;
+            row.failed += f;
+            return;
+        }
+    }
     let (mut zrow, mut base) = (row.z, row.base);
     let (mut tested, mut failed) = (row.tested, row.failed);
     let mut n = n;
@@ -860,6 +889,7 @@ mod tests {
         const H: usize = 30;
         let mut rnd = crate::testing::xorshift32(0x0bad_cafe);
         let less = |a: u16, b: u16| a < b;
+        let mut cached_taken = 0;
         for i in 0..20_000u32 {
             let span = [3, 12, 40, 700][(i % 4) as usize];
             let mut r = |m: i32| (rnd() % m as u32) as i32;
@@ -932,6 +962,29 @@ mod tests {
                 want == divide(true, less),
                 "triangle {i}: {tri:?} in {clip:?}"
             );
+            // The cache entries' path (on x86-64 the assembly set-up and rows of
+            // `small_x86`, elsewhere with a kernel its own): what it takes, drawn alike.
+            let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
+            let mut b = Buffers {
+                zdata: &mut zdata,
+                cdata: &mut cdata,
+                width: W,
+                first_row: 3,
+                clip,
+            };
+            let cached = tri.map(|v| CachedVertex::new(0, v));
+            if let Some(done) = fill_small_cached::<u16>(&mut b, cached.each_ref(), 7) {
+                cached_taken += 1;
+                assert!(
+                    want == (Some(done), zdata, cdata),
+                    "triangle {i}: {tri:?} in {clip:?}, cached"
+                );
+            } else {
+                assert!(
+                    zdata == depth && cdata.iter().all(|&c| c == 0),
+                    "triangle {i}"
+                );
+            }
             let reference = |write: bool, pass: fn(u16, u16) -> bool| {
                 let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
                 let mut b = Buffers {
@@ -982,6 +1035,11 @@ mod tests {
                 !drawn && matches!(done, None | Some((0, 0))),
                 "triangle {i}"
             );
+        }
+        // Where there is a cached path (assembly on x86-64 and ARMv7E-M), it takes the
+        // small triangles.
+        if SMALL_X86_KERNEL || ROWS_KERNEL {
+            assert!(cached_taken > 14_000, "{cached_taken} taken");
         }
     }
 }

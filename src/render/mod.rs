@@ -39,7 +39,7 @@ use crate::math::Vec3;
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
 /// Defined beside the set-up kernel that reads its entries in place.
 pub use crate::num::kernel::CachedVertex;
-use crate::num::kernel::{LightBlock, XyWord};
+use crate::num::kernel::{place_quads, LightBlock, XyWord, PLACE4_KERNEL};
 use crate::raster::{
     draw_line, signed_area, signed_area_guarded, Clip, Plane, ScreenVertex, SpanStats,
 };
@@ -398,6 +398,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             || crate::num::kernel::PLACE_V6M_KERNEL
         {
             return;
+        }
+        // x86-64: the usual vertex four at a time in SSE2, any other out of line.
+        if PLACE4_KERNEL {
+            if let Some(block) = self.map.place_block(&self.fixed) {
+                place_quads(&block, positions, cache, |p| self.cache_entry(p));
+                return;
+            }
         }
         // w's bits beyond 31 at the previous vertex, for the next (project_fast).
         let mut sh_hint = W_SHIFT_HINT;

@@ -7,6 +7,7 @@ use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
 use crate::num::kernel::FACES_KERNEL;
 use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop, SmallTarget};
+use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
 /// for the renderer's materials and shading, in one arm for each way of colouring (one
@@ -333,6 +334,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             if !matches!(target, FlatTarget::Fused { less: true, .. }) {
                 fused = None; // the same for every run
             }
+            // x86-64: small triangles set up and drawn in assembly, its block made once
+            // a run.
+            let mut small = match &target {
+                FlatTarget::Fused { b, less: true, .. } if SMALL_X86_KERNEL => {
+                    SmallRun::new(b.clip, b.first_row, b.width)
+                }
+                _ => None,
+            };
             let mut to_clip = None;
             loop {
                 let mut left = None;
@@ -377,6 +386,22 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         // The colour first: then only the corners' places, not their
                         // values, are kept across it.
                         let color = shade(f)?;
+                        if let (Some(run), FlatTarget::Fused { b: buf, .. }) =
+                            (&mut small, &mut target)
+                        {
+                            let tri = [a, b, c];
+                            if let SmallX86::Drawn(t, failed) =
+                                run.draw(buf.zdata, buf.cdata, tri, color)
+                            {
+                                let s = SpanStats {
+                                    pixels_tested: t,
+                                    pixels_written: t.wrapping_sub(failed),
+                                    runs: 0,
+                                };
+                                counts.add(s, &mut px);
+                                continue;
+                            }
+                        }
                         counts.add(target.fill_cached([a, b, c], color), &mut px);
                     }
                     // Across a clip plane or far outside the screen (rare).

@@ -20,9 +20,14 @@
 //! by `check_faces_kernel`);
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
+//! On x86-64, checked against their twins by host tests: the vertex cache's usual
+//! vertex four at a time in SSE2 ([`place_quads`](place4::place_quads)), a small
+//! triangle's rows ([`rows_x86`](rows_x86::rows_x86)) and its set-up with them
+//! ([`small_x86`](small_x86::small_x86)).
 //!
 //! The only `unsafe` code of the crate lives here
-//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `place_v6m`, `light`, `faces`, `mac` and `texel`, each with
+//! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `place_v6m`, `light`,
+//! `faces`, `mac`, `texel`, `place4`, `rows_x86` and `small_x86`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
@@ -48,6 +53,7 @@ mod fill;
 mod light;
 mod mac;
 mod place;
+mod place4;
 mod place_v6m;
 // Before `rows`, which uses its SIMD pixel macros.
 #[macro_use]
@@ -56,6 +62,8 @@ mod span;
 mod rows;
 mod faces;
 mod rows_v6m;
+mod rows_x86;
+mod small_x86;
 mod texel;
 
 pub use bin::check_bin_kernel;
@@ -84,6 +92,7 @@ pub use place_v6m::check_place_v6m_kernel;
 #[cfg(test)]
 pub(crate) use place_v6m::place_v6m_portable;
 pub(crate) use place_v6m::{place_run_v6m, recip62_low, PlaceV6m, PLACE_V6M_KERNEL};
+pub(crate) use place4::{place_quads, PLACE4_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{
@@ -93,6 +102,8 @@ pub use rows_v6m::check_rows_walk_kernel;
 pub(crate) use rows_v6m::{
     cache_entries, rows_walk_less_as_u16, small_walk_cached_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
 };
+pub(crate) use rows_x86::{rows_x86, ROWS_X86_KERNEL};
+pub(crate) use small_x86::{small_x86, SmallRun, SmallX86, SMALL_X86_KERNEL};
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
 pub use texel::check_texel_kernel;

@@ -110,6 +110,16 @@ impl PlaceBlock {
     }
 }
 
+impl PlaceBlock {
+    /// The rows (`c₀c₁`, `c₁c₂`, `t`), the scales (1, x, y, half the depth range) and
+    /// the screen offsets (x, y): the operands of the SSE2 loop (`place4`).
+    #[cfg_attr(not(any(zraster_x86_64, test)), allow(dead_code))]
+    pub(super) fn parts(&self) -> ([[u32; 3]; 6], [f32; 4], [f32; 2]) {
+        let [ox, oy, ..] = self.start;
+        (self.rows, self.scales, [ox, oy].map(f32::from_bits))
+    }
+}
+
 /// 65535 · 65536 / 2: window depth (z_ndc + 1)/2 in 16.16 of 0..=65535.
 const DEPTH_HALF: f32 = 65535.0 * 32768.0;
 
