@@ -152,9 +152,8 @@ fn walk_cached_or_none<C: Copy>(
 
 /// ARMv6-M's small path: `Less` with depth writes in a two-byte colour by
 /// [`walk_cached`] (set-up and rows in assembly) when the corners fit the vertex
-/// cache's form; what it leaves (steep depth, a clip beyond the buffers) and the other
-/// tests by [`fill_small_with`]'s set-up, its rows through [`rows_walk_less_as_u16`]
-/// where it can.
+/// cache's form, what it leaves (steep depth, a clip beyond the buffers: rare) by the
+/// general path; the other tests by [`fill_small_with`].
 #[inline(always)]
 fn fill_small_walk<C: Copy>(
     b: &mut Buffers<'_, '_, C>,
@@ -164,11 +163,8 @@ fn fill_small_walk<C: Copy>(
     pass: impl Fn(u16, u16) -> bool + Copy,
 ) -> Option<(u32, u32)> {
     if write && is_less(&pass) && two_bytes::<C>() {
-        if let Some([p, q, r]) = cache_entries(tri) {
-            if let Some(done) = walk_cached_or_none(b, [&p, &q, &r], color) {
-                return Some(done);
-            }
-        }
+        let [p, q, r] = cache_entries(tri)?;
+        return walk_cached_or_none(b, [&p, &q, &r], color);
     }
     fill_small_with::<EdgeWalk, C>(b, tri, color, write, pass, false, true)
 }
@@ -960,7 +956,8 @@ mod tests {
                 );
             }
             // ARMv6-M's path: the set-up of `small_walk_less_as_u16` (on the host its
-            // twin, in the assembly's order), what it leaves to `fill_small_with`.
+            // twin, in the assembly's order); what it leaves (`None`, nothing drawn)
+            // goes to the general path.
             let (mut zdata, mut cdata) = (depth.clone(), vec![0u16; W * H]);
             let mut b = Buffers {
                 zdata: &mut zdata,
@@ -970,8 +967,9 @@ mod tests {
                 clip,
             };
             let done = fill_small_walk::<u16>(&mut b, tri.each_ref(), 7, true, less);
+            let left = done.is_none() && zdata == depth && cdata.iter().all(|&c| c == 0);
             assert!(
-                want == (done, zdata, cdata),
+                left || want == (done, zdata, cdata),
                 "triangle {i}: {tri:?} in {clip:?}"
             );
             // With `walk`, `Less` without depth writes is left to the general path (or
