@@ -6,7 +6,7 @@
 use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
 use crate::num::kernel::FACES_KERNEL;
-use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop, SmallTarget};
+use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
 /// for the renderer's materials and shading, in one arm for each way of colouring (one
@@ -340,13 +340,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     (&fused, &mut target)
                 {
                     let (mut pos, faces, cache) = walk.fused();
-                    let mut t = SmallTarget {
-                        z: &mut *b.zdata,
-                        c: &mut *b.cdata,
-                        width: b.width,
-                        first_row: b.first_row,
-                        clip: b.clip,
-                    };
+                    let mut t = b.target();
                     let scan = (&operands, faces, cache);
                     match faces_less(&mut pos, scan, color, &mut t, &mut fused_counts) {
                         FacesStop::Face(k, tri) => {

@@ -82,7 +82,7 @@ pub(crate) use rows::{
 };
 pub use rows_v6m::check_rows_walk_kernel;
 pub(crate) use rows_v6m::{
-    cache_entries, rows_walk_less_as_u16, small_walk_cached_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
+    cache_entries, rows_walk_less_as_u16, Buffers, RowsWalk, WalkEdge, WALK_KERNEL,
 };
 pub use span::check_span_kernel;
 pub(crate) use span::{span_kernel_pays, span_less_as_u16};
