@@ -446,13 +446,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
                         (&fused, &mut target)
                     {
-                        let mut t = SmallTarget {
-                            z: &mut *b.zdata,
-                            c: &mut *b.cdata,
-                            width: b.width,
-                            first_row: b.first_row,
-                            clip: b.clip,
-                        };
+                        let mut t = b.target();
                         match faces.fused(
                             cache,
                             &mut carry.parts(),

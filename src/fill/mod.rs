@@ -230,13 +230,13 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
         let (w, _, first_row) = zbuf.geometry();
         let (test, write) = (S::depth_test(zbuf.test()), zbuf.write_enabled());
         FlatTarget::Fused {
-            b: Buffers {
-                zdata: zbuf.data_mut(),
-                cdata: frame.data_mut(),
-                width: usize::from(w),
+            b: Buffers::new(
+                zbuf.data_mut(),
+                frame.data_mut(),
+                usize::from(w),
                 first_row,
-                clip: *clip,
-            },
+                *clip,
+            ),
             test,
             write,
             less: test == DepthTest::Less && write,
@@ -386,9 +386,9 @@ fn fill_fused<S: RenderState, C: Copy>(
     let Some((rows, dz)) = DepthRows::new(tri, &setup) else {
         return SpanStats::default();
     };
-    let rows = (&setup, &rows, dz, &b.clip);
-    let (w, first_row) = (b.width, b.first_row);
-    let (zdata, cdata) = (&mut *b.zdata, &mut *b.cdata);
+    let (clip, w, first_row) = (b.clip, b.width, b.first_row);
+    let rows = (&setup, &rows, dz, &clip);
+    let (zdata, cdata) = b.parts();
     per_depth_test!(test, SpanStats::default(), |pass| flat_rows_fused(
         zdata, cdata, w, first_row, rows, write, color, pass
     ))

@@ -6,7 +6,7 @@
 use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
 use crate::num::kernel::FACES_KERNEL;
-use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop, SmallTarget};
+use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop};
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
@@ -349,13 +349,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     (&fused, &mut target)
                 {
                     let (mut pos, faces, cache) = walk.fused();
-                    let mut t = SmallTarget {
-                        z: &mut *b.zdata,
-                        c: &mut *b.cdata,
-                        width: b.width,
-                        first_row: b.first_row,
-                        clip: b.clip,
-                    };
+                    let mut t = b.target();
                     let scan = (&operands, faces, cache);
                     match faces_less(&mut pos, scan, color, &mut t, &mut fused_counts) {
                         FacesStop::Face(k, tri) => {
@@ -390,9 +384,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                             (&mut small, &mut target)
                         {
                             let tri = [a, b, c];
-                            if let SmallX86::Drawn(t, failed) =
-                                run.draw(buf.zdata, buf.cdata, tri, color)
-                            {
+                            let (zdata, cdata) = buf.parts();
+                            if let SmallX86::Drawn(t, failed) = run.draw(zdata, cdata, tri, color) {
                                 let s = SpanStats {
                                     pixels_tested: t,
                                     pixels_written: t.wrapping_sub(failed),

@@ -88,11 +88,11 @@ pub use place::check_place_kernel;
 pub(crate) use place::place_portable;
 pub use place::CachedVertex;
 pub(crate) use place::{place_run, PlaceBlock, PLACE_KERNEL};
+pub(crate) use place4::{place_quads, PLACE4_KERNEL};
 pub use place_v6m::check_place_v6m_kernel;
 #[cfg(test)]
 pub(crate) use place_v6m::place_v6m_portable;
 pub(crate) use place_v6m::{place_run_v6m, recip62_low, PlaceV6m, PLACE_V6M_KERNEL};
-pub(crate) use place4::{place_quads, PLACE4_KERNEL};
 pub use rows::check_rows_kernel;
 pub(crate) use rows::two_bytes;
 pub(crate) use rows::{
@@ -100,7 +100,7 @@ pub(crate) use rows::{
 };
 pub use rows_v6m::check_rows_walk_kernel;
 pub(crate) use rows_v6m::{
-    cache_entries, rows_walk_less_as_u16, small_walk_cached_as_u16, RowsWalk, WalkEdge, WALK_KERNEL,
+    cache_entries, rows_walk_less_as_u16, Buffers, RowsWalk, WalkEdge, WALK_KERNEL,
 };
 pub(crate) use rows_x86::{rows_x86, ROWS_X86_KERNEL};
 pub(crate) use small_x86::{small_x86, SmallRun, SmallX86, SMALL_X86_KERNEL};

@@ -341,6 +341,142 @@ pub(crate) fn small_walk_cached_as_u16<C: Copy>(
     }
 }
 
+/// Colour and depth rows of the same geometry (`width` pixels a row from screen row
+/// `first_row`), and the pixels drawing may touch (`clip`); on ARMv6-M with the fields
+/// of the set-up's block that stay the same for these buffers, written once here
+/// rather than a triangle (the depth address, the colour's offset from it, the pitch,
+/// the clip and first row, as [`Buffers::new`] found them).
+///
+/// The buffers are private and handed out only as reborrows, so that the block's
+/// addresses stay theirs while it lives: [`walk_cached`](Buffers::walk_cached) relies
+/// on it. `width`, `first_row` and `clip` are the Rust paths' copies (the block has its
+/// own, checked against the buffers).
+pub(crate) struct Buffers<'z, 'c, C> {
+    zdata: &'z mut [u16],
+    cdata: &'c mut [C],
+    /// Pixels a row.
+    pub width: usize,
+    /// The screen row of the buffers' first row.
+    pub first_row: i32,
+    /// The pixels drawing may touch.
+    pub clip: Clip,
+    /// The set-up block, its per-buffer fields written when `walk` is true.
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    block: core::mem::MaybeUninit<SmallWalk>,
+    /// Whether the assembly takes these buffers: a two-byte colour, the clip inside
+    /// both buffers (then the block's per-buffer fields are written).
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    walk: bool,
+}
+
+impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
+    /// `zdata` and `cdata` of rows of `width` from screen row `first_row`, drawn inside
+    /// `clip`.
+    #[inline(always)]
+    pub(crate) fn new(
+        zdata: &'z mut [u16],
+        cdata: &'c mut [C],
+        width: usize,
+        first_row: i32,
+        clip: Clip,
+    ) -> Self {
+        #[allow(unused_mut)]
+        let mut b = Buffers {
+            zdata,
+            cdata,
+            width,
+            first_row,
+            clip,
+            #[cfg(all(zraster_thumb, zraster_armv6m))]
+            block: core::mem::MaybeUninit::uninit(),
+            #[cfg(all(zraster_thumb, zraster_armv6m))]
+            walk: false,
+        };
+        #[cfg(all(zraster_thumb, zraster_armv6m))]
+        b.start_walk();
+        b
+    }
+
+    /// The depth and colour rows.
+    #[inline(always)]
+    pub(crate) fn parts(&mut self) -> (&mut [u16], &mut [C]) {
+        (&mut *self.zdata, &mut *self.cdata)
+    }
+
+    /// The buffers as the small triangles' kernels take them.
+    #[inline(always)]
+    pub(crate) fn target(&mut self) -> SmallTarget<'_, '_, C> {
+        SmallTarget {
+            z: &mut *self.zdata,
+            c: &mut *self.cdata,
+            width: self.width,
+            first_row: self.first_row,
+            clip: self.clip,
+        }
+    }
+
+    /// Writes the block's per-buffer fields where the assembly takes the buffers, once
+    /// (out of line: one copy for every loop).
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    #[inline(never)]
+    fn start_walk(&mut self) {
+        let (clip, first_row, width) = (self.clip, self.first_row, self.width);
+        let len = self.zdata.len().min(self.cdata.len());
+        if !super::two_bytes::<C>() || !clip_inside(clip, first_row, width, len) {
+            return;
+        }
+        let zaddr = self.zdata.as_mut_ptr() as u32;
+        let caddr = self.cdata.as_mut_ptr() as u32;
+        let p = self.block.as_mut_ptr();
+        // SAFETY: writes to fields of the block, through a pointer to it (no reference
+        // to uninitialised memory is made).
+        unsafe {
+            (&raw mut (*p).rows.delta).write(caddr.wrapping_sub(zaddr));
+            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
+            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
+            (&raw mut (*p).first_row).write(first_row);
+            (&raw mut (*p).zaddr).write(zaddr);
+        }
+        self.walk = true;
+    }
+
+    /// [`small_walk_cached_as_u16`] into these buffers, the block's per-buffer fields
+    /// as [`Buffers::new`] wrote them: per triangle only the colour, the failures'
+    /// count and the call.
+    #[inline(always)]
+    pub(crate) fn walk_cached(&mut self, tri: [&CachedVertex; 3], color: C) -> SmallDone {
+        #[cfg(all(zraster_thumb, zraster_armv6m))]
+        {
+            if !self.walk {
+                return SmallDone::General;
+            }
+            let p = self.block.as_mut_ptr();
+            // SAFETY: `walk` is set only by `start_walk`, after it found `C` two bytes
+            // with alignment two (so `color` reads as a u16) and every row and column of
+            // the clip inside both buffers, and wrote the block's depth address, colour
+            // offset, pitch, clip and first row from them. The buffers are this
+            // struct's private fields, never replaced (only reborrows are handed out),
+            // and `&mut self` borrows them exclusively for the call: another caller's
+            // buffers cannot meet this block (a new `Buffers` writes a block of its
+            // own). The assembly writes only the rows' scratch fields, never those.
+            // `failed` is written here, and the assembly only adds to it.
+            unsafe {
+                let bits = core::mem::transmute_copy::<C, u16>(&color);
+                (&raw mut (*p).rows.color).write(u32::from(bits));
+                (&raw mut (*p).rows.failed).write(0);
+                let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
+                if tested == u32::MAX {
+                    SmallDone::General
+                } else {
+                    SmallDone::Drawn(tested, (&raw const (*p).rows.failed).read())
+                }
+            }
+        }
+        #[cfg(not(all(zraster_thumb, zraster_armv6m)))]
+        small_walk_cached_as_u16(&mut self.target(), tri, color)
+    }
+}
+
 /// The portable twin of `zraster_small_walk_v6m`: [`small_walk_setup`] then
 /// [`rows_walk_less_portable`]. The clip must lie inside the buffers (pixels outside
 /// are skipped).
