@@ -382,6 +382,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // from it alone is worked out once a run, as in the whole frame's loop.
         loop {
             let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            target.start();
             if !matches!(target, FlatTarget::Fused { less: true, .. }) {
                 fused = None; // the same for every run
             }
@@ -472,6 +473,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             }
             let Some(f) = to_clip else { break };
             let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+            target.start();
             px.add_pixels(self.draw_clipped_face(&mut target, &clip, false, f)?.1);
         }
         counts.flush(&mut px);

@@ -187,7 +187,9 @@ pub(crate) fn fill_flat_buffered<S: RenderState, C: PixelColor>(
     tri: &[ScreenVertex; 3],
     color: C,
 ) -> SpanStats {
-    FlatTarget::<C, S>::new(frame, zbuf, clip).fill(tri.each_ref(), color)
+    let mut target = FlatTarget::<C, S>::new(frame, zbuf, clip);
+    target.start();
+    target.fill(tri.each_ref(), color)
 }
 
 /// A colour buffer and a Z-buffer borrowed for a run of flat triangles: what
@@ -215,6 +217,8 @@ pub(crate) enum FlatTarget<'a, 'z, 'c, C, S, const SPLIT: bool = true> {
 impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
     FlatTarget<'a, 'z, 'c, C, S, SPLIT>
 {
+    /// The target for `frame` and `zbuf` drawn inside `clip`, not yet
+    /// [`start`](FlatTarget::start)ed.
     pub(crate) fn new(
         frame: &'a mut ColorBuffer<'c, C>,
         zbuf: &'a mut ZBuffer<'z>,
@@ -230,7 +234,7 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
         let (w, _, first_row) = zbuf.geometry();
         let (test, write) = (S::depth_test(zbuf.test()), zbuf.write_enabled());
         FlatTarget::Fused {
-            b: Buffers::new(
+            b: Buffers::unstarted(
                 zbuf.data_mut(),
                 frame.data_mut(),
                 usize::from(w),
@@ -241,6 +245,17 @@ impl<'a, 'z, 'c, C: PixelColor, S: RenderState, const SPLIT: bool>
             write,
             less: test == DepthTest::Less && write,
             state: core::marker::PhantomData,
+        }
+    }
+
+    /// Writes what the small triangles' kernel keeps for the buffers (see
+    /// [`Buffers::unstarted`]); until then it leaves every triangle to the general
+    /// path. Called once the target is where it stays: [`new`](FlatTarget::new) cannot,
+    /// as its value is moved on return (a copy of the block, and its stack).
+    #[inline(always)]
+    pub(crate) fn start(&mut self) {
+        if let FlatTarget::Fused { b, .. } = self {
+            b.start();
         }
     }
 

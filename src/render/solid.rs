@@ -331,6 +331,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // from it alone is worked out once a run.
         loop {
             let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+            target.start();
             if !matches!(target, FlatTarget::Fused { less: true, .. }) {
                 fused = None; // the same for every run
             }
@@ -407,6 +408,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             let Some(f) = to_clip else { break };
             // The general path.
             let mut target = FlatTarget::<C, S>::new(frame, zbuf, &clip);
+            target.start();
             let (g, more) = self.draw_clipped_face(&mut target, &clip, first, f)?;
             clipped.add_geometry(&g);
             px.add_pixels(more);

@@ -345,7 +345,7 @@ pub(crate) fn small_walk_cached_as_u16<C: Copy>(
 /// `first_row`), and the pixels drawing may touch (`clip`); on ARMv6-M with the fields
 /// of the set-up's block that stay the same for these buffers, written once here
 /// rather than a triangle (the depth address, the colour's offset from it, the pitch,
-/// the clip and first row, as [`Buffers::new`] found them).
+/// the clip and first row, as [`Buffers::start`] found them).
 ///
 /// The buffers are private and handed out only as reborrows, so that the block's
 /// addresses stay theirs while it lives: [`walk_cached`](Buffers::walk_cached) relies
@@ -371,8 +371,8 @@ pub(crate) struct Buffers<'z, 'c, C> {
 
 impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
     /// `zdata` and `cdata` of rows of `width` from screen row `first_row`, drawn inside
-    /// `clip`.
-    #[inline(always)]
+    /// `clip`, started (the tests' form).
+    #[cfg(test)]
     pub(crate) fn new(
         zdata: &'z mut [u16],
         cdata: &'c mut [C],
@@ -380,8 +380,24 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
         first_row: i32,
         clip: Clip,
     ) -> Self {
-        #[allow(unused_mut)]
-        let mut b = Buffers {
+        let mut b = Self::unstarted(zdata, cdata, width, first_row, clip);
+        b.start();
+        b
+    }
+
+    /// The buffers, the block's per-buffer fields not yet written:
+    /// [`start`](Buffers::start) writes them once the value is where it stays (a move
+    /// after would copy the block, and take stack for both copies). Until then
+    /// [`walk_cached`](Buffers::walk_cached) leaves every triangle to the general path.
+    #[inline(always)]
+    pub(crate) fn unstarted(
+        zdata: &'z mut [u16],
+        cdata: &'c mut [C],
+        width: usize,
+        first_row: i32,
+        clip: Clip,
+    ) -> Self {
+        Buffers {
             zdata,
             cdata,
             width,
@@ -391,10 +407,15 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
             block: core::mem::MaybeUninit::uninit(),
             #[cfg(all(zraster_thumb, zraster_armv6m))]
             walk: false,
-        };
+        }
+    }
+
+    /// Writes the block's per-buffer fields where the assembly takes the buffers (see
+    /// [`Buffers::unstarted`]).
+    #[inline(always)]
+    pub(crate) fn start(&mut self) {
         #[cfg(all(zraster_thumb, zraster_armv6m))]
-        b.start_walk();
-        b
+        self.start_walk();
     }
 
     /// The depth and colour rows.
@@ -441,7 +462,7 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
     }
 
     /// [`small_walk_cached_as_u16`] into these buffers, the block's per-buffer fields
-    /// as [`Buffers::new`] wrote them: per triangle only the colour, the failures'
+    /// as [`Buffers::start`] wrote them: per triangle only the colour, the failures'
     /// count and the call.
     #[inline(always)]
     pub(crate) fn walk_cached(&mut self, tri: [&CachedVertex; 3], color: C) -> SmallDone {
