@@ -217,6 +217,7 @@ pub(crate) fn rows_walk_less_portable(
 /// columns `x0..x1`), the buffers' first row and the depth buffer's address.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 struct SmallWalk {
     rows: RowsWalk, // 0
     clip: [i32; 4], // 84: y0, y1, x0, x1
