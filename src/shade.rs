@@ -258,6 +258,14 @@ pub trait DisplayColor: PixelColor {
     /// The colour of `material` at intensity `i` (Q15) at pixel (x, y).
     fn lit(material: Rgb888, i: Intensity, x: i32, y: i32) -> Self;
 
+    /// [`lit`](DisplayColor::lit) at full light ([`ONE`]), where the caller's intensity
+    /// is that constant (a shader's colour): RGB types fold the rounding to 32 bits.
+    #[doc(hidden)]
+    #[inline(always)]
+    fn lit_full(material: Rgb888, x: i32, y: i32) -> Self {
+        Self::lit(material, ONE, x, y)
+    }
+
     /// For a 5-6-5 type: `material`'s 8-bit channels in the packing's order (high
     /// field first) and the colour of a packed value (see [`Material::packed_565`]).
     #[doc(hidden)]
@@ -348,6 +356,21 @@ fn mix(dst: u8, src: u8, a: u8) -> u8 {
     div255(d * (255 - a) + s * a + 127) as u8
 }
 
+/// An RGB colour at full light: [`lit_rgb`] at [`ONE`], each channel's quotient in 32
+/// bits off ARMv6-M ([`full_channel`]).
+#[inline(always)]
+fn full_rgb<C: RgbColor>(m: Rgb888, new: fn(u8, u8, u8) -> C) -> C {
+    if crate::num::ARMV6M {
+        return lit_rgb(m, ONE, new);
+    }
+    let full = |v: u8, max: u8| full_channel(v, u32::from(max)) as u8;
+    new(
+        full(m.r(), C::MAX_R),
+        full(m.g(), C::MAX_G),
+        full(m.b(), C::MAX_B),
+    )
+}
+
 /// An RGB colour blended channel by channel.
 #[inline]
 fn blend_rgb<C: RgbColor>(dst: C, src: C, a: u8, new: fn(u8, u8, u8) -> C) -> C {
@@ -375,6 +398,11 @@ macro_rules! rgb_colors {
                 lit_rgb(m, i, $t::new)
             }
 
+            #[inline(always)]
+            fn lit_full(m: Rgb888, _x: i32, _y: i32) -> $t {
+                full_rgb(m, $t::new)
+            }
+
             #[inline]
             fn blend(dst: $t, src: $t, alpha: u8, _x: i32, _y: i32) -> $t {
                 blend_rgb(dst, src, alpha, $t::new)
@@ -394,6 +422,11 @@ macro_rules! rgb565_colors {
             #[inline]
             fn lit(m: Rgb888, i: Intensity, _x: i32, _y: i32) -> $t {
                 lit_rgb(m, i, $t::new)
+            }
+
+            #[inline(always)]
+            fn lit_full(m: Rgb888, _x: i32, _y: i32) -> $t {
+                full_rgb(m, $t::new)
             }
 
             #[inline(always)]
@@ -460,6 +493,13 @@ impl DisplayColor for BinaryColor {
 #[inline]
 fn channel(v: u8, i: Intensity, max: u32) -> u8 {
     rounded_channel(v, i, max).min(max) as u8
+}
+
+/// [`rounded_channel`] at `i = ONE`: `(v·max·2¹⁵ + 255·2¹⁴) / (255·2¹⁵)` and
+/// `(v·max + 127) / 255` have the same floor (no integer lies between them).
+#[inline]
+fn full_channel(v: u8, max: u32) -> u32 {
+    (u32::from(v) * max + 127) / 255
 }
 
 /// `v · i / ONE · max / 255`, rounded, not saturated: at most `max` for `i ≤ ONE`.

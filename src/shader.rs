@@ -192,10 +192,17 @@ where
         let c = self.texture.sample(f.uv);
         // At full light on an undithered display of the texel's own colour type, the
         // texel itself (the same colour, without the way through Rgb888; the type test
-        // is decided at compile time).
-        if f.light == ONE && !C::DITHERED {
-            if let Some(&same) = (&c as &dyn core::any::Any).downcast_ref::<C>() {
-                return same;
+        // is decided at compile time); of another type, lit by the full light's folded
+        // rounding (an Rgb888 under fog: the texel's channels themselves; ARMv6-M's
+        // figures are better without the branch).
+        if f.light == ONE {
+            if !C::DITHERED {
+                if let Some(&same) = (&c as &dyn core::any::Any).downcast_ref::<C>() {
+                    return same;
+                }
+            }
+            if !crate::num::ARMV6M {
+                return C::lit_full(c.into(), f.x, f.y);
             }
         }
         C::lit(c.into(), f.light, f.x, f.y)

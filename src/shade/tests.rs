@@ -35,6 +35,9 @@ fn channel_is_the_rounded_quotient_everywhere() {
                     // Unsaturated at most full light (`lit_rgb` leaves the clamps out).
                     assert_eq!(u64::from(rounded_channel(v, i, max)), want, "{v} {i} {max}");
                 }
+                if i == ONE {
+                    assert_eq!(u64::from(full_channel(v, max)), want, "{v} {max}");
+                }
             }
         }
     }
@@ -278,4 +281,23 @@ fn the_screen_door_covers_alphas_share() {
     assert_eq!(Translucent::from_opacity(Rgb888::RED, 7.0).alpha, 255);
     const { assert!(!<Rgb888 as Material<Rgb565>>::TRANSLUCENT) };
     const { assert!(<Translucent as Material<Rgb565>>::TRANSLUCENT) };
+}
+
+#[test]
+fn full_light_is_lit_at_one_for_every_rgb_type() {
+    fn check<C: DisplayColor + core::fmt::Debug>() {
+        for c in (0..1u32 << 24).step_by(97).chain([0, 0xFF_FFFF]) {
+            let m = Rgb888::new((c >> 16) as u8, (c >> 8) as u8, c as u8);
+            assert_eq!(C::lit_full(m, 3, 5), C::lit(m, ONE, 3, 5), "{m:?}");
+        }
+    }
+    check::<Rgb555>();
+    check::<Bgr555>();
+    check::<Rgb565>();
+    check::<Bgr565>();
+    check::<Rgb666>();
+    check::<Bgr666>();
+    check::<Rgb888>();
+    check::<Bgr888>();
+    check::<Gray8>();
 }

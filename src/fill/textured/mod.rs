@@ -295,6 +295,19 @@ where
     C::lit(c.into(), i, x, y)
 }
 
+/// [`texel_color`] undithered at `(0, 0)`, out of line: the lit loop's call when the
+/// texel value changes, so that the lighting is not inlined into each pixel of the
+/// segment loop around the common, cached, case (on ARMv6-M inlined costs less).
+#[inline(never)]
+fn lit_texel<X, C>(t: X, i: Intensity) -> C
+where
+    X: Texel,
+    X::Color: Into<Rgb888> + 'static,
+    C: DisplayColor + 'static,
+{
+    texel_color::<X, C>(t, i, 0, 0)
+}
+
 /// Everything a textured triangle's rows need.
 pub(crate) struct TexSetup {
     pub setup: Setup,
@@ -419,7 +432,11 @@ where
                     if now == was {
                         return c;
                     }
-                    let c = texel_color::<X, C>(t, i, 0, 0);
+                    let c = if crate::num::ARMV6M {
+                        texel_color::<X, C>(t, i, 0, 0)
+                    } else {
+                        lit_texel::<X, C>(t, i)
+                    };
                     last.set((now, c));
                     c
                 };
