@@ -19,6 +19,8 @@ use crate::num::kernel::{
     band_faces_less, BandCarry, BandStop, BinChains, CachedVertex, FaceColor, FacesCounts,
     SmallTarget, FACES_KERNEL,
 };
+#[cfg(zraster_x86_64)]
+use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 use crate::raster::Clip;
 use crate::render::{
     cached_outside_rows, cached_triangle, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
@@ -386,6 +388,16 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             if !matches!(target, FlatTarget::Fused { less: true, .. }) {
                 fused = None; // the same for every run
             }
+            // x86-64: small triangles set up and drawn in assembly, its block made once
+            // a run, as in the whole frame's loop (compiled out elsewhere, where the
+            // unused run still moved the ARMv6-M band loop: +1.8 k).
+            #[cfg(zraster_x86_64)]
+            let mut small = match &target {
+                FlatTarget::Fused { b, less: true, .. } if SMALL_X86_KERNEL => {
+                    SmallRun::new(b.clip, b.first_row, b.width)
+                }
+                _ => None,
+            };
             let mut to_clip = None;
             // One face (its carry done by the fused loop when `$carried`): `continue`
             // past it, or `break` at a face to clip.
@@ -426,6 +438,21 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     // Inline, as the whole frame's loop, but out of line on ARMv6-M,
                     // where its copies in each colouring's loop cost flash (Pico code
                     // +1.2 KB).
+                    #[cfg(zraster_x86_64)]
+                    if let (Some(run), FlatTarget::Fused { b: buf, .. }) = (&mut small, &mut target)
+                    {
+                        let (zdata, cdata) = buf.parts();
+                        if let SmallX86::Drawn(t, failed) = run.draw(zdata, cdata, [a, b, c], color)
+                        {
+                            let s = crate::raster::SpanStats {
+                                pixels_tested: t,
+                                pixels_written: t.wrapping_sub(failed),
+                                runs: 0,
+                            };
+                            counts.add(s, &mut px);
+                            continue;
+                        }
+                    }
                     let filled = if crate::num::ARMV6M {
                         target.fill_cached_or_call([a, b, c], color)
                     } else {

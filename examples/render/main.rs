@@ -448,7 +448,7 @@ fn draw_models<K: Colours>(o: &Options, models: &[(Model, Vec3)]) {
         light: Light::default(),
     };
     let rows = o.band.unwrap_or(h);
-    let line_color = Kd::<false>(o.color, 255).shade(ONE, 0, 0);
+    let line_color = Kd::<false>(o.color, 255, None).shade(ONE, 0, 0);
     let mut frame_pixels = vec![Rgb565::BLACK; (w * h) as usize];
     let mut depth_full = vec![u16::MAX; (w * h) as usize];
     let band_len = if o.band.is_some() {

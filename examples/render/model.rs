@@ -9,7 +9,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use zraster::{
     math::{Mat4, Vec3},
     mesh::{compute_face_normals, compute_vertex_normals, Faces, Materials, Mesh},
-    shade::{DisplayColor, Intensity, Material, Translucent, ONE},
+    shade::{DisplayColor, Intensity, Material, Packed565, Translucent, ONE},
     texture::{MeshUv, Texture, Wrap},
     Texturing, UvMode,
 };
@@ -19,8 +19,25 @@ use zraster_obj::{fit_scale_f64, load_textures, parse_obj_with, quantize, MtlLoa
 /// its opacity (MTL `d`, 255 opaque): see-through faces are drawn after the opaque
 /// ones, blended over them. `SEE_THROUGH` says whether the type may be see-through:
 /// `Kd<false>` for models without a `d` below 1 spares every face the alpha test.
+/// The third field is [`exact_rgb888`] of the `Kd`: where that is `Some`, zraster's
+/// packed 5-6-5 path (the same colour at every intensity) lights the faces.
 #[derive(Clone, Copy)]
-pub struct Kd<const SEE_THROUGH: bool = true>(pub [f32; 3], pub u8);
+pub struct Kd<const SEE_THROUGH: bool = true>(pub [f32; 3], pub u8, pub Option<Rgb888>);
+
+/// The `Rgb888` whose lit 5-6-5 colour is `Kd × I` rounded at every intensity `I`,
+/// if there is one (checked at all 65,536 intensities): then zraster's integer lit
+/// path draws the faces, faster than `Kd::shade` in `f32`, and the picture is the same.
+pub fn exact_rgb888(kd: [f32; 3]) -> Option<Rgb888> {
+    let v = kd.map(|c| (c * 255.0).round());
+    if !v.iter().all(|v| (0.0..=255.0).contains(v)) {
+        return None;
+    }
+    let m = Rgb888::new(v[0] as u8, v[1] as u8, v[2] as u8);
+    let k = Kd::<false>(kd, 255, None);
+    (0..=u16::MAX)
+        .all(|i| k.shade(i, 0, 0) == <Rgb565 as DisplayColor>::lit(m, i, 0, 0))
+        .then_some(m)
+}
 
 impl<const SEE_THROUGH: bool> Material<Rgb565> for Kd<SEE_THROUGH> {
     const TRANSLUCENT: bool = SEE_THROUGH;
@@ -29,6 +46,10 @@ impl<const SEE_THROUGH: bool> Material<Rgb565> for Kd<SEE_THROUGH> {
         let i = f32::from(i) / f32::from(ONE);
         let q = |c: f32, max: f32| ((c * i * max + 0.5) as u32).min(max as u32) as u8;
         Rgb565::new(q(self.0[0], 31.0), q(self.0[1], 63.0), q(self.0[2], 31.0))
+    }
+
+    fn packed_565(&self) -> Option<Packed565<Rgb565>> {
+        self.2.and_then(<Rgb565 as DisplayColor>::packed_565)
     }
 
     fn alpha(&self) -> u8 {
@@ -68,6 +89,9 @@ pub struct Part {
     materials: Vec<Kd>,
     /// The same colours as an opaque type (`d` ignored).
     opaque: Vec<Kd<false>>,
+    /// Whether every face has the same colour and opacity: then the mesh's material is
+    /// uniform, which zraster lights without a table look-up a face.
+    uniform: bool,
     face_normals: Vec<[i16; 3]>,
     /// The texture (8-bit texels as the PNG has them, lit as a `Kd` of their value
     /// is), its size and wrap.
@@ -149,12 +173,18 @@ impl Model {
         let k = balance_exponent(q.scale);
         let scale = (f64::from(q.scale) * pow2(-k)) as f32;
         // Opacity d rounded to 1/255 as zraster rounds it (NaN opaque).
+        let exact: Vec<_> = obj.materials.iter().map(|m| exact_rgb888(m.kd)).collect();
+        let exact_color = exact_rgb888(color);
         let kd = |t: &zraster_obj::ObjTriangle| match t.material {
             Some(m) => {
                 let (kd, d) = (obj.materials[m].kd, obj.materials[m].alpha);
-                Kd(kd, Translucent::from_opacity(Rgb888::new(0, 0, 0), d).alpha)
+                Kd(
+                    kd,
+                    Translucent::from_opacity(Rgb888::new(0, 0, 0), d).alpha,
+                    exact[m],
+                )
             }
-            None => Kd(color, 255),
+            None => Kd(color, 255, exact_color),
         };
         let all = Part {
             split: false,
@@ -163,6 +193,7 @@ impl Model {
             face_normals: Vec::new(),
             texture: None,
             opaque: Vec::new(),
+            uniform: false,
         };
         let mut model = Model {
             positions: q.positions.clone(),
@@ -196,8 +227,13 @@ impl Model {
             .map_err(|e| e.to_string())?;
         model.all.face_normals = normals;
         model.bounds = model.mesh::<Kd>(&model.all).bounds();
-        // Each part's colours as the opaque type too.
-        let opaque = |p: &mut Part| p.opaque = p.materials.iter().map(|k| Kd(k.0, k.1)).collect();
+        // Each part's colours as the opaque type too, and whether they are all one.
+        let opaque = |p: &mut Part| {
+            p.opaque = p.materials.iter().map(|k| Kd(k.0, k.1, k.2)).collect();
+            let same =
+                |a: &Kd, b: &Kd| a.0.map(f32::to_bits) == b.0.map(f32::to_bits) && a.1 == b.1;
+            p.uniform = p.materials.windows(2).all(|w| same(&w[0], &w[1]));
+        };
         opaque(&mut model.all);
         model.parts.iter_mut().for_each(opaque);
         // Model space → fitted: centre the bounding box, largest extent 1 (positions
@@ -233,6 +269,7 @@ impl Model {
                 face_normals: Vec::new(),
                 texture: None,
                 opaque: Vec::new(),
+                uniform: false,
             }]);
         }
         let split = obj.split_vertices(textured).map_err(|e| e.to_string())?;
@@ -255,6 +292,7 @@ impl Model {
             face_normals: Vec::new(),
             texture: None,
             opaque: Vec::new(),
+            uniform: false,
         };
         let mut parts: Vec<Part> = textures
             .textures
@@ -273,6 +311,7 @@ impl Model {
                     face_normals: Vec::new(),
                     texture: Some((texels.collect(), t.image.width, t.image.height, wrap)),
                     opaque: Vec::new(),
+                    uniform: false,
                 }
             })
             .collect();
@@ -302,7 +341,10 @@ impl Model {
             scale: self.scale,
             faces: Faces::Triangles {
                 indices: &part.indices,
-                materials: Materials::PerFace(K::of(part)),
+                materials: match K::of(part) {
+                    [m, ..] if part.uniform => Materials::Uniform(*m),
+                    ms => Materials::PerFace(ms),
+                },
             },
             face_normals,
             vertex_normals: Some(normals),
