@@ -277,7 +277,10 @@ extern "C" fn bits_of<C: Copy>(c: u32, to: *const u8) -> u32 {
 /// A fused loop's `asm!` for the colouring `to_color` names (raw 5-6-5, lit through
 /// the caller's function, or one flat colour): the loop `$body!` with its block in r0
 /// (its status back), every register it and its calls write declared, the floating-point
-/// ones too. The SAFETY argument is each caller's.
+/// ones too. Both bodies push r6 and r7 (not allowed as operands) first and pop them
+/// last, r7 holding the block meanwhile; their calls (`bits_of`, the set-up's
+/// `wide_steps_c`) keep r4–r11 and the stack 8-aligned; the flags are scratch. The
+/// bounds argument is each caller's SAFETY comment.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 macro_rules! fused_asm {
     ($body:ident, $block:ident, $to_color:expr) => {{
@@ -429,10 +432,7 @@ fn faces_less_dsp<'a, C: Copy>(
     // from `setup`, none of them written by the rows) and the same block
     // (`RowsLess` at offset 0 of this block, word-aligned; its SAFETY argument); a
     // triangle it refuses goes to the caller. The counts are stored into the block by
-    // its pinned offsets. r6 and r7 (not allowed as operands) are pushed first and
-    // popped last, r7 holding the block meanwhile; the calls (`bits_of`, the set-up's `wide_steps_c`) keep r4–r11
-    // and the stack 8-aligned; every other register written is declared, the
-    // floating-point ones the calls may write among them; the flags are scratch.
+    // its pinned offsets. Registers and calls: as `fused_asm!` says.
     unsafe {
         status = fused_asm!(faces_body, block, to_color);
     }
@@ -836,11 +836,7 @@ fn band_faces_less_dsp<C: Copy>(
     // with the same operands at the same offsets of this block (`RowsLess` at 0,
     // word-aligned; the clip inside both buffers by `kernel_buffers`; its SAFETY
     // argument); a triangle it refuses goes to the caller. The counts are stored into
-    // the block by its pinned offsets. r6 and r7 (not allowed as operands) are pushed
-    // first and popped last, r7 holding the block meanwhile; the calls (`bits_of`, the
-    // set-up's `wide_steps_c`) keep r4–r11 and the stack 8-aligned; every other
-    // register written is declared, the floating-point ones the calls may write among
-    // them; the flags are scratch.
+    // the block by its pinned offsets. Registers and calls: as `fused_asm!` says.
     unsafe {
         status = fused_asm!(band_body, block, to_color);
     }
