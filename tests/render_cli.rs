@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::Command;
 use std::sync::Once;
 
-use common::cli::{fails_with, load, render, render_bin, render_within, run_ok, tmp, write};
+use common::cli::{example_bin, fails_with, load, render, render_within, run_ok, tmp, write};
 
 use embedded_graphics::{pixelcolor::Rgb888, prelude::*};
 
@@ -399,18 +399,10 @@ fn materials_are_used_exactly_without_lighting() {
 #[test]
 fn obj2rust_rejects_bad_input_with_exit_2() {
     static BUILD: Once = Once::new();
-    BUILD.call_once(|| {
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        let status = Command::new(cargo)
-            .args(["build", "--quiet", "--example", "obj2rust"])
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .status()
-            .unwrap();
-        assert!(status.success());
-    });
+    let obj2rust = example_bin("obj2rust", &BUILD);
     // That its output is the committed bench bunny is tests/bench_scene.rs's check.
     // Bad input: a message and exit code 2.
-    let bad = Command::new(render_bin().with_file_name("obj2rust"))
+    let bad = Command::new(obj2rust)
         .arg("/nonexistent.obj")
         .output()
         .unwrap();

@@ -12,15 +12,29 @@ use embedded_graphics_simulator::SimulatorDisplay;
 /// The render example, built once (in the test profile, beside this test binary).
 pub fn render_bin() -> PathBuf {
     static BUILD: Once = Once::new();
+    example_bin("render", &BUILD)
+}
+
+/// Example `name`, built once by `once` in this test binary's profile (`target/debug`,
+/// `target/release` or a named profile's directory: the one this binary runs from), so
+/// that `cargo test --release` runs release builds of the examples, not stale ones.
+pub fn example_bin(name: &str, once: &Once) -> PathBuf {
     let exe = std::env::current_exe().unwrap();
     let dir = exe.parent().unwrap().parent().unwrap();
     let bin = dir
         .join("examples")
-        .join(format!("render{}", std::env::consts::EXE_SUFFIX));
-    BUILD.call_once(|| {
+        .join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    once.call_once(|| {
         let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+        let mut args = vec!["build", "--quiet", "--example", name];
+        let profile = dir.file_name().and_then(|p| p.to_str()).unwrap_or("debug");
+        match profile {
+            "debug" => {}
+            "release" => args.push("--release"),
+            other => args.extend(["--profile", other]),
+        }
         let status = Command::new(cargo)
-            .args(["build", "--quiet", "--example", "render"])
+            .args(&args)
             .current_dir(env!("CARGO_MANIFEST_DIR"))
             .status()
             .unwrap();
