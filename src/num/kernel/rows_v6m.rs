@@ -818,19 +818,20 @@ core::arch::global_asm!(
     "ldr r2, [r0, #60]",
     "cmp r9, lr",
     "beq 8f",
-    // A row: its columns (the edges' upper halves), inside the clip (usually; else
+    // A row: its columns (the edges' upper halves); an empty row before the clip (a
+    // row empty unclipped is empty clipped), then inside the clip (usually; else
     // clamped at 14).
     "1:",
     "asrs r6, r1, #16",
     "asrs r7, r2, #16",
+    "subs r5, r7, r6",
+    "ble 5f",
     "ldr r3, [r0, #20]",
     "cmp r6, r3",
     "blt 14f",
     "ldr r4, [r0, #24]",
     "cmp r7, r4",
     "bgt 14f",
-    "subs r5, r7, r6",
-    "ble 5f",
     // r6 its first column, r5 its length.
     "15:",
     "add r10, r5",
