@@ -575,9 +575,11 @@ fn small_walk_setup(
         (zc >> 4) as i32 - (za >> 4) as i32,
     );
     let cross = |a: i32, b: i32, c: i32, d: i32| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
-    let (h1, h2) = (dz1 >> 16, dz2 >> 16);
-    let (ah, bh) = (cross(h1, dy2, h2, dy1), cross(h2, dx1, h1, dx2));
-    if (ah.wrapping_add(1 << 12) | bh.wrapping_add(1 << 12)) as u32 >= 1 << 13 {
+    // The numerators exact in 32 bits: |dz₁|, |dz₂| ≤ ⌊(hi − lo)/16⌋ + 1 ≤
+    // 2¹¹·(⌊(hi − lo)/2¹⁵⌋ + 1) and every |dx|, |dy| ≤ e = max(width, height), so a
+    // bound of 2¹⁹ on the second product by e puts |a|, |b| below 2·2¹¹·2¹⁹ = 2³¹.
+    let extent = (a.x().max(b.x()).max(c.x()) - xmin).max(dy2) as u32;
+    if (((hi - lo) >> 15) + 1) * extent >= 1 << 19 {
         return Err(SmallDone::General);
     }
     let (na, nb) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
@@ -976,7 +978,8 @@ core::arch::global_asm!(
     // Frame: 48 bytes below the saved registers: [sp] the first corner given, +4 dx1,
     // +8 dy1, +12 dx2, +16 dy2 (the middle and last corner from the top one), +20 the
     // block, +24 |area| then the first row's depth, +28 the area's sign, +32 and +36
-    // the top and middle corners, +40 and +44 the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
+    // the top and middle corners, +40 max(width, height) then the folded numerators
+    // then, with +44, the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
     // rows), r10 the first half's rows, r11 the local origin's column · 16 + 8.
     ".balign 4",
     ".global zraster_small_walk_v6m",
@@ -1099,8 +1102,15 @@ core::arch::global_asm!(
     "mov r4, r6",
     ".Lsw_cols4:",
     "subs r4, r4, r7",
-    "lsrs r4, r4, #13",
+    "lsrs r5, r4, #13",
     "bne .Lsw_refuse",
+    // The larger extent, max(width, height), at [sp, #40] (for the depth's bound).
+    "ldr r5, [sp, #16]",
+    "cmp r4, r5",
+    "bhs .Lsw_cols5",
+    "movs r4, r5",
+    ".Lsw_cols5:",
+    "str r4, [sp, #40]",
     "mov r4, r12",
     "cmp r4, #0",
     "ble .Lsw_empty",
@@ -1176,36 +1186,23 @@ core::arch::global_asm!(
     ".Lsw_z4:",
     "subs r1, r1, r7",
     "str r1, [r0, #8]",
-    "ldr r1, .Lsw_bias",
-    "adds r7, r7, r1",
+    "ldr r2, .Lsw_bias",
+    "adds r7, r7, r2",
     "str r7, [r0, #4]",
-    // dz1 in r6, dz2 in r7 (depths over 16); the numerators' high parts over 2¹⁶ in
-    // [−2¹², 2¹²), else the general path (`fill::small::steps_narrow`).
+    // The numerators exact in 32 bits: (⌊(hi − lo)/2¹⁵⌋ + 1)·max(width, height) below
+    // 2¹⁹, else the general path (see `small_walk_setup`).
+    "lsrs r1, r1, #15",
+    "adds r1, #1",
+    "ldr r3, [sp, #40]",
+    "muls r1, r3",
+    "lsrs r1, r1, #19",
+    "bne .Lsw_refuse",
+    // dz1 in r6, dz2 in r7 (depths over 16).
     "lsrs r4, r4, #4",
     "lsrs r6, r6, #4",
     "subs r7, r6, r4",
     "lsrs r6, r5, #4",
     "subs r6, r6, r4",
-    "asrs r4, r6, #16",
-    "ldr r5, [sp, #16]",
-    "muls r4, r5",
-    "asrs r5, r7, #16",
-    "ldr r3, [sp, #8]",
-    "muls r5, r3",
-    "subs r4, r4, r5",
-    "asrs r5, r7, #16",
-    "ldr r3, [sp, #4]",
-    "muls r5, r3",
-    "asrs r3, r6, #16",
-    "ldr r2, [sp, #12]",
-    "muls r3, r2",
-    "subs r5, r5, r3",
-    "ldr r3, .Lsw_high",
-    "adds r4, r4, r3",
-    "adds r5, r5, r3",
-    "orrs r4, r5",
-    "lsrs r4, r4, #13",
-    "bne .Lsw_refuse",
     // The numerators a (r4) and b (r5), modulo 2³², inside ±(2²⁷ − 1).
     "ldr r4, [sp, #16]",
     "muls r4, r6",
@@ -1229,7 +1226,7 @@ core::arch::global_asm!(
     // `num::floor_div32_pair_small`: the folded numerators at [sp, #40] and [sp, #44],
     // then x = ⌊(2³² − 1)/d⌋ in r6 (d = |area| in r4) as `num::armv6m::recip32_small`:
     // d normalised to [2¹⁵, 2¹⁶) by s (its leading zeros, from a byte table), a guess
-    // from the reciprocal table << (s + 1), two Newton steps, the fix-up.
+    // from the reciprocal table, two Newton steps, the fix-up.
     "ldr r3, [sp, #28]",
     "lsls r0, r4, #4",
     "eors r0, r3",
@@ -1251,17 +1248,25 @@ core::arch::global_asm!(
     ".Lsw_recip2:",
     "movs r6, r4",
     "lsls r6, r5",
+    "movs r0, r6",
     "lsrs r6, r6, #6",
     "lsls r6, r6, #1",
     "ldr r7, .Lsw_recip16",
     "ldrh r6, [r7, r6]",
-    "adds r5, #1",
-    "lsls r6, r5",
-    "movs r5, r4",
-    "muls r5, r6",
-    "rsbs r5, r5, #0",
-    "bl .Lsw_mulhi",
-    "adds r6, r6, r7",
+    // The first Newton step on t, the table's 16 bits (x = t·2^(s + 1)): e = 2³² −
+    // 2·dn·t (dn·t < 2³¹), then x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s), below
+    // 2³²/d; t·⌊e/2⁷⌋ < 2³² (see `recip_first_step`).
+    "muls r0, r6",
+    "lsls r0, r0, #1",
+    "rsbs r0, r0, #0",
+    "lsrs r0, r0, #7",
+    "muls r0, r6",
+    "lsrs r0, r0, #9",
+    "lsls r6, r6, #16",
+    "adds r6, r6, r0",
+    "movs r7, #15",
+    "subs r7, r7, r5",
+    "lsrs r6, r7",
     "movs r5, r4",
     "muls r5, r6",
     "rsbs r5, r5, #0",
@@ -1510,11 +1515,29 @@ core::arch::global_asm!(
     // `num::armv6m::divrem_by_recip` of |r5| flipped (⌊n/d⌋ = !⌊!n/d⌋); r0–r3, r5 and
     // r12 scratch.
     ".Lsw_quot:",
-    "push {{lr}}",
     "asrs r0, r5, #31",
     "mov r12, r0",
     "eors r5, r0",
-    "bl .Lsw_mulhi",
+    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products.
+    "lsrs r0, r6, #16",
+    "lsrs r1, r5, #16",
+    "uxth r2, r6",
+    "uxth r3, r5",
+    "movs r7, r0",
+    "muls r7, r1",
+    "muls r0, r3",
+    "muls r1, r2",
+    "muls r2, r3",
+    "adds r0, r0, r1",
+    "bcc .Lsw_quot0",
+    "movs r1, #1",
+    "lsls r1, r1, #16",
+    "adds r7, r7, r1",
+    ".Lsw_quot0:",
+    "lsls r1, r0, #16",
+    "lsrs r0, r0, #16",
+    "adds r2, r2, r1",
+    "adcs r7, r0",
     "movs r0, r7",
     "muls r0, r4",
     "subs r5, r5, r0",
@@ -1527,28 +1550,6 @@ core::arch::global_asm!(
     ".Lsw_quot2:",
     "mov r0, r12",
     "eors r7, r0",
-    "pop {{pc}}",
-    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products; r0–r3 scratch.
-    ".Lsw_mulhi:",
-    "lsrs r0, r6, #16",
-    "lsrs r1, r5, #16",
-    "uxth r2, r6",
-    "uxth r3, r5",
-    "movs r7, r0",
-    "muls r7, r1",
-    "muls r0, r3",
-    "muls r1, r2",
-    "muls r2, r3",
-    "adds r0, r0, r1",
-    "bcc .Lsw_mulhi1",
-    "movs r1, #1",
-    "lsls r1, r1, #16",
-    "adds r7, r7, r1",
-    ".Lsw_mulhi1:",
-    "lsls r1, r0, #16",
-    "lsrs r0, r0, #16",
-    "adds r2, r2, r1",
-    "adcs r7, r0",
     "bx lr",
     ".balign 4",
     ".Lsw_lz8:",
@@ -1557,8 +1558,6 @@ core::arch::global_asm!(
     ".word {recip16} - 1024",
     ".Lsw_bias:",
     ".word 32768",
-    ".Lsw_high:",
-    ".word 4096",
     ".Lsw_within:",
     ".word 0x07ffffff",
     ".Lsw_range:",
