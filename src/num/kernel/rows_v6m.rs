@@ -22,13 +22,14 @@ pub(crate) const WALK_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m));
 /// `(step << 16) − rem/16`: `x += step` and `err -= rem` at once, a negative `err`
 /// borrowing one from `x` and setting the lower half's bit 15; then `at += fix`, `fix`
 /// being `(1 << 16) + denom/16`, gives back the borrowed one, adds one to `x` (the
-/// carry out of the lower half) and `denom` to `err` (all wrapping).
+/// carry out of the lower half) and `denom` to `err` (all wrapping). Laid out `at`,
+/// `fix`, `step`: the set-up stores the three by one STM in that order.
 #[repr(C)]
 #[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
 pub(crate) struct WalkEdge {
     at: u32,
-    step: u32,
     fix: u32,
+    step: u32,
 }
 
 impl WalkEdge {
@@ -95,7 +96,7 @@ const _: () = {
     assert!(offset_of!(RowsWalk, pitch) == 36 && offset_of!(RowsWalk, n1) == 40);
     assert!(offset_of!(RowsWalk, side) == 44 && offset_of!(RowsWalk, edges) == 48);
     assert!(offset_of!(RowsWalk, short1) == 72 && size_of::<RowsWalk>() == 84);
-    assert!(offset_of!(WalkEdge, step) == 4 && offset_of!(WalkEdge, fix) == 8);
+    assert!(offset_of!(WalkEdge, fix) == 4 && offset_of!(WalkEdge, step) == 8);
     assert!(size_of::<WalkEdge>() == 12 && align_of::<RowsWalk>() >= 4);
 };
 
@@ -863,18 +864,18 @@ core::arch::global_asm!(
     // The next row: both edges stepped (a borrow out of the lower half, bit 15, is
     // fixed up), then the depth and the address.
     "5:",
-    "ldr r3, [r0, #52]",
+    "ldr r3, [r0, #56]",
     "adds r1, r1, r3",
     "lsls r3, r1, #16",
     "bpl 21f",
-    "ldr r3, [r0, #56]",
+    "ldr r3, [r0, #52]",
     "adds r1, r1, r3",
     "21:",
-    "ldr r3, [r0, #64]",
+    "ldr r3, [r0, #68]",
     "adds r2, r2, r3",
     "lsls r3, r2, #16",
     "bpl 22f",
-    "ldr r3, [r0, #68]",
+    "ldr r3, [r0, #64]",
     "adds r2, r2, r3",
     "22:",
     "add r8, r11",
@@ -1335,7 +1336,6 @@ core::arch::global_asm!(
     "mov r4, r10",
     "cmp r4, #0",
     "beq .Lsw_short1",
-    "adds r1, #12",
     "ldr r2, [sp, #4]",
     "ldr r3, [sp, #8]",
     "ldr r5, [sp, #40]",
@@ -1390,7 +1390,8 @@ core::arch::global_asm!(
     // and err = x·16dy − t: with Y ≤ 16 (the triangle's first row in its half, not
     // clipped) from the step, N = X + Y·step = 16u + v, t = dy·N + Y·rem, so
     // t/16dy = u + W/16dy with W = v·dy + Y·rem in [0, 2·16dy); else by one more
-    // division (by 16dy, in r3 meanwhile). Keeps r1–r3; r0, r4–r7 scratch.
+    // division (by 16dy, in r3 meanwhile). Keeps r2, r3 and leaves r1 on the next
+    // edge; r0, r4–r7 scratch.
     ".Lsw_edge:",
     "push {{lr}}",
     "movs r6, #0",
@@ -1412,11 +1413,6 @@ core::arch::global_asm!(
     ".Lsw_edge_step:",
     "lsls r7, r6, #16",
     "subs r7, r7, r4",
-    "str r7, [r1, #4]",
-    "movs r7, #1",
-    "lsls r7, r7, #16",
-    "adds r7, r7, r3",
-    "str r7, [r1, #8]",
     "cmp r5, #16",
     "bhi .Lsw_edge_far",
     "muls r6, r5",
@@ -1436,6 +1432,7 @@ core::arch::global_asm!(
     "adds r4, r4, r5",
     "b .Lsw_edge_at",
     ".Lsw_edge_far:",
+    "push {{r7}}",
     "muls r5, r2",
     "muls r0, r3",
     "adds r4, r5, r0",
@@ -1459,11 +1456,16 @@ core::arch::global_asm!(
     "subs r4, #1",
     ".Lsw_edge_far1:",
     "lsrs r3, r3, #4",
+    "pop {{r7}}",
+    // at, fix and step by one STM.
     ".Lsw_edge_at:",
     "lsrs r4, r4, #4",
     "lsls r6, r6, #16",
-    "adds r6, r6, r4",
-    "str r6, [r1]",
+    "adds r0, r6, r4",
+    "movs r6, #1",
+    "lsls r6, r6, #16",
+    "adds r6, r6, r3",
+    "stm r1!, {{r0, r6, r7}}",
     "pop {{pc}}",
     // r6 = r4 / r3, r4 = r4 % r3 for r3 > 0, r6 = 0 on entry and a quotient below 2¹⁴,
     // one bit a step from the quotient's top (found below 4, 16, 256 or else 2¹⁴); r7
