@@ -50,8 +50,8 @@ pub(crate) fn floor_div32_pair_small(n1: i32, n2: i32, d: u32) -> (i32, i32) {
 /// library division costs about 200 instructions, this about 45): d normalised to
 /// dn = d·2^s in [2¹⁵, 2¹⁶) (s from a table of leading zeros: ARMv6-M has no CLZ), a
 /// guess below 2³²/d from a table of dn's leading 9 bits (relative error under 2⁻⁹),
-/// two Newton steps from below (under 2⁻¹⁸, then exact for every d), and a fix-up by
-/// the remainder that guarantees it. A test checks every d.
+/// and two Newton steps from below (under 2⁻¹⁸, then exact): no fix-up by the
+/// remainder is needed, as the test of every d shows.
 #[inline]
 pub(crate) fn recip32_small(d: u32) -> u32 {
     if d == 0 || d >= 1 << 16 {
@@ -70,20 +70,14 @@ pub(crate) fn recip32_small(d: u32) -> u32 {
     // exact step by the dropped bits alone: x stays below 2³²/d. One product fewer
     // than the full step, in 32 bits (the rows kernel's set-up does the same).
     let e = (2 * dn * t).wrapping_neg();
-    let mut x = ((t << 16) + ((t * (e >> 7)) >> 9)) >> (15 - s);
+    let x = ((t << 16) + ((t * (e >> 7)) >> 9)) >> (15 - s);
     // Now e is about 2³²·2⁻¹⁸ + d (at most 68,736 over all d), and ⌊x·e/2³²⌋ is
     // ⌊(xh·e + ⌊xl·e/2¹⁶⌋)/2¹⁶⌋ with x = xh·2¹⁶ + xl: two 32-bit products, which stay
-    // below 2³² for every d (xh < 2¹⁶/d; the largest term is 3.2·10⁹). Were one to
-    // wrap, x would only come out lower, and the fix-up below would repair it.
+    // below 2³² for every d (xh < 2¹⁶/d; the largest term is 3.2·10⁹). The result
+    // is ⌊(2³² − 1)/d⌋ itself for every d (`small_reciprocal_is_exact_for_every_divisor`),
+    // so the rows kernel's set-up, which does the same, needs no fix-up either.
     let e = d.wrapping_mul(x).wrapping_neg();
-    x += ((x >> 16) * e + (((x & 0xffff) * e) >> 16)) >> 16;
-    // x ≤ ⌊(2³² − 1)/d⌋ (x < 2³²/d), so the remainder below is exact and never negative.
-    let mut rem = u32::MAX - x.wrapping_mul(d);
-    while rem >= d {
-        x += 1;
-        rem -= d;
-    }
-    x
+    x + (((x >> 16) * e + (((x & 0xffff) * e) >> 16)) >> 16)
 }
 
 /// ⌊2²⁵ / (513 + i)⌋: 2²⁵ over the top of the i-th of 512 equal parts of [2⁹, 2¹⁰)
