@@ -150,7 +150,8 @@ pub(crate) fn rows_walk_less_as_u16<C: Copy>(
 }
 
 /// [`rows_walk_less_as_u16`] for `u16` colours, the rows already checked to lie inside
-/// both buffers: on ARMv6-M the block's last fields, then one out-of-line call.
+/// both buffers: on ARMv6-M the block's last fields, then one out-of-line call where
+/// every row's columns lie inside the clip's (the loop does not clip), else the twin.
 #[inline(always)]
 fn rows_walk_less_u16(
     r: &mut RowsWalk,
@@ -161,6 +162,9 @@ fn rows_walk_less_u16(
 ) -> (u32, u32) {
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
+        if !columns_inside(r, at.n0) {
+            return rows_walk_less_portable(r, at, z, c, color);
+        }
         let zaddr = z.as_mut_ptr() as u32;
         let index = (at.row0.wrapping_mul(at.width) as u32).wrapping_add(at.px0 as u32);
         r.color = u32::from(color);
@@ -177,6 +181,32 @@ fn rows_walk_less_u16(
     {
         rows_walk_less_portable(r, at, z, c, color)
     }
+}
+
+/// Whether every row of `r` (`n0`, then `r.n1`) whose columns `x .. x'` are not empty
+/// has them inside `r.cx`: the assembly loop's contract (it does not clip). The edges
+/// walked as the twin walks them.
+#[cfg(any(test, all(zraster_thumb, zraster_armv6m)))]
+fn columns_inside(r: &RowsWalk, n0: u32) -> bool {
+    let mut e = r.edges;
+    if r.side != 0 {
+        e.reverse();
+    }
+    for (half, n) in [n0, r.n1].into_iter().enumerate() {
+        if half == 1 {
+            let [left, right] = &mut e;
+            *(if r.side == 0 { right } else { left }) = r.short1;
+        }
+        for _ in 0..n {
+            let (x, x1) = (e[0].x(), e[1].x());
+            if x < x1 && (x < r.cx[0] || x1 > r.cx[1]) {
+                return false;
+            }
+            e[0].advance();
+            e[1].advance();
+        }
+    }
+    true
 }
 
 /// The portable twin of the assembly: the rasterizer's own row loop for this case
@@ -559,6 +589,12 @@ fn small_walk_setup(
         return Err(SmallDone::Drawn(0, 0));
     }
     let px0 = xmin >> 4;
+    // Every row's columns lie in px0 ..= ⌈(xmax − 8)/16⌉ (the assembly's rows loop does
+    // not clip): a triangle leaving the clip's columns goes to the general path.
+    let xmax = a.x().max(b.x()).max(c.x());
+    if px0 < clip.x0 || (xmax + 7) >> 4 > clip.x1 {
+        return Err(SmallDone::General);
+    }
     let k = (px0 << 4) + 8;
     let area = dx1 * dy2 - dx2 * dy1;
     if area == 0 {
@@ -579,7 +615,7 @@ fn small_walk_setup(
     // The numerators exact in 32 bits: |dz₁|, |dz₂| ≤ ⌊(hi − lo)/16⌋ + 1 ≤
     // 2¹¹·(⌊(hi − lo)/2¹⁵⌋ + 1) and every |dx|, |dy| ≤ e = max(width, height), so a
     // bound of 2¹⁹ on the second product by e puts |a|, |b| below 2·2¹¹·2¹⁹ = 2³¹.
-    let extent = (a.x().max(b.x()).max(c.x()) - xmin).max(dy2) as u32;
+    let extent = (xmax - xmin).max(dy2) as u32;
     if (((hi - lo) >> 15) + 1) * extent >= 1 << 19 {
         return Err(SmallDone::General);
     }
@@ -755,13 +791,13 @@ macro_rules! udiv_bit {
 }
 
 // SAFETY (of the loop, for its callers above): rows row0 .. row0 + n0 + n1 of width
-// `width` lie inside both buffers, and columns px0 + cx0 .. px0 + cx1 inside 0..width
-// (the caller's contract); both are u16 rows (2-aligned). The loop starts at `base`,
-// the depth address of row row0, column px0, runs each half until the row address
-// reaches base + rows · pitch (a half of 0 rows is skipped; the first half's end is n0
-// rows on, the second's n1 more), and writes only columns max(x, cx0) .. min(x', cx1)
-// of a row (signed compares, clamped whenever either bound is crossed): inside both
-// buffers (the colour at the depth address + delta). The block is read and written
+// `width` lie inside both buffers, columns px0 + cx0 .. px0 + cx1 inside 0..width,
+// and every row's columns x .. x' (the left and right edges' columns, when x < x')
+// inside cx0 .. cx1 (the callers' contract); both are u16 rows (2-aligned). The loop
+// starts at `base`, the depth address of row row0, column px0, runs each half until
+// the row address reaches base + rows · pitch (a half of 0 rows is skipped; the first
+// half's end is n0 rows on, the second's n1 more), and writes only columns x .. x' of
+// a row: inside both buffers (the colour at the depth address + delta). The block is read and written
 // through r0 (`failed`, the edges, `n1` cleared for the second half). r4–r11 and lr
 // are saved and restored as AAPCS wants; r0–r2 pushed and popped around the longer
 // rows' loop.
@@ -772,7 +808,10 @@ macro_rules! udiv_bit {
 // frame; the rows it hands the loop are start .. end with clip.y0 ≤ start and
 // end ≤ clip.y1 (none when start ≥ end: it returns before the loop), from the depth
 // address of row start − first_row ≥ 0, with columns cx = clip.x − px0 around local
-// column px0: the loop's contract above. Its divisions have divisors > 0 (16·dy and
+// column px0; and only when px0 ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1, which holds
+// every row's columns inside the clip's: on a row (centre yc between the ends of both
+// edges), each edge's column ⌈(x(yc) − 8)/16⌉ lies between ⌈(xmin − 8)/16⌉ ≥ px0 and
+// ⌈(xmax − 8)/16⌉ (x(yc) lies between the edge's ends): the loop's contract above. Its divisions have divisors > 0 (16·dy and
 // dy of an edge with rows, |area| ≠ 0) and quotients within the unrolled steps (an
 // edge's columns lie within the triangle's 512, its step below 2¹³). It saves r4–r11
 // and lr as the loop's prologue does, so the loop's epilogue returns for both; BL
@@ -821,22 +860,13 @@ core::arch::global_asm!(
     "ldr r2, [r0, #60]",
     "cmp r9, lr",
     "beq 8f",
-    // A row: its columns (the edges' upper halves); an empty row before the clip (a
-    // row empty unclipped is empty clipped), then inside the clip (usually; else
-    // clamped at 14).
+    // A row: its columns (the edges' upper halves), inside the clip's (the callers'
+    // contract: no clip test here); r6 its first column, r5 its length.
     "1:",
     "asrs r6, r1, #16",
     "asrs r7, r2, #16",
     "subs r5, r7, r6",
     "ble 5f",
-    "ldr r3, [r0, #20]",
-    "cmp r6, r3",
-    "blt 14f",
-    "ldr r4, [r0, #24]",
-    "cmp r7, r4",
-    "bgt 14f",
-    // r6 its first column, r5 its length.
-    "15:",
     "add r10, r5",
     // Its depth at the first column (sx, lo and hi − lo by one LDM), clamped to
     // lo..=hi out of line (when depth − lo > hi − lo, unsigned), and that column's
@@ -908,21 +938,6 @@ core::arch::global_asm!(
     "str r4, [r0, #52]",
     "str r5, [r0, #56]",
     "b 1b",
-    // The row's columns clamped to the clip.
-    "14:",
-    "ldr r3, [r0, #20]",
-    "cmp r6, r3",
-    "bge 23f",
-    "mov r6, r3",
-    "23:",
-    "ldr r4, [r0, #24]",
-    "cmp r7, r4",
-    "bgt 24f",
-    "mov r4, r7",
-    "24:",
-    "subs r5, r4, r6",
-    "ble 5b",
-    "b 15b",
     // The first depth clamped: below lo to lo, else to lo + (hi − lo).
     "16:",
     "ldr r4, [r0, #4]",
@@ -1104,6 +1119,9 @@ core::arch::global_asm!(
     ".Lsw_cols3:",
     "mov r7, r6",
     ".Lsw_cols4:",
+    // The last column a row may reach, ⌈(xmax − 8)/16⌉, in r6 (for the clip test).
+    "adds r6, r4, #7",
+    "asrs r6, r6, #4",
     "subs r4, r4, r7",
     "lsrs r5, r4, #13",
     "bne .Lsw_refuse",
@@ -1117,15 +1135,16 @@ core::arch::global_asm!(
     "mov r4, r12",
     "cmp r4, #0",
     "ble .Lsw_empty",
-    // The local origin's column px0 (of the leftmost corner): the clip's columns from
-    // it, and r11 = 16·px0 + 8.
+    // The local origin's column px0 (of the leftmost corner), and r11 = 16·px0 + 8. A
+    // triangle whose columns px0 ..= ⌈(xmax − 8)/16⌉ leave the clip's goes to the
+    // general path (the rows loop does not clip).
     "asrs r7, r7, #4",
     "ldr r4, [r0, #92]",
-    "subs r4, r4, r7",
-    "str r4, [r0, #20]",
+    "cmp r4, r7",
+    "bgt .Lsw_refuse",
     "ldr r4, [r0, #96]",
-    "subs r4, r4, r7",
-    "str r4, [r0, #24]",
+    "cmp r6, r4",
+    "bgt .Lsw_refuse",
     "lsls r7, r7, #4",
     "adds r7, #8",
     "mov r11, r7",
@@ -1696,6 +1715,35 @@ mod tests {
             let at = ((col as u32) << 16).wrapping_add(err >> 4);
             assert_eq!(at, e.at, "dx {dx} dy {dy} y {y} x {x}");
         }
+    }
+
+    /// What the set-up hands the rows loop keeps every row's columns inside the clip's
+    /// (the loop does not clip): random small triangles near and across the edges of
+    /// random clips, each taken one checked.
+    #[test]
+    fn small_walk_setup_keeps_rows_inside_the_clip() {
+        let mut seed = 0x5151_7357;
+        let mut taken = 0;
+        for i in 0..200_000u32 {
+            let clip = Clip {
+                x0: (next(&mut seed) % 8) as i32,
+                y0: (next(&mut seed) % 8) as i32,
+                x1: 12 + (next(&mut seed) % 8) as i32,
+                y1: 12 + (next(&mut seed) % 8) as i32,
+            };
+            let span = [24, 96, 400][(i % 3) as usize];
+            let mut vertex = || {
+                let x = (next(&mut seed) % span) as i32 + 16 * 10 - span as i32 / 2;
+                let y = (next(&mut seed) % span) as i32 + 16 * 10 - span as i32 / 2;
+                ScreenVertex::new(x, y, 1 << 20).unwrap_or(ScreenVertex::ORIGIN)
+            };
+            let tri = [vertex(), vertex(), vertex()];
+            if let Ok((r, at)) = small_walk_setup(tri.each_ref(), &clip, 0, 32) {
+                taken += 1;
+                assert!(columns_inside(&r, at.n0), "{tri:?} in {clip:?}");
+            }
+        }
+        assert!(taken > 20_000, "{taken} taken");
     }
 
     /// The set-up draws the usual small triangle itself (the Rust path takes only
