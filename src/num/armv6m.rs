@@ -62,7 +62,8 @@ pub(crate) fn recip32_small(d: u32) -> u32 {
     let dn = d << s;
     // 2³²/d = 2^(s + 1) · 2³¹/dn, and the table holds 2²⁵ over the top of dn's part of
     // [2¹⁵, 2¹⁶), a little below 2¹⁵ · 2³¹/dn: so the guess t·2^(s + 1) is below 2³²/d.
-    let t = u32::from(RECIP16.get(((dn >> 6) & 0x1ff) as usize).copied().unwrap_or(0x8000));
+    let i = ((dn >> 6) & 0x1ff) as usize;
+    let t = u32::from(RECIP16.get(i).copied().unwrap_or(0x8000));
     // The first Newton step on t's 16 bits, with x = t·2^(s + 1): e = 2³² − d·x =
     // 2³² − 2·dn·t (dn·t < 2³¹: the guess is below 2³²/d), and x·e/2³² =
     // t·e/2^(31 − s). e < 2²³ + 2¹⁷, so t·⌊e/2⁷⌋ < 2³² (at most 2³² − 2¹⁶, over every
