@@ -47,11 +47,11 @@ pub(crate) fn floor_div32_pair_small(n1: i32, n2: i32, d: u32) -> (i32, i32) {
 }
 
 /// ⌊(2³² − 1)/d⌋ for 1 ≤ d < 2¹⁶ without a division instruction (on ARMv6-M the
-/// library division costs about 200 instructions, this about 60): d normalised to
+/// library division costs about 200 instructions, this about 45): d normalised to
 /// dn = d·2^s in [2¹⁵, 2¹⁶) (s from a table of leading zeros: ARMv6-M has no CLZ), a
 /// guess below 2³²/d from a table of dn's leading 9 bits (relative error under 2⁻⁹),
-/// two Newton steps from below (under 2⁻¹⁸, then exact for every d), and a fix-up by
-/// the remainder that guarantees it. A test checks every d.
+/// and two Newton steps from below (under 2⁻¹⁸, then exact): no fix-up by the
+/// remainder is needed, as the test of every d shows.
 #[inline]
 pub(crate) fn recip32_small(d: u32) -> u32 {
     if d == 0 || d >= 1 << 16 {
@@ -61,26 +61,24 @@ pub(crate) fn recip32_small(d: u32) -> u32 {
     let s = if d >= 1 << 8 { lz8(d >> 8) } else { 8 + lz8(d) };
     let dn = d << s;
     // 2³²/d = 2^(s + 1) · 2³¹/dn, and the table holds 2²⁵ over the top of dn's part of
-    // [2¹⁵, 2¹⁶), a little below 2¹⁵ · 2³¹/dn: so the guess x is below 2³²/d (and 2³²).
+    // [2¹⁵, 2¹⁶), a little below 2¹⁵ · 2³¹/dn: so the guess t·2^(s + 1) is below 2³²/d.
     let i = ((dn >> 6) & 0x1ff) as usize;
-    let mut x = u32::from(RECIP16.get(i).copied().unwrap_or(0x8000)) << (s + 1);
-    // Each step: e = 2³² − d·x > 0 (d·x < 2³², so the wrapping product is exact), and
-    // x grows by ⌊x·e/2³²⌋, which is less than 2³²/d − x: x stays below 2³²/d.
-    let e = d.wrapping_mul(x).wrapping_neg();
-    x += (mul_wide(x, e) >> 32) as u32;
+    let t = u32::from(RECIP16.get(i).copied().unwrap_or(0x8000));
+    // The first Newton step on t's 16 bits, with x = t·2^(s + 1): e = 2³² − d·x =
+    // 2³² − 2·dn·t (dn·t < 2³¹: the guess is below 2³²/d), and x·e/2³² =
+    // t·e/2^(31 − s). e < 2²³ + 2¹⁷, so t·⌊e/2⁷⌋ < 2³² (at most 2³² − 2¹⁶, over every
+    // d), and x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s) (below 2³²) falls short of the
+    // exact step by the dropped bits alone: x stays below 2³²/d. One product fewer
+    // than the full step, in 32 bits (the rows kernel's set-up does the same).
+    let e = (2 * dn * t).wrapping_neg();
+    let x = ((t << 16) + ((t * (e >> 7)) >> 9)) >> (15 - s);
     // Now e is about 2³²·2⁻¹⁸ + d (at most 68,736 over all d), and ⌊x·e/2³²⌋ is
     // ⌊(xh·e + ⌊xl·e/2¹⁶⌋)/2¹⁶⌋ with x = xh·2¹⁶ + xl: two 32-bit products, which stay
-    // below 2³² for every d (xh < 2¹⁶/d; the largest term is 3.2·10⁹). Were one to
-    // wrap, x would only come out lower, and the fix-up below would repair it.
+    // below 2³² for every d (xh < 2¹⁶/d; the largest term is 3.2·10⁹). The result
+    // is ⌊(2³² − 1)/d⌋ itself for every d (`small_reciprocal_is_exact_for_every_divisor`),
+    // so the rows kernel's set-up, which does the same, needs no fix-up either.
     let e = d.wrapping_mul(x).wrapping_neg();
-    x += ((x >> 16) * e + (((x & 0xffff) * e) >> 16)) >> 16;
-    // x ≤ ⌊(2³² − 1)/d⌋ (x < 2³²/d), so the remainder below is exact and never negative.
-    let mut rem = u32::MAX - x.wrapping_mul(d);
-    while rem >= d {
-        x += 1;
-        rem -= d;
-    }
-    x
+    x + (((x >> 16) * e + (((x & 0xffff) * e) >> 16)) >> 16)
 }
 
 /// ⌊2²⁵ / (513 + i)⌋: 2²⁵ over the top of the i-th of 512 equal parts of [2⁹, 2¹⁰)

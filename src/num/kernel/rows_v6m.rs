@@ -22,13 +22,14 @@ pub(crate) const WALK_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m));
 /// `(step << 16) − rem/16`: `x += step` and `err -= rem` at once, a negative `err`
 /// borrowing one from `x` and setting the lower half's bit 15; then `at += fix`, `fix`
 /// being `(1 << 16) + denom/16`, gives back the borrowed one, adds one to `x` (the
-/// carry out of the lower half) and `denom` to `err` (all wrapping).
+/// carry out of the lower half) and `denom` to `err` (all wrapping). Laid out `at`,
+/// `fix`, `step`: the set-up stores the three by one STM in that order.
 #[repr(C)]
 #[derive(Clone, Copy, Default, Debug, PartialEq, Eq)]
 pub(crate) struct WalkEdge {
     at: u32,
-    step: u32,
     fix: u32,
+    step: u32,
 }
 
 impl WalkEdge {
@@ -95,7 +96,7 @@ const _: () = {
     assert!(offset_of!(RowsWalk, pitch) == 36 && offset_of!(RowsWalk, n1) == 40);
     assert!(offset_of!(RowsWalk, side) == 44 && offset_of!(RowsWalk, edges) == 48);
     assert!(offset_of!(RowsWalk, short1) == 72 && size_of::<RowsWalk>() == 84);
-    assert!(offset_of!(WalkEdge, step) == 4 && offset_of!(WalkEdge, fix) == 8);
+    assert!(offset_of!(WalkEdge, fix) == 4 && offset_of!(WalkEdge, step) == 8);
     assert!(size_of::<WalkEdge>() == 12 && align_of::<RowsWalk>() >= 4);
 };
 
@@ -149,7 +150,8 @@ pub(crate) fn rows_walk_less_as_u16<C: Copy>(
 }
 
 /// [`rows_walk_less_as_u16`] for `u16` colours, the rows already checked to lie inside
-/// both buffers: on ARMv6-M the block's last fields, then one out-of-line call.
+/// both buffers: on ARMv6-M the block's last fields, then one out-of-line call where
+/// every row's columns lie inside the clip's (the loop does not clip), else the twin.
 #[inline(always)]
 fn rows_walk_less_u16(
     r: &mut RowsWalk,
@@ -160,6 +162,9 @@ fn rows_walk_less_u16(
 ) -> (u32, u32) {
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
+        if !columns_inside(r, at.n0) {
+            return rows_walk_less_portable(r, at, z, c, color);
+        }
         let zaddr = z.as_mut_ptr() as u32;
         let index = (at.row0.wrapping_mul(at.width) as u32).wrapping_add(at.px0 as u32);
         r.color = u32::from(color);
@@ -176,6 +181,32 @@ fn rows_walk_less_u16(
     {
         rows_walk_less_portable(r, at, z, c, color)
     }
+}
+
+/// Whether every row of `r` (`n0`, then `r.n1`) whose columns `x .. x'` are not empty
+/// has them inside `r.cx`: the assembly loop's contract (it does not clip). The edges
+/// walked as the twin walks them.
+#[cfg(any(test, all(zraster_thumb, zraster_armv6m)))]
+fn columns_inside(r: &RowsWalk, n0: u32) -> bool {
+    let mut e = r.edges;
+    if r.side != 0 {
+        e.reverse();
+    }
+    for (half, n) in [n0, r.n1].into_iter().enumerate() {
+        if half == 1 {
+            let [left, right] = &mut e;
+            *(if r.side == 0 { right } else { left }) = r.short1;
+        }
+        for _ in 0..n {
+            let (x, x1) = (e[0].x(), e[1].x());
+            if x < x1 && (x < r.cx[0] || x1 > r.cx[1]) {
+                return false;
+            }
+            e[0].advance();
+            e[1].advance();
+        }
+    }
+    true
 }
 
 /// The portable twin of the assembly: the rasterizer's own row loop for this case
@@ -558,6 +589,12 @@ fn small_walk_setup(
         return Err(SmallDone::Drawn(0, 0));
     }
     let px0 = xmin >> 4;
+    // Every row's columns lie in px0 ..= ⌈(xmax − 8)/16⌉ (the assembly's rows loop does
+    // not clip): a triangle leaving the clip's columns goes to the general path.
+    let xmax = a.x().max(b.x()).max(c.x());
+    if px0 < clip.x0 || (xmax + 7) >> 4 > clip.x1 {
+        return Err(SmallDone::General);
+    }
     let k = (px0 << 4) + 8;
     let area = dx1 * dy2 - dx2 * dy1;
     if area == 0 {
@@ -575,9 +612,11 @@ fn small_walk_setup(
         (zc >> 4) as i32 - (za >> 4) as i32,
     );
     let cross = |a: i32, b: i32, c: i32, d: i32| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
-    let (h1, h2) = (dz1 >> 16, dz2 >> 16);
-    let (ah, bh) = (cross(h1, dy2, h2, dy1), cross(h2, dx1, h1, dx2));
-    if (ah.wrapping_add(1 << 12) | bh.wrapping_add(1 << 12)) as u32 >= 1 << 13 {
+    // The numerators exact in 32 bits: |dz₁|, |dz₂| ≤ ⌊(hi − lo)/16⌋ + 1 ≤
+    // 2¹¹·(⌊(hi − lo)/2¹⁵⌋ + 1) and every |dx|, |dy| ≤ e = max(width, height), so a
+    // bound of 2¹⁹ on the second product by e puts |a|, |b| below 2·2¹¹·2¹⁹ = 2³¹.
+    let extent = (xmax - xmin).max(dy2) as u32;
+    if (((hi - lo) >> 15) + 1) * extent >= 1 << 19 {
         return Err(SmallDone::General);
     }
     let (na, nb) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
@@ -739,9 +778,9 @@ macro_rules! udiv_bit {
             "lsrs r7, r4, #",
             $k,
             "\n",
-            "cmp r7, r5\n",
+            "cmp r7, r3\n",
             "blo 1f\n",
-            "lsls r7, r5, #",
+            "lsls r7, r3, #",
             $k,
             "\n",
             "subs r4, r4, r7\n",
@@ -752,13 +791,13 @@ macro_rules! udiv_bit {
 }
 
 // SAFETY (of the loop, for its callers above): rows row0 .. row0 + n0 + n1 of width
-// `width` lie inside both buffers, and columns px0 + cx0 .. px0 + cx1 inside 0..width
-// (the caller's contract); both are u16 rows (2-aligned). The loop starts at `base`,
-// the depth address of row row0, column px0, runs each half until the row address
-// reaches base + rows · pitch (a half of 0 rows is skipped; the first half's end is n0
-// rows on, the second's n1 more), and writes only columns max(x, cx0) .. min(x', cx1)
-// of a row (signed compares, clamped whenever either bound is crossed): inside both
-// buffers (the colour at the depth address + delta). The block is read and written
+// `width` lie inside both buffers, columns px0 + cx0 .. px0 + cx1 inside 0..width,
+// and every row's columns x .. x' (the left and right edges' columns, when x < x')
+// inside cx0 .. cx1 (the callers' contract); both are u16 rows (2-aligned). The loop
+// starts at `base`, the depth address of row row0, column px0, runs each half until
+// the row address reaches base + rows · pitch (a half of 0 rows is skipped; the first
+// half's end is n0 rows on, the second's n1 more), and writes only columns x .. x' of
+// a row: inside both buffers (the colour at the depth address + delta). The block is read and written
 // through r0 (`failed`, the edges, `n1` cleared for the second half). r4–r11 and lr
 // are saved and restored as AAPCS wants; r0–r2 pushed and popped around the longer
 // rows' loop.
@@ -769,7 +808,10 @@ macro_rules! udiv_bit {
 // frame; the rows it hands the loop are start .. end with clip.y0 ≤ start and
 // end ≤ clip.y1 (none when start ≥ end: it returns before the loop), from the depth
 // address of row start − first_row ≥ 0, with columns cx = clip.x − px0 around local
-// column px0: the loop's contract above. Its divisions have divisors > 0 (16·dy and
+// column px0; and only when px0 ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1, which holds
+// every row's columns inside the clip's: on a row (centre yc between the ends of both
+// edges), each edge's column ⌈(x(yc) − 8)/16⌉ lies between ⌈(xmin − 8)/16⌉ ≥ px0 and
+// ⌈(xmax − 8)/16⌉ (x(yc) lies between the edge's ends): the loop's contract above. Its divisions have divisors > 0 (16·dy and
 // dy of an edge with rows, |area| ≠ 0) and quotients within the unrolled steps (an
 // edge's columns lie within the triangle's 512, its step below 2¹³). It saves r4–r11
 // and lr as the loop's prologue does, so the loop's epilogue returns for both; BL
@@ -818,60 +860,52 @@ core::arch::global_asm!(
     "ldr r2, [r0, #60]",
     "cmp r9, lr",
     "beq 8f",
-    // A row: its columns (the edges' upper halves), inside the clip (usually; else
-    // clamped at 14).
+    // A row: its columns (the edges' upper halves), inside the clip's (the callers'
+    // contract: no clip test here); r6 its first column, r5 its length.
     "1:",
     "asrs r6, r1, #16",
     "asrs r7, r2, #16",
-    "ldr r3, [r0, #20]",
-    "cmp r6, r3",
-    "blt 14f",
-    "ldr r4, [r0, #24]",
-    "cmp r7, r4",
-    "bgt 14f",
     "subs r5, r7, r6",
     "ble 5f",
-    // r6 its first column, r5 its length.
-    "15:",
     "add r10, r5",
-    // Its depth at the first column and that column's depth address; the depth
-    // clamped to lo..=hi out of line (when depth − lo > hi − lo, unsigned).
-    "ldr r4, [r0]",
-    "muls r4, r6",
-    "add r4, r8",
-    "lsls r3, r6, #1",
-    "add r3, r9",
-    "ldr r6, [r0, #4]",
-    "subs r7, r4, r6",
-    "ldr r6, [r0, #8]",
-    "cmp r7, r6",
+    // Its depth at the first column (sx, lo and hi − lo by one LDM), clamped to
+    // lo..=hi out of line (when depth − lo > hi − lo, unsigned), and that column's
+    // depth address: r3 the depth, r4 the address.
+    "mov r7, r0",
+    "ldm r7, {{r3, r4, r7}}",
+    "muls r3, r6",
+    "add r3, r8",
+    "subs r4, r3, r4",
+    "cmp r4, r7",
     "bhi 16f",
     "17:",
+    "lsls r4, r6, #1",
+    "add r4, r9",
     "cmp r5, #1",
     "bne 3f",
-    "lsrs r6, r4, #16",
-    "ldrh r7, [r3]",
+    "lsrs r6, r3, #16",
+    "ldrh r7, [r4]",
     "cmp r6, r7",
     "bhs 6f",
-    "strh r6, [r3]",
+    "strh r6, [r4]",
     "ldr r6, [r0, #12]",
     "ldr r7, [r0, #16]",
-    "strh r6, [r3, r7]",
+    "strh r6, [r4, r7]",
     // The next row: both edges stepped (a borrow out of the lower half, bit 15, is
     // fixed up), then the depth and the address.
     "5:",
-    "ldr r3, [r0, #52]",
+    "ldr r3, [r0, #56]",
     "adds r1, r1, r3",
     "lsls r3, r1, #16",
     "bpl 21f",
-    "ldr r3, [r0, #56]",
+    "ldr r3, [r0, #52]",
     "adds r1, r1, r3",
     "21:",
-    "ldr r3, [r0, #64]",
+    "ldr r3, [r0, #68]",
     "adds r2, r2, r3",
     "lsls r3, r2, #16",
     "bpl 22f",
-    "ldr r3, [r0, #68]",
+    "ldr r3, [r0, #64]",
     "adds r2, r2, r3",
     "22:",
     "add r8, r11",
@@ -904,29 +938,14 @@ core::arch::global_asm!(
     "str r4, [r0, #52]",
     "str r5, [r0, #56]",
     "b 1b",
-    // The row's columns clamped to the clip.
-    "14:",
-    "ldr r3, [r0, #20]",
-    "cmp r6, r3",
-    "bge 23f",
-    "mov r6, r3",
-    "23:",
-    "ldr r4, [r0, #24]",
-    "cmp r7, r4",
-    "bgt 24f",
-    "mov r4, r7",
-    "24:",
-    "subs r5, r4, r6",
-    "ble 5b",
-    "b 15b",
     // The first depth clamped: below lo to lo, else to lo + (hi − lo).
     "16:",
-    "ldr r7, [r0, #4]",
-    "cmp r4, r7",
+    "ldr r4, [r0, #4]",
+    "cmp r3, r4",
     "blo 18f",
-    "adds r7, r7, r6",
+    "adds r4, r4, r7",
     "18:",
-    "mov r4, r7",
+    "mov r3, r4",
     "b 17b",
     // A failed pixel of a one-pixel row.
     "6:",
@@ -934,22 +953,22 @@ core::arch::global_asm!(
     "adds r6, #1",
     "str r6, [r0, #28]",
     "b 5b",
-    // Two pixels or more: r3 the address, r4 the depth, r5 the count.
+    // Two pixels or more: r4 the address, r3 the depth, r5 the count.
     "3:",
     "push {{r0, r1, r2}}",
     "ldr r1, [r0]",
     "ldr r2, [r0, #12]",
     "ldr r7, [r0, #16]",
     "31:",
-    "lsrs r6, r4, #16",
-    "ldrh r0, [r3]",
+    "lsrs r6, r3, #16",
+    "ldrh r0, [r4]",
     "cmp r6, r0",
     "bhs 33f",
-    "strh r6, [r3]",
-    "strh r2, [r3, r7]",
+    "strh r6, [r4]",
+    "strh r2, [r4, r7]",
     "32:",
-    "adds r4, r4, r1",
-    "adds r3, #2",
+    "adds r3, r3, r1",
+    "adds r4, #2",
     "subs r5, #1",
     "bne 31b",
     "pop {{r0, r1, r2}}",
@@ -975,7 +994,8 @@ core::arch::global_asm!(
     // Frame: 48 bytes below the saved registers: [sp] the first corner given, +4 dx1,
     // +8 dy1, +12 dx2, +16 dy2 (the middle and last corner from the top one), +20 the
     // block, +24 |area| then the first row's depth, +28 the area's sign, +32 and +36
-    // the top and middle corners, +40 and +44 the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
+    // the top and middle corners, +40 max(width, height) then the folded numerators
+    // then, with +44, the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
     // rows), r10 the first half's rows, r11 the local origin's column · 16 + 8.
     ".balign 4",
     ".global zraster_small_walk_v6m",
@@ -1080,49 +1100,60 @@ core::arch::global_asm!(
     "str r7, [sp, #4]",
     "subs r7, r6, r4",
     "str r7, [sp, #12]",
+    // The least x in r7, the greatest in r4: the first two ordered, then the third
+    // below the least, else above the greatest.
     "mov r7, r4",
-    "cmp r5, r7",
+    "cmp r5, r4",
     "bge .Lsw_cols1",
     "mov r7, r5",
+    "b .Lsw_cols2",
     ".Lsw_cols1:",
-    "cmp r6, r7",
-    "bge .Lsw_cols2",
-    "mov r7, r6",
-    ".Lsw_cols2:",
-    "cmp r5, r4",
-    "ble .Lsw_cols3",
     "mov r4, r5",
-    ".Lsw_cols3:",
+    ".Lsw_cols2:",
+    "cmp r6, r7",
+    "blt .Lsw_cols3",
     "cmp r6, r4",
     "ble .Lsw_cols4",
     "mov r4, r6",
+    "b .Lsw_cols4",
+    ".Lsw_cols3:",
+    "mov r7, r6",
     ".Lsw_cols4:",
+    // The last column a row may reach, ⌈(xmax − 8)/16⌉, in r6 (for the clip test).
+    "adds r6, r4, #7",
+    "asrs r6, r6, #4",
     "subs r4, r4, r7",
-    "lsrs r4, r4, #13",
+    "lsrs r5, r4, #13",
     "bne .Lsw_refuse",
+    // The larger extent, max(width, height), at [sp, #40] (for the depth's bound).
+    "ldr r5, [sp, #16]",
+    "cmp r4, r5",
+    "bhs .Lsw_cols5",
+    "movs r4, r5",
+    ".Lsw_cols5:",
+    "str r4, [sp, #40]",
     "mov r4, r12",
     "cmp r4, #0",
     "ble .Lsw_empty",
-    // The local origin's column px0 (of the leftmost corner): the clip's columns from
-    // it, and r11 = 16·px0 + 8.
+    // The local origin's column px0 (of the leftmost corner), and r11 = 16·px0 + 8. A
+    // triangle whose columns px0 ..= ⌈(xmax − 8)/16⌉ leave the clip's goes to the
+    // general path (the rows loop does not clip).
     "asrs r7, r7, #4",
     "ldr r4, [r0, #92]",
-    "subs r4, r4, r7",
-    "str r4, [r0, #20]",
+    "cmp r4, r7",
+    "bgt .Lsw_refuse",
     "ldr r4, [r0, #96]",
-    "subs r4, r4, r7",
-    "str r4, [r0, #24]",
+    "cmp r6, r4",
+    "bgt .Lsw_refuse",
     "lsls r7, r7, #4",
     "adds r7, #8",
     "mov r11, r7",
     // The area (none: nothing), the side, |area| below 2¹⁶ (else the general path).
-    "ldr r4, [sp, #4]",
-    "ldr r5, [sp, #16]",
-    "muls r4, r5",
-    "ldr r5, [sp, #12]",
-    "ldr r6, [sp, #8]",
-    "muls r5, r6",
-    "subs r4, r4, r5",
+    "add r7, sp, #4",
+    "ldm r7, {{r4, r5, r6, r7}}",
+    "muls r4, r7",
+    "muls r6, r5",
+    "subs r4, r4, r6",
     "beq .Lsw_empty",
     "lsrs r5, r4, #31",
     "str r5, [r0, #44]",
@@ -1155,70 +1186,55 @@ core::arch::global_asm!(
     "ldr r4, [r1]",
     "ldr r5, [r2]",
     "ldr r6, [r3]",
+    // lo in r7, hi in r1: the first two ordered, then the third below lo, else
+    // above hi.
     "mov r7, r4",
-    "mov r1, r4",
-    "cmp r5, r7",
-    "bhs .Lsw_z1",
+    "mov r1, r5",
+    "cmp r4, r5",
+    "bls .Lsw_z1",
     "mov r7, r5",
+    "mov r1, r4",
     ".Lsw_z1:",
     "cmp r6, r7",
-    "bhs .Lsw_z2",
-    "mov r7, r6",
-    ".Lsw_z2:",
-    "cmp r5, r1",
-    "bls .Lsw_z3",
-    "mov r1, r5",
-    ".Lsw_z3:",
+    "blo .Lsw_z2",
     "cmp r6, r1",
-    "bls .Lsw_z4",
+    "bls .Lsw_z3",
     "mov r1, r6",
-    ".Lsw_z4:",
+    "b .Lsw_z3",
+    ".Lsw_z2:",
+    "mov r7, r6",
+    ".Lsw_z3:",
     "subs r1, r1, r7",
     "str r1, [r0, #8]",
-    "ldr r1, .Lsw_bias",
-    "adds r7, r7, r1",
+    "ldr r2, .Lsw_bias",
+    "adds r7, r7, r2",
     "str r7, [r0, #4]",
-    // dz1 in r6, dz2 in r7 (depths over 16); the numerators' high parts over 2¹⁶ in
-    // [−2¹², 2¹²), else the general path (`fill::small::steps_narrow`).
+    // The numerators exact in 32 bits: (⌊(hi − lo)/2¹⁵⌋ + 1)·max(width, height) below
+    // 2¹⁹, else the general path (see `small_walk_setup`).
+    "lsrs r1, r1, #15",
+    "adds r1, #1",
+    "ldr r3, [sp, #40]",
+    "muls r1, r3",
+    "lsrs r1, r1, #19",
+    "bne .Lsw_refuse",
+    // dz1 in r6, dz2 in r7 (depths over 16).
     "lsrs r4, r4, #4",
     "lsrs r6, r6, #4",
     "subs r7, r6, r4",
     "lsrs r6, r5, #4",
     "subs r6, r6, r4",
-    "asrs r4, r6, #16",
-    "ldr r5, [sp, #16]",
-    "muls r4, r5",
-    "asrs r5, r7, #16",
-    "ldr r3, [sp, #8]",
-    "muls r5, r3",
-    "subs r4, r4, r5",
-    "asrs r5, r7, #16",
-    "ldr r3, [sp, #4]",
-    "muls r5, r3",
-    "asrs r3, r6, #16",
-    "ldr r2, [sp, #12]",
-    "muls r3, r2",
-    "subs r5, r5, r3",
-    "ldr r3, .Lsw_high",
-    "adds r4, r4, r3",
-    "adds r5, r5, r3",
-    "orrs r4, r5",
-    "lsrs r4, r4, #13",
-    "bne .Lsw_refuse",
-    // The numerators a (r4) and b (r5), modulo 2³², inside ±(2²⁷ − 1).
-    "ldr r4, [sp, #16]",
+    // The numerators a (r4) and b (r2), modulo 2³², inside ±(2²⁷ − 1).
+    "add r5, sp, #4",
+    "ldm r5, {{r2, r3, r4, r5}}",
+    "muls r2, r7",
     "muls r4, r6",
-    "ldr r5, [sp, #8]",
-    "muls r5, r7",
-    "subs r4, r4, r5",
-    "ldr r5, [sp, #4]",
-    "muls r5, r7",
-    "ldr r3, [sp, #12]",
-    "muls r3, r6",
-    "subs r5, r5, r3",
+    "subs r2, r2, r4",
+    "muls r5, r6",
+    "muls r3, r7",
+    "subs r4, r5, r3",
     "ldr r3, .Lsw_within",
     "adds r6, r4, r3",
-    "adds r7, r5, r3",
+    "adds r7, r2, r3",
     "ldr r3, .Lsw_range",
     "cmp r6, r3",
     "bhs .Lsw_refuse",
@@ -1228,13 +1244,13 @@ core::arch::global_asm!(
     // `num::floor_div32_pair_small`: the folded numerators at [sp, #40] and [sp, #44],
     // then x = ⌊(2³² − 1)/d⌋ in r6 (d = |area| in r4) as `num::armv6m::recip32_small`:
     // d normalised to [2¹⁵, 2¹⁶) by s (its leading zeros, from a byte table), a guess
-    // from the reciprocal table << (s + 1), two Newton steps, the fix-up.
+    // from the reciprocal table, two Newton steps (exact for every d: no fix-up).
     "ldr r3, [sp, #28]",
     "lsls r0, r4, #4",
     "eors r0, r3",
     "subs r0, r0, r3",
     "str r0, [sp, #40]",
-    "lsls r1, r5, #4",
+    "lsls r1, r2, #4",
     "eors r1, r3",
     "subs r1, r1, r3",
     "str r1, [sp, #44]",
@@ -1250,17 +1266,25 @@ core::arch::global_asm!(
     ".Lsw_recip2:",
     "movs r6, r4",
     "lsls r6, r5",
+    "movs r0, r6",
     "lsrs r6, r6, #6",
     "lsls r6, r6, #1",
     "ldr r7, .Lsw_recip16",
     "ldrh r6, [r7, r6]",
-    "adds r5, #1",
-    "lsls r6, r5",
-    "movs r5, r4",
-    "muls r5, r6",
-    "rsbs r5, r5, #0",
-    "bl .Lsw_mulhi",
-    "adds r6, r6, r7",
+    // The first Newton step on t, the table's 16 bits (x = t·2^(s + 1)): e = 2³² −
+    // 2·dn·t (dn·t < 2³¹), then x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s), below
+    // 2³²/d; t·⌊e/2⁷⌋ < 2³² (see `recip_first_step`).
+    "muls r0, r6",
+    "lsls r0, r0, #1",
+    "rsbs r0, r0, #0",
+    "lsrs r0, r0, #7",
+    "muls r0, r6",
+    "lsrs r0, r0, #9",
+    "lsls r6, r6, #16",
+    "adds r6, r6, r0",
+    "movs r7, #15",
+    "subs r7, r7, r5",
+    "lsrs r6, r7",
     "movs r5, r4",
     "muls r5, r6",
     "rsbs r5, r5, #0",
@@ -1272,16 +1296,6 @@ core::arch::global_asm!(
     "adds r0, r0, r1",
     "lsrs r0, r0, #16",
     "adds r6, r6, r0",
-    "movs r5, r4",
-    "muls r5, r6",
-    "mvns r5, r5",
-    ".Lsw_recip3:",
-    "cmp r5, r4",
-    "blo .Lsw_recip4",
-    "adds r6, #1",
-    "subs r5, r5, r4",
-    "b .Lsw_recip3",
-    ".Lsw_recip4:",
     "ldr r5, [sp, #40]",
     "bl .Lsw_quot",
     "str r7, [sp, #40]",
@@ -1296,39 +1310,35 @@ core::arch::global_asm!(
     "str r2, [r3, #32]",
     // The first row's depth at local column 0, from the first corner given:
     // z + DEPTH_BIAS + q·(16·px0 + 8 − x) + r·(16·start + 8 − y).
+    // (16·start + 8 in r5 and 16·px0 + 8 in r7 kept for the long edge.)
     "ldr r2, [sp]",
-    "ldr r6, [r2, #4]",
-    "sxth r4, r6",
-    "mov r5, r11",
-    "subs r5, r5, r4",
+    "ldm r2!, {{r4, r6}}",
+    "mov r7, r11",
+    "sxth r5, r6",
+    "subs r5, r7, r5",
     "muls r0, r5",
-    "asrs r4, r6, #16",
+    "asrs r6, r6, #16",
     "mov r5, r8",
     "lsls r5, r5, #4",
     "adds r5, #8",
-    "subs r5, r5, r4",
-    "muls r1, r5",
+    "subs r6, r5, r6",
+    "muls r1, r6",
     "adds r0, r0, r1",
-    "ldr r4, [r2]",
     "adds r0, r0, r4",
     "ldr r4, .Lsw_bias",
     "adds r0, r0, r4",
     "str r0, [sp, #24]",
     // The edges: the long one at the first row, the short ones at their halves' first
     // rows (a half without rows keeps its edge unset). The top corner's offsets
-    // 16·start + 8 − y and x − 16·px0 − 8 at [sp, #40] and [sp, #44].
+    // Y = 16·start + 8 − y and X = x − 16·px0 − 8 at [sp, #40] and [sp, #44].
     "ldr r2, [sp, #32]",
-    "mov r4, r8",
-    "lsls r4, r4, #4",
-    "adds r4, #8",
-    "ldr r7, [r2, #4]",
-    "asrs r5, r7, #16",
-    "subs r4, r4, r5",
-    "str r4, [sp, #40]",
-    "sxth r5, r7",
-    "mov r6, r11",
-    "subs r5, r5, r6",
-    "str r5, [sp, #44]",
+    "ldr r6, [r2, #4]",
+    "asrs r0, r6, #16",
+    "subs r5, r5, r0",
+    "str r5, [sp, #40]",
+    "sxth r0, r6",
+    "subs r0, r0, r7",
+    "str r0, [sp, #44]",
     "movs r1, #48",
     "adds r1, r1, r3",
     "ldr r2, [sp, #12]",
@@ -1337,11 +1347,10 @@ core::arch::global_asm!(
     "mov r4, r10",
     "cmp r4, #0",
     "beq .Lsw_short1",
-    "adds r1, #12",
     "ldr r2, [sp, #4]",
     "ldr r3, [sp, #8]",
-    "ldr r4, [sp, #40]",
-    "ldr r5, [sp, #44]",
+    "ldr r5, [sp, #40]",
+    "ldr r0, [sp, #44]",
     "bl .Lsw_edge",
     ".Lsw_short1:",
     "ldr r0, [sp, #20]",
@@ -1350,22 +1359,20 @@ core::arch::global_asm!(
     "beq .Lsw_rows",
     "movs r1, #72",
     "adds r1, r1, r0",
-    "ldr r2, [sp, #12]",
-    "ldr r4, [sp, #4]",
-    "subs r2, r2, r4",
-    "ldr r3, [sp, #16]",
-    "ldr r4, [sp, #8]",
-    "subs r3, r3, r4",
+    "add r7, sp, #4",
+    "ldm r7, {{r2, r3, r4, r7}}",
+    "subs r2, r4, r2",
+    "subs r3, r7, r3",
     "ldr r6, [sp, #36]",
-    "mov r4, r9",
-    "lsls r4, r4, #4",
-    "adds r4, #8",
+    "mov r5, r9",
+    "lsls r5, r5, #4",
+    "adds r5, #8",
     "ldr r6, [r6, #4]",
-    "asrs r5, r6, #16",
-    "subs r4, r4, r5",
-    "sxth r5, r6",
+    "asrs r0, r6, #16",
+    "subs r5, r5, r0",
+    "sxth r0, r6",
     "mov r7, r11",
-    "subs r5, r5, r7",
+    "subs r0, r0, r7",
     "bl .Lsw_edge",
     // The rows: the depth address of the first row's local column 0,
     // zaddr + (start − first_row)·pitch + 2·px0, then the loop above with its frame.
@@ -1387,55 +1394,48 @@ core::arch::global_asm!(
     "add sp, #48",
     "b .Lzraster_rows_walk_body",
     // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: by
-    // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r4 = Y =
-    // 16·py + 8 − y (≥ 0) and r5 = X = x − 16·px0 − 8. First the step ⌊dx/dy⌋ and its
+    // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r5 = Y =
+    // 16·py + 8 − y (≥ 0) and r0 = X = x − 16·px0 − 8. First the step ⌊dx/dy⌋ and its
     // remainder by one unsigned division (a negative dividend n by ⌊n/d⌋ = !⌊!n/d⌋; a
     // quotient of 0 without the call). Then t = Y·dx + X·dy, the first column ⌈t/16dy⌉
     // and err = x·16dy − t: with Y ≤ 16 (the triangle's first row in its half, not
     // clipped) from the step, N = X + Y·step = 16u + v, t = dy·N + Y·rem, so
     // t/16dy = u + W/16dy with W = v·dy + Y·rem in [0, 2·16dy); else by one more
-    // division. Keeps r1–r3; r4–r7 scratch.
+    // division (by 16dy, in r3 meanwhile). Keeps r2, r3 and leaves r1 on the next
+    // edge; r0, r4–r7 scratch.
     ".Lsw_edge:",
-    "push {{r4, r5, lr}}",
-    "movs r5, r3",
+    "push {{lr}}",
     "movs r6, #0",
     "movs r4, r2",
     "bmi .Lsw_edge_negdx",
-    "cmp r4, r5",
+    "cmp r4, r3",
     "blo .Lsw_edge_step",
     "bl .Lsw_udiv",
     "b .Lsw_edge_step",
     ".Lsw_edge_negdx:",
     "mvns r4, r4",
-    "cmp r4, r5",
+    "cmp r4, r3",
     "blo .Lsw_edge_negdx0",
     "bl .Lsw_udiv",
     ".Lsw_edge_negdx0:",
     "mvns r6, r6",
-    "subs r4, r5, r4",
+    "subs r4, r3, r4",
     "subs r4, #1",
     ".Lsw_edge_step:",
     "lsls r7, r6, #16",
     "subs r7, r7, r4",
-    "str r7, [r1, #4]",
-    "movs r7, #1",
-    "lsls r7, r7, #16",
-    "adds r7, r7, r3",
-    "str r7, [r1, #8]",
-    "pop {{r5, r7}}",
     "cmp r5, #16",
     "bhi .Lsw_edge_far",
     "muls r6, r5",
-    "adds r6, r6, r7",
+    "adds r6, r6, r0",
     "muls r4, r5",
     "lsls r5, r6, #28",
     "lsrs r5, r5, #28",
     "muls r5, r3",
-    "adds r4, r4, r5",
     "asrs r6, r6, #4",
-    "lsls r5, r3, #4",
-    "cmp r4, #0",
+    "adds r4, r4, r5",
     "beq .Lsw_edge_at",
+    "lsls r5, r3, #4",
     "adds r6, #1",
     "subs r4, r5, r4",
     "bhs .Lsw_edge_at",
@@ -1443,45 +1443,53 @@ core::arch::global_asm!(
     "adds r4, r4, r5",
     "b .Lsw_edge_at",
     ".Lsw_edge_far:",
+    "push {{r7}}",
     "muls r5, r2",
-    "muls r7, r3",
-    "adds r4, r5, r7",
-    "lsls r5, r3, #4",
+    "muls r0, r3",
+    "adds r4, r5, r0",
+    "lsls r3, r3, #4",
     "movs r6, #0",
     "rsbs r4, r4, #0",
     "bmi .Lsw_edge_neg",
-    "cmp r4, r5",
-    "blo .Lsw_edge_at",
+    "cmp r4, r3",
+    "blo .Lsw_edge_far1",
     "bl .Lsw_udiv",
     "rsbs r6, r6, #0",
-    "b .Lsw_edge_at",
+    "b .Lsw_edge_far1",
     ".Lsw_edge_neg:",
     "mvns r4, r4",
-    "cmp r4, r5",
+    "cmp r4, r3",
     "blo .Lsw_edge_neg0",
     "bl .Lsw_udiv",
     ".Lsw_edge_neg0:",
     "adds r6, #1",
-    "subs r4, r5, r4",
+    "subs r4, r3, r4",
     "subs r4, #1",
+    ".Lsw_edge_far1:",
+    "lsrs r3, r3, #4",
+    "pop {{r7}}",
+    // at, fix and step by one STM.
     ".Lsw_edge_at:",
     "lsrs r4, r4, #4",
     "lsls r6, r6, #16",
-    "adds r6, r6, r4",
-    "str r6, [r1]",
+    "adds r0, r6, r4",
+    "movs r6, #1",
+    "lsls r6, r6, #16",
+    "adds r6, r6, r3",
+    "stm r1!, {{r0, r6, r7}}",
     "pop {{pc}}",
-    // r6 = r4 / r5, r4 = r4 % r5 for r5 > 0, r6 = 0 on entry and a quotient below 2¹⁴,
+    // r6 = r4 / r3, r4 = r4 % r3 for r3 > 0, r6 = 0 on entry and a quotient below 2¹⁴,
     // one bit a step from the quotient's top (found below 4, 16, 256 or else 2¹⁴); r7
     // scratch.
     ".Lsw_udiv:",
     "lsrs r7, r4, #2",
-    "cmp r7, r5",
+    "cmp r7, r3",
     "blo .Lsw_udiv2",
     "lsrs r7, r4, #4",
-    "cmp r7, r5",
+    "cmp r7, r3",
     "blo .Lsw_udiv4",
     "lsrs r7, r4, #8",
-    "cmp r7, r5",
+    "cmp r7, r3",
     "blo .Lsw_udiv8",
     udiv_bit!(13),
     udiv_bit!(12),
@@ -1499,9 +1507,9 @@ core::arch::global_asm!(
     udiv_bit!(2),
     ".Lsw_udiv2:",
     udiv_bit!(1),
-    "cmp r4, r5",
+    "cmp r4, r3",
     "blo 1f",
-    "subs r4, r4, r5",
+    "subs r4, r4, r3",
     "1:",
     "adcs r6, r6",
     "bx lr",
@@ -1509,11 +1517,29 @@ core::arch::global_asm!(
     // `num::armv6m::divrem_by_recip` of |r5| flipped (⌊n/d⌋ = !⌊!n/d⌋); r0–r3, r5 and
     // r12 scratch.
     ".Lsw_quot:",
-    "push {{lr}}",
     "asrs r0, r5, #31",
     "mov r12, r0",
     "eors r5, r0",
-    "bl .Lsw_mulhi",
+    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products.
+    "lsrs r0, r6, #16",
+    "lsrs r1, r5, #16",
+    "uxth r2, r6",
+    "uxth r3, r5",
+    "movs r7, r0",
+    "muls r7, r1",
+    "muls r0, r3",
+    "muls r1, r2",
+    "muls r2, r3",
+    "adds r0, r0, r1",
+    "bcc .Lsw_quot0",
+    "movs r1, #1",
+    "lsls r1, r1, #16",
+    "adds r7, r7, r1",
+    ".Lsw_quot0:",
+    "lsls r1, r0, #16",
+    "lsrs r0, r0, #16",
+    "adds r2, r2, r1",
+    "adcs r7, r0",
     "movs r0, r7",
     "muls r0, r4",
     "subs r5, r5, r0",
@@ -1526,28 +1552,6 @@ core::arch::global_asm!(
     ".Lsw_quot2:",
     "mov r0, r12",
     "eors r7, r0",
-    "pop {{pc}}",
-    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products; r0–r3 scratch.
-    ".Lsw_mulhi:",
-    "lsrs r0, r6, #16",
-    "lsrs r1, r5, #16",
-    "uxth r2, r6",
-    "uxth r3, r5",
-    "movs r7, r0",
-    "muls r7, r1",
-    "muls r0, r3",
-    "muls r1, r2",
-    "muls r2, r3",
-    "adds r0, r0, r1",
-    "bcc .Lsw_mulhi1",
-    "movs r1, #1",
-    "lsls r1, r1, #16",
-    "adds r7, r7, r1",
-    ".Lsw_mulhi1:",
-    "lsls r1, r0, #16",
-    "lsrs r0, r0, #16",
-    "adds r2, r2, r1",
-    "adcs r7, r0",
     "bx lr",
     ".balign 4",
     ".Lsw_lz8:",
@@ -1556,8 +1560,6 @@ core::arch::global_asm!(
     ".word {recip16} - 1024",
     ".Lsw_bias:",
     ".word 32768",
-    ".Lsw_high:",
-    ".word 4096",
     ".Lsw_within:",
     ".word 0x07ffffff",
     ".Lsw_range:",
@@ -1713,6 +1715,35 @@ mod tests {
             let at = ((col as u32) << 16).wrapping_add(err >> 4);
             assert_eq!(at, e.at, "dx {dx} dy {dy} y {y} x {x}");
         }
+    }
+
+    /// What the set-up hands the rows loop keeps every row's columns inside the clip's
+    /// (the loop does not clip): random small triangles near and across the edges of
+    /// random clips, each taken one checked.
+    #[test]
+    fn small_walk_setup_keeps_rows_inside_the_clip() {
+        let mut seed = 0x5151_7357;
+        let mut taken = 0;
+        for i in 0..200_000u32 {
+            let clip = Clip {
+                x0: (next(&mut seed) % 8) as i32,
+                y0: (next(&mut seed) % 8) as i32,
+                x1: 12 + (next(&mut seed) % 8) as i32,
+                y1: 12 + (next(&mut seed) % 8) as i32,
+            };
+            let span = [24, 96, 400][(i % 3) as usize];
+            let mut vertex = || {
+                let x = (next(&mut seed) % span) as i32 + 16 * 10 - span as i32 / 2;
+                let y = (next(&mut seed) % span) as i32 + 16 * 10 - span as i32 / 2;
+                ScreenVertex::new(x, y, 1 << 20).unwrap_or(ScreenVertex::ORIGIN)
+            };
+            let tri = [vertex(), vertex(), vertex()];
+            if let Ok((r, at)) = small_walk_setup(tri.each_ref(), &clip, 0, 32) {
+                taken += 1;
+                assert!(columns_inside(&r, at.n0), "{tri:?} in {clip:?}");
+            }
+        }
+        assert!(taken > 20_000, "{taken} taken");
     }
 
     /// The set-up draws the usual small triangle itself (the Rust path takes only
