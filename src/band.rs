@@ -28,6 +28,7 @@ use crate::render::{
 use crate::shade::{Material, Shading};
 mod carry;
 use carry::ColorCarry;
+pub(crate) use carry::CARRY;
 
 use crate::{
     AfterBand, BandBuffers, Bands, ColorBuffer, DepthTarget, DrawError, Error, FrameStats,
@@ -122,6 +123,7 @@ where
         rows,
         height,
         bins,
+        carry,
     } = bands;
     let (w, rows, height) = (*w, *rows, *height);
     let nb = height.div_ceil(rows);
@@ -147,7 +149,7 @@ where
             }
         }
     }
-    let mut carry = ColorCarry::new(background);
+    let mut carry = ColorCarry::new(background, carry);
     // Whether the band buffers are still as cleared: no triangle was drawn into the
     // band before (every object's chains were empty), nor, for the colours, an overlay
     // (`after` only reads depth): then the band's clear is skipped.
@@ -311,7 +313,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
         faces: BandFaces<'_>,
-        carry: &mut ColorCarry<C>,
+        carry: &mut ColorCarry<'_, C>,
     ) -> Result<(), Error>
     where
         C: PixelColor,
@@ -359,7 +361,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         frame: &mut ColorBuffer<'_, C>,
         zbuf: &mut ZBuffer<'_>,
         mut faces: BandTriangles<'_, 'm>,
-        carry: &mut ColorCarry<C>,
+        carry: &mut ColorCarry<'_, C>,
         shade: impl Fn(usize) -> Result<C, Error>,
         fused: Option<FaceColor<'_, C>>,
     ) -> Result<FrameStats, Error>
@@ -588,7 +590,7 @@ impl<'m> BandTriangles<'_, 'm> {
     fn fused<C: Copy>(
         &mut self,
         cache: &[CachedVertex],
-        carry: &mut BandCarry<'_, C>,
+        carry: &mut BandCarry<'_, '_, C>,
         color: &FaceColor<'_, C>,
         t: &mut SmallTarget<'_, '_, C>,
         counts: &mut FacesCounts,

@@ -397,6 +397,8 @@ pub use render::{TexturedTarget, Texturing, UvMode};
 pub use scene::Scene;
 
 #[doc(hidden)]
+pub use num::kernel::check_band_carry_kernel;
+#[doc(hidden)]
 pub use num::kernel::check_band_faces_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_bin_kernel;

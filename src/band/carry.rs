@@ -1,17 +1,19 @@
 //! The colours of faces that reach into the band below, carried to it ([`ColorCarry`])
-//! so that they are not lit again.
+//! so that they are not lit again, and where the fused band loop runs, their set-ups,
+//! so that they are not set up again.
 
-use crate::num::kernel::BandCarry;
+use crate::num::kernel::{BandCarry, KeptStates};
 
 /// How many colours [`ColorCarry`] holds; faces beyond it are lit again.
-const CARRY: usize = 64;
+pub(crate) const CARRY: usize = 64;
 
 /// The colours of the faces that reach into the band below, kept for it. That band
 /// walks them in the same order (the chain of the band above, in face order), so a
 /// queue read from its start serves. Its own faces are merged in among them, so what
 /// it keeps goes into the other half of the store, not over colours not yet taken.
-/// Lighting such a face again would cost some 70 instructions on a Cortex-M4.
-pub(crate) struct ColorCarry<C> {
+/// Lighting such a face again would cost some 70 instructions on a Cortex-M4. Beside
+/// them, the set-ups the fused band loop keeps in the caller's scratch ([`KeptStates`]).
+pub(crate) struct ColorCarry<'s, C> {
     colors: [[C; CARRY]; 2],
     /// The half this band reads (what the band above kept); it keeps into the other.
     /// A `bool`, so that indexing the two halves by it needs no bounds test.
@@ -20,16 +22,19 @@ pub(crate) struct ColorCarry<C> {
     filled: usize,
     taken: usize,
     kept: usize,
+    states: KeptStates<'s>,
 }
 
-impl<C: Copy> ColorCarry<C> {
-    pub(crate) fn new(fill: C) -> Self {
+impl<'s, C: Copy> ColorCarry<'s, C> {
+    /// Colours `fill` at first; set-ups kept in `scratch` where the loop keeps them.
+    pub(crate) fn new(fill: C, scratch: &'s mut [u32]) -> Self {
         ColorCarry {
             colors: [[fill; CARRY]; 2],
             read: false,
             filled: 0,
             taken: 0,
             kept: 0,
+            states: KeptStates::new(scratch, CARRY),
         }
     }
 
@@ -39,6 +44,7 @@ impl<C: Copy> ColorCarry<C> {
         self.filled = self.kept;
         self.taken = 0;
         self.kept = 0;
+        self.states.start_band();
     }
 
     /// The next carried colour, `None` past what was kept.
@@ -66,7 +72,7 @@ impl<C: Copy> ColorCarry<C> {
     /// The halves and cursors for the band loop in assembly
     /// ([`band_faces_less`](crate::num::kernel::band_faces_less)), which takes and keeps
     /// as [`take`](ColorCarry::take) and [`keep`](ColorCarry::keep) do.
-    pub(crate) fn parts(&mut self) -> BandCarry<'_, C> {
+    pub(crate) fn parts(&mut self) -> BandCarry<'_, 's, C> {
         let [a, b] = &mut self.colors;
         let (read, keep) = if self.read { (b, a) } else { (a, b) };
         BandCarry {
@@ -75,6 +81,7 @@ impl<C: Copy> ColorCarry<C> {
             filled: self.filled,
             taken: &mut self.taken,
             kept: &mut self.kept,
+            states: &mut self.states,
         }
     }
 
@@ -97,7 +104,7 @@ mod tests {
     /// `None` (and lights those faces again), never another face's colour.
     #[test]
     fn carried_colours_come_back_in_order_up_to_the_capacity() {
-        let mut carry = ColorCarry::new(0u16);
+        let mut carry = ColorCarry::new(0u16, &mut []);
         for kept in [0, 1, CARRY - 1, CARRY, CARRY + 5] {
             carry.start_band();
             // This band takes what the one before kept (checked below), then keeps its own.

@@ -4,6 +4,8 @@
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use super::{ColorBuffer, ZBuffer};
+use crate::band::CARRY;
+use crate::num::kernel::STATE_WORDS;
 use crate::{Error, MAX_DIMENSION};
 
 /// Caller memory for banded drawing: a colour band, a depth band and (optionally) bins.
@@ -16,6 +18,9 @@ pub struct BandBuffers<'a, C> {
     pub(crate) height: u32,
     /// The bin chains (their layout: `END` in `band.rs`).
     pub(crate) bins: &'a mut [u16],
+    /// Where the set-ups of faces reaching the band below are kept for it (see
+    /// [`with_carry`](BandBuffers::with_carry)); may be empty.
+    pub(crate) carry: &'a mut [u32],
 }
 
 impl<'a, C: PixelColor> BandBuffers<'a, C> {
@@ -51,7 +56,20 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
             rows,
             height,
             bins,
+            carry: &mut [],
         })
+    }
+
+    /// The same, keeping in `carry` the set-ups of the triangles that reach from one
+    /// band into the next, so that the next band goes on drawing them rather than set
+    /// them up again: for [`carry_needed`](BandBuffers::carry_needed)`(n)` words, up to
+    /// `n` such triangles a band (at most 64; those beyond are set up again, as they
+    /// all are without it). The picture is the same either way. Used by the bands'
+    /// assembly loop on ARMv7E-M (Cortex-M4, M7) for a cached triangle mesh drawn with
+    /// flat or Lambert shading, the `Less` depth test and a two-byte colour; elsewhere
+    /// the scratch is left unused.
+    pub fn with_carry(self, carry: &'a mut [u32]) -> Self {
+        BandBuffers { carry, ..self }
     }
 
     /// The number of bands.
@@ -64,6 +82,14 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// bins.)
     pub const fn bins_needed(triangles: usize, height: u32, rows: u32) -> usize {
         bins_for(triangles, height, rows)
+    }
+
+    /// Carry words ([`with_carry`](BandBuffers::with_carry)) for the set-ups of up to
+    /// `triangles` triangles a band reaching into the next (at most 64 count): two
+    /// halves of 21 words a triangle, 168 bytes a triangle in all.
+    pub const fn carry_needed(triangles: usize) -> usize {
+        let n = if triangles < CARRY { triangles } else { CARRY };
+        2 * n * STATE_WORDS
     }
 }
 

@@ -166,6 +166,9 @@ fn main() -> ! {
     // The fused band loop (merge, carry, colour, set-up and rows) likewise: random bins.
     let bad = zraster::check_band_faces_kernel(&mut depth[..4096], 4_000);
     hprintln!("band faces kernel cases differing from the portable twin: {}", bad);
+    // And with the set-ups of faces reaching the band below kept and resumed there.
+    let bad = zraster::check_band_carry_kernel(&mut depth[..4096], carry_band(), 4_000);
+    hprintln!("band carry kernel cases differing from the portable twin: {}", bad);
     check_light();
     check_place();
     check_place_v6m();
@@ -200,14 +203,14 @@ fn main() -> ! {
     let bins = bins_band();
     let (_, banded) = measure(|| {
         let mut renderer = Renderer::with_cache(&mesh, &xf, opts, cache).unwrap();
-        let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, &mut bins[..]).unwrap();
+        let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, &mut bins[..]).unwrap().with_carry(carry_band());
         renderer.draw(&mut Bands::new(&mut frame, &mut bands, Rgb565::BLACK)).unwrap();
     });
     // The same into a display that takes the bands and does nothing with them: the
     // whole-frame figure has no transfer in it either, so this is the like-for-like one.
     let (_, banded_sink) = measure(|| {
         let mut renderer = Renderer::with_cache(&mesh, &xf, opts, cache).unwrap();
-        let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, &mut bins[..]).unwrap();
+        let mut bands = BandBuffers::new(&mut band_pixels[..], &mut depth[..(W * BAND) as usize], W, BAND, H, &mut bins[..]).unwrap().with_carry(carry_band());
         renderer.draw(&mut Bands::new(&mut Sink, &mut bands, Rgb565::BLACK)).unwrap();
     });
     let banded_sum = checksum(frame.as_slice());
@@ -241,10 +244,19 @@ fn main() -> ! {
 static mut BAND_PIXELS: [Rgb565; (W * BAND) as usize] = [Rgb565::BLACK; (W * BAND) as usize];
 const BINS: usize = BandBuffers::<Rgb565>::bins_needed(bunny::BUNNY_INDICES.len(), H, BAND);
 static mut BINS_BAND: [u16; BINS] = [0; BINS];
+/// The set-ups of triangles reaching into the next band, kept for it (64 a band edge;
+/// bunny-320 has at most 51).
+const CARRY: usize = BandBuffers::<Rgb565>::carry_needed(64);
+static mut CARRY_BAND: [u32; CARRY] = [0; CARRY];
 
 fn bins_band() -> &'static mut [u16] {
     // SAFETY: borrowed once.
     unsafe { &mut *addr_of_mut!(BINS_BAND) }
+}
+
+fn carry_band() -> &'static mut [u32] {
+    // SAFETY: borrowed once at a time (by the band check, then by the banded frames).
+    unsafe { &mut *addr_of_mut!(CARRY_BAND) }
 }
 
 fn pixels_band() -> (&'static mut [Rgb565], ()) {

@@ -463,14 +463,92 @@ fn faces_less_dsp<'a, C: Copy>(
 
 /// A band's colours carried from the band above and kept for the band below (the
 /// band loop's `ColorCarry`, as [`band_faces_less`] uses it): the colours to take, the
-/// half to keep into, how many were kept above, and this band's cursors.
+/// half to keep into, how many were kept above, this band's cursors, and the kept
+/// faces' set-ups ([`KeptStates`]), which follow the kept colours one for one.
 #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
-pub(crate) struct BandCarry<'k, C> {
+pub(crate) struct BandCarry<'k, 's, C> {
     pub read: &'k [C],
     pub keep: &'k mut [C],
     pub filled: usize,
     pub taken: &'k mut usize,
     pub kept: &'k mut usize,
+    pub states: &'k mut KeptStates<'s>,
+}
+
+/// Words of a kept face's set-up ([`KeptStates`]): the rows' block's fields its rows
+/// read but the band's own (`sx`, `lo`, `span`, `color`, the two edges' steps `dt`,
+/// `sy`), its rows in the first half before any clip, `xmax`, the first row's depth,
+/// `px0`, the first row, then the block's words from `t` to `short1` (the second half's
+/// rows before any clip among them), as the band loop's `keep_state` saves them.
+pub(crate) const STATE_WORDS: usize = 21;
+
+/// The set-ups of a band's faces that reach the band below, kept for it by the fused
+/// band loop (ARMv7E-M): the band below resumes their rows where this band stops them
+/// rather than set them up again. Two halves of the caller's scratch, a slot of
+/// [`STATE_WORDS`] a face, at most as many as the colours carried: a band resumes from
+/// one what the band above saved, and saves into the other. Only the loop writes a
+/// slot, and it counts one only once written, so that a band resumes only set-ups the
+/// loop made in this draw.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+pub(crate) struct KeptStates<'s> {
+    halves: [&'s mut [u32]; 2],
+    /// The half this band resumes from; it saves into the other.
+    read: bool,
+    /// Slots of the read half the band above saved.
+    filled: usize,
+    /// Slots of the other half this band has saved.
+    saved: usize,
+}
+
+#[cfg(all(zraster_thumb, zraster_dsp))]
+impl<'s> KeptStates<'s> {
+    /// Slots for at most `faces` kept faces a band in `scratch` (none when it holds
+    /// fewer than two words).
+    pub(crate) fn new(scratch: &'s mut [u32], faces: usize) -> Self {
+        let room = (scratch.len() / (2 * STATE_WORDS)).min(faces);
+        let (a, rest) = scratch.split_at_mut(room * STATE_WORDS);
+        let b = rest.get_mut(..room * STATE_WORDS).unwrap_or(&mut []);
+        KeptStates {
+            halves: [a, b],
+            read: false,
+            filled: 0,
+            saved: 0,
+        }
+    }
+
+    /// A new band: what the band before saved is what this one resumes.
+    pub(crate) fn start_band(&mut self) {
+        self.read = !self.read;
+        self.filled = self.saved;
+        self.saved = 0;
+    }
+
+    /// The slots this band resumes from (filled) and saves into (saved so far).
+    fn halves(&mut self) -> (&[u32], &mut [u32]) {
+        let [a, b] = &mut self.halves;
+        if self.read {
+            (b, a)
+        } else {
+            (a, b)
+        }
+    }
+}
+
+/// Where there is no fused band loop, nothing is kept.
+#[cfg(not(all(zraster_thumb, zraster_dsp)))]
+pub(crate) struct KeptStates<'s>(core::marker::PhantomData<&'s mut [u32]>);
+
+#[cfg(not(all(zraster_thumb, zraster_dsp)))]
+impl<'s> KeptStates<'s> {
+    /// Nothing kept.
+    #[inline(always)]
+    pub(crate) fn new(_scratch: &'s mut [u32], _faces: usize) -> Self {
+        KeptStates(core::marker::PhantomData)
+    }
+
+    /// Nothing to do.
+    #[inline(always)]
+    pub(crate) fn start_band(&mut self) {}
 }
 
 /// Where [`band_faces_less`] stopped; a face left to the caller as its chain's head
@@ -514,18 +592,66 @@ struct BandBlock {
     /// The colours to take and the half to keep into.
     read: *const u16, // 160
     keep: *mut u16, // 164
-    /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
-    filled: u32, // 168
+    /// Resumed below `sfilled` (the read half's saved set-ups).
+    sfilled: u32, // 168
     taken: u32,     // 172
     kept: u32,      // 176
-    room: u32,      // 180
-    tested: [u32; 2], // 184
-    failed: [u32; 2], // 192
-    drawn: u32,     // 200
-    run: u32,       // 204
-    flushes: u32,   // 208
+    /// The next slot to save into: a kept face whose colour goes to `kept == snext`
+    /// (below `sroom`) saves its set-up there, at `skeep`.
+    snext: u32, // 180
+    /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
+    filled: u32, // 184
+    room: u32,      // 188
+    /// The read half's slots, the slot `snext` of the other, its slots (at most `room`).
+    sread: *const u32, // 192
+    skeep: *mut u32, // 196
+    sroom: u32,     // 200
+    tested: [u32; 2], // 204
+    failed: [u32; 2], // 212
+    drawn: u32,     // 220
+    run: u32,       // 224
+    flushes: u32,   // 228
     /// The head of the face the loop stopped at.
-    least: u32, // 212
+    least: u32, // 232
+}
+
+#[cfg(all(zraster_thumb, zraster_dsp))]
+impl BandBlock {
+    /// A block to be filled: its counts 0 (the faces to the next flush `FLUSH`), the
+    /// rest `v` or null (each written before the loop reads it).
+    #[inline(always)]
+    fn splat(v: u32) -> BandBlock {
+        BandBlock {
+            rows: RowsLess::splat(v),
+            heads: [v; 4],
+            links: core::ptr::null(),
+            n: v,
+            faces: core::ptr::null(),
+            len: v,
+            setup: [v; 7],
+            color: v,
+            light: core::ptr::null(),
+            to_color: core::ptr::null(),
+            entries: core::ptr::null(),
+            read: core::ptr::null(),
+            keep: core::ptr::null_mut(),
+            sfilled: v,
+            taken: v,
+            kept: v,
+            snext: v,
+            filled: v,
+            room: v,
+            sread: core::ptr::null(),
+            skeep: core::ptr::null_mut(),
+            sroom: v,
+            tested: [0; 2],
+            failed: [0; 2],
+            drawn: FLUSH,
+            run: 0,
+            flushes: 0,
+            least: 0,
+        }
+    }
 }
 
 #[cfg(target_pointer_width = "32")]
@@ -538,11 +664,14 @@ const _: () = {
     assert!(offset_of!(B, color) == 144 && offset_of!(B, light) == 148);
     assert!(offset_of!(B, to_color) == 152 && offset_of!(B, entries) == 156);
     assert!(offset_of!(B, read) == 160 && offset_of!(B, keep) == 164);
-    assert!(offset_of!(B, filled) == 168 && offset_of!(B, taken) == 172);
-    assert!(offset_of!(B, kept) == 176 && offset_of!(B, room) == 180);
-    assert!(offset_of!(B, tested) == 184 && offset_of!(B, failed) == 192);
-    assert!(offset_of!(B, drawn) == 200 && offset_of!(B, run) == 204);
-    assert!(offset_of!(B, flushes) == 208 && offset_of!(B, least) == 212);
+    assert!(offset_of!(B, sfilled) == 168 && offset_of!(B, taken) == 172);
+    assert!(offset_of!(B, kept) == 176 && offset_of!(B, snext) == 180);
+    assert!(offset_of!(B, filled) == 184 && offset_of!(B, room) == 188);
+    assert!(offset_of!(B, sread) == 192 && offset_of!(B, skeep) == 196);
+    assert!(offset_of!(B, sroom) == 200 && offset_of!(B, tested) == 204);
+    assert!(offset_of!(B, failed) == 212 && offset_of!(B, drawn) == 220);
+    assert!(offset_of!(B, run) == 224 && offset_of!(B, flushes) == 228);
+    assert!(offset_of!(B, least) == 232);
 };
 
 /// The colour of a face into the rows' block (at 12) and r0 for the band loop: the
@@ -561,12 +690,89 @@ macro_rules! band_color {
     };
 }
 
+/// The least head's face's corners (r8 the head): its three indices, each below the
+/// cache's length (else the caller's, at `$bad`), made the entries' addresses in r1–r3
+/// as `small_less_dsp` hands them over, the block in r0.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! band_corners {
+    ($bad:literal) => {
+        concat!(
+            "ldrd r0, lr, [r7, #108]\n",
+            "lsr r12, r8, #2\n",
+            "add r12, r12, r12, lsl #1\n",
+            "add r12, r0, r12, lsl #1\n",
+            "ldrh r1, [r12]\n",
+            "ldrh r2, [r12, #2]\n",
+            "ldrh r3, [r12, #4]\n",
+            "cmp r1, lr\n",
+            "itt lo\n",
+            "cmplo r2, lr\n",
+            "cmplo r3, lr\n",
+            concat!("bhs ", $bad, "\n"),
+            // The set-up's operands (as `small_less_dsp` hands them over).
+            "ldr r0, [r7, #156]\n",
+            "add r1, r0, r1, lsl #3\n",
+            "add r2, r0, r2, lsl #3\n",
+            "add r3, r0, r3, lsl #3\n",
+            "mov r0, r7\n",
+        )
+    };
+}
+
+/// A kept face's set-up saved into its slot (the band loop's r4 as pushed, at sp + 16),
+/// the slot counted, then its rows in this band cut at the clip's last row: the
+/// `$hook` of `small_body!(keep, ..)` (its registers there: r3 the first row's depth,
+/// r4 px0, r5 the first row, n0 at sp + 8, xmax at sp + 12, n1 at 64, none of them the
+/// clip's: the set-up ran unclipped below). Slot layout: [`STATE_WORDS`].
+#[cfg(all(zraster_thumb, zraster_dsp))]
+#[rustfmt::skip]
+macro_rules! keep_state {
+    () => {
+        concat!(
+            "ldr r12, [sp, #16]\n",
+            "ldm r0, {{r1, r2, r6, r7}}\n",
+            "ldrd r8, r9, [r0, #20]\n",
+            "ldr r10, [r0, #36]\n",
+            "ldrd r11, lr, [sp, #8]\n",
+            "stm r12!, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
+            "stm r12!, {{r3, r4, r5}}\n",
+            "add r1, r0, #48\n",
+            "ldm r1, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
+            "stm r12!, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
+            // Counted: the next slot is the one after it.
+            "ldr r1, [r0, #180]\n",
+            "adds r1, #1\n",
+            "str r1, [r0, #180]\n",
+            "str r12, [r0, #196]\n",
+            // This band's rows: n0 = min(n0, m), n1 = min(n1, m − n0), m = clip.y1 − first
+            // row, at least 0.
+            "ldr r12, [r0, #124]\n",
+            "sub r12, r12, r5\n",
+            "usat r12, #16, r12\n",
+            "ldr r1, [sp, #8]\n",
+            "cmp r1, r12\n",
+            "it hi\n",
+            "movhi r1, r12\n",
+            "sub r12, r12, r1\n",
+            "cmp r8, r12\n",
+            "it hi\n",
+            "movhi r8, r12\n",
+            "str r1, [sp, #8]\n",
+            "str r8, [r0, #64]\n",
+        )
+    };
+}
+
 /// The band loop (the block in r7, the heads in r6, r9, r10, r11): the least head's
 /// face (the merge: its chain's next face takes the head's place, moved down past the
 /// heads below it), its colour (taken from the band above, or `$color`, and kept for
-/// the band below), set-up and rows (`small_body`), counts, and on. Ends with r0 0 at
-/// the end of the faces, 1 at a face left whole to the caller, 2 at a face whose carry
-/// is done but which it does not draw (its head at 212), the heads stored back.
+/// the band below), set-up and rows (`small_body`), counts, and on. A face kept for the
+/// band below saves its set-up too (`keep_state`) while the slots follow the kept
+/// colours one for one; a face taken from the band above whose set-up was saved resumes
+/// it at this band's first row instead of being set up again. Ends with r0 0 at the end
+/// of the faces, 1 at a face left whole to the caller, 2 at a face whose carry is done
+/// but which it does not draw (its head at 232), the heads stored back.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! band_body {
@@ -609,14 +815,18 @@ macro_rules! band_body {
             "movhs r11, r3\n",
             "64:\n",
             // By the chain: its own (2) worked out (r1 the face); tall (3) the
-            // caller's; taken (0): the next carried colour while there is one, else
-            // worked out, and counted; kept (1): worked out and kept.
+            // caller's; taken (0): resumed while there is a set-up, else the next
+            // carried colour while there is one, else worked out, and counted; kept
+            // (1): worked out and kept, with its set-up while the slots follow.
             "and r5, r8, #3\n",
             "cmp r5, #2\n",
             "beq 27f\n",
             "bhi 68f\n",
             "cbnz r5, 25f\n",
             "ldrd r0, r1, [r7, #168]\n",
+            "cmp r1, r0\n",
+            "blo 30f\n",
+            "ldr r0, [r7, #184]\n",
             "cmp r1, r0\n",
             "bhs 26f\n",
             "ldr r0, [r7, #160]\n",
@@ -629,6 +839,13 @@ macro_rules! band_body {
             "lsr r1, r8, #2\n",
             band_color!($color),
             "ldrd r1, r2, [r7, #176]\n",
+            "cmp r1, r2\n",
+            "bne 28f\n",
+            "ldr r2, [r7, #200]\n",
+            "cmp r1, r2\n",
+            "blo 31f\n",
+            "28:\n",
+            "ldr r2, [r7, #188]\n",
             "cmp r1, r2\n",
             "bhs 22f\n",
             "ldr r2, [r7, #164]\n",
@@ -648,24 +865,7 @@ macro_rules! band_body {
             band_color!($color),
             // The corners' indices, each below the cache's length, else the caller's.
             "22:\n",
-            "ldrd r0, lr, [r7, #108]\n",
-            "lsr r12, r8, #2\n",
-            "add r12, r12, r12, lsl #1\n",
-            "add r12, r0, r12, lsl #1\n",
-            "ldrh r1, [r12]\n",
-            "ldrh r2, [r12, #2]\n",
-            "ldrh r3, [r12, #4]\n",
-            "cmp r1, lr\n",
-            "itt lo\n",
-            "cmplo r2, lr\n",
-            "cmplo r3, lr\n",
-            "bhs 67f\n",
-            // The set-up's operands (as `small_less_dsp` hands them over).
-            "ldr r0, [r7, #156]\n",
-            "add r1, r0, r1, lsl #3\n",
-            "add r2, r0, r2, lsl #3\n",
-            "add r3, r0, r3, lsl #3\n",
-            "mov r0, r7\n",
+            band_corners!("67f"),
             small_body!(
                 fused,
                 "ldrsh",
@@ -676,29 +876,30 @@ macro_rules! band_body {
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
             // Refused by the set-up: the caller's. Else the counts, as the face loop's.
+            "61:\n",
             "cbnz r2, 67f\n",
-            "ldrd r4, r5, [r7, #200]\n",
+            "ldrd r4, r5, [r7, #220]\n",
             "subs r4, #1\n",
             "add r5, r1\n",
-            "strd r4, r5, [r7, #200]\n",
+            "strd r4, r5, [r7, #220]\n",
             "bne 60b\n",
-            "ldrd r2, r3, [r7, #184]\n",
+            "ldrd r2, r3, [r7, #204]\n",
             "adds r2, r2, r5\n",
             "adc r3, r3, #0\n",
-            "strd r2, r3, [r7, #184]\n",
-            "ldrd r2, r3, [r7, #192]\n",
+            "strd r2, r3, [r7, #204]\n",
+            "ldrd r2, r3, [r7, #212]\n",
             "ldr r4, [r7, #44]\n",
             "adds r2, r2, r4\n",
             "adc r3, r3, #0\n",
-            "strd r2, r3, [r7, #192]\n",
+            "strd r2, r3, [r7, #212]\n",
             "movs r4, #0\n",
-            "str r4, [r7, #204]\n",
+            "str r4, [r7, #224]\n",
             "str r4, [r7, #44]\n",
-            "ldr r4, [r7, #208]\n",
+            "ldr r4, [r7, #228]\n",
             "adds r4, #1\n",
-            "str r4, [r7, #208]\n",
+            "str r4, [r7, #228]\n",
             "mov r4, #8192\n",
-            "str r4, [r7, #200]\n",
+            "str r4, [r7, #220]\n",
             "b 60b\n",
             "66:\n",
             "movs r0, #0\n",
@@ -709,11 +910,91 @@ macro_rules! band_body {
             "68:\n",
             "movs r0, #1\n",
             "65:\n",
-            "str r8, [r7, #212]\n",
+            "str r8, [r7, #232]\n",
             "69:\n",
             "add r1, r7, #84\n",
             "stm r1, {{r6, r9, r10, r11}}\n",
             "pop {{r6, r7}}\n",
+            "b 39f\n",
+            // Kept with its set-up (r1 the slot's number, r0 the colour): the colour
+            // kept too, counted, the slot's address in r4 for `keep_state`.
+            "31:\n",
+            "ldr r2, [r7, #164]\n",
+            "strh r0, [r2, r1, lsl #1]\n",
+            "adds r1, #1\n",
+            "str r1, [r7, #176]\n",
+            "ldr r4, [r7, #196]\n",
+            band_corners!("67b"),
+            small_body!(
+                keep,
+                keep_state!(),
+                "ldrsh",
+                "6",
+                "ldrsh",
+                "4",
+                "0",
+                "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
+            ),
+            "b 61b\n",
+            // Resumed (r1 the slot's number, taken): the set-up's frame as `small_body`
+            // makes it, the saved fields into the rows' block, the rows moved on to
+            // this band's first row (skip = clip.y0 − the saved first row s, at least
+            // 0: the edges and depth stepped by skip rows, into the second half when
+            // the first has no more; the first row s + skip), cut to the clip's rows,
+            // then `small_body`'s rows (at 73). Slot layout: [`STATE_WORDS`].
+            "30:\n",
+            "adds r0, r1, #1\n",
+            "str r0, [r7, #172]\n",
+            "ldr r0, [r7, #192]\n",
+            "add r2, r1, r1, lsl #2\n",
+            "add r2, r1, r2, lsl #2\n",
+            "add r12, r0, r2, lsl #2\n",
+            "mov r0, r7\n",
+            "push {{r0-r12}}\n",
+            "ldm r12!, {{r1, r2, r3, r4, r5, r6, r8}}\n",
+            "stm r0, {{r1, r2, r3, r4}}\n",
+            "strd r5, r6, [r0, #20]\n",
+            "str r8, [r0, #36]\n",
+            "ldm r12!, {{r1, r2, r3, r4, r9}}\n",
+            "str r2, [sp, #12]\n",
+            "ldrd r10, r11, [r0, #120]\n",
+            "sub lr, r10, r9\n",
+            "usat lr, #16, lr\n",
+            "add r10, r9, lr\n",
+            "mla r3, lr, r8, r3\n",
+            "sub r11, r11, r10\n",
+            "usat r11, #16, r11\n",
+            "ldrd r2, r7, [r12], #8\n",
+            "mla r2, lr, r5, r2\n",
+            "subs r1, r1, lr\n",
+            "ble 32f\n",
+            "mla r7, lr, r6, r7\n",
+            "strd r2, r7, [r0, #48]\n",
+            "ldm r12, {{r2, r5, r6, r7, r8, r9, lr}}\n",
+            "b 33f\n",
+            "32:\n",
+            "str r2, [r0, #48]\n",
+            "ldm r12, {{r2, r5, r6, r7, r8, r9, lr}}\n",
+            "rsb r1, r1, #0\n",
+            "mla r8, r1, lr, r8\n",
+            "sub r6, r6, r1\n",
+            "usat r6, #16, r6\n",
+            "movs r1, #0\n",
+            "33:\n",
+            "add r12, r0, #56\n",
+            "stm r12, {{r2, r5, r6, r7, r8, r9, lr}}\n",
+            "cmp r1, r11\n",
+            "it hi\n",
+            "movhi r1, r11\n",
+            "sub r11, r11, r1\n",
+            "cmp r6, r11\n",
+            "it hi\n",
+            "movhi r6, r11\n",
+            "str r1, [sp, #8]\n",
+            "str r6, [r0, #64]\n",
+            "mov r5, r10\n",
+            "b 73b\n",
+            "39:\n",
         )
     };
 }
@@ -723,15 +1004,17 @@ macro_rules! band_body {
 /// covers: each face's colour taken from the band above (chain 0) while `carry` has
 /// one, else coloured by `color`, and kept for the band below (chain 1) while there is
 /// room; drawn by the small triangles' set-up and rows (`small_less_cached`: the depth
-/// test `Less` with depth writes, a two-byte colour); its counts into `counts`. The
-/// heads move past each face it takes. Returns where it stopped ([`BandStop`]). On
-/// ARMv7E-M one assembly loop; elsewhere it leaves every face to the caller
-/// ([`BandStop::Refused`]).
+/// test `Less` with depth writes, a two-byte colour); its counts into `counts`. A face
+/// taken from the band above whose set-up `carry.states` holds is not set up again:
+/// its rows go on from there; a kept face's set-up is kept too while the slots follow
+/// the colours. The heads move past each face it takes. Returns where it stopped
+/// ([`BandStop`]). On ARMv7E-M one assembly loop; elsewhere it leaves every face to the
+/// caller ([`BandStop::Refused`]).
 #[inline(always)]
 pub(crate) fn band_faces_less<C: Copy>(
     heads: &mut [u32; 4],
     (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
-    carry: &mut BandCarry<'_, C>,
+    carry: &mut BandCarry<'_, '_, C>,
     color: &FaceColor<'_, C>,
     t: &mut SmallTarget<'_, '_, C>,
     counts: &mut FacesCounts,
@@ -752,7 +1035,7 @@ pub(crate) fn band_faces_less<C: Copy>(
 fn band_faces_less_dsp<C: Copy>(
     heads: &mut [u32; 4],
     (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
-    carry: &mut BandCarry<'_, C>,
+    carry: &mut BandCarry<'_, '_, C>,
     color: &FaceColor<'_, C>,
     t: &mut SmallTarget<'_, '_, C>,
     counts: &mut FacesCounts,
@@ -774,47 +1057,48 @@ fn band_faces_less_dsp<C: Copy>(
     };
     let zaddr = z.as_mut_ptr() as u32;
     let pitch = (width as u32).wrapping_mul(2);
-    let zrow0 = zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch));
-    let delta = (c.as_mut_ptr() as u32).wrapping_sub(zaddr);
-    let n = links.len().min(faces.len()).min(u32::MAX as usize) as u32;
-    let filled = carry.filled.min(carry.read.len()) as u32;
+    // Made with no clearing call, then filled field by field as each is worked out
+    // (worked out first, the values were kept on the stack meanwhile).
+    let mut block = BandBlock::splat(pitch);
+    block.heads = *heads;
+    block.links = links.as_ptr();
+    block.n = links.len().min(faces.len()).min(u32::MAX as usize) as u32;
+    block.faces = faces.as_ptr();
+    block.len = cache.len().min(u32::MAX as usize) as u32;
+    block.setup = [
+        zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch)),
+        clip.y0 as u32,
+        clip.y1 as u32,
+        clip.x0 as u32,
+        clip.x1 as u32,
+        pitch,
+        (c.as_mut_ptr() as u32).wrapping_sub(zaddr),
+    ];
+    block.color = u32::from(bits);
+    block.light = light;
+    block.entries = cache.as_ptr();
+    block.read = carry.read.as_ptr().cast::<u16>();
+    block.keep = carry.keep.as_mut_ptr().cast::<u16>();
+    block.filled = carry.filled.min(carry.read.len()) as u32;
     // Only compared with `filled` (at most the read half's length) and counted on: the
     // delta goes back into the caller's cursor.
     let taken0 = (*carry.taken).min(carry.read.len() + 1) as u32;
-    let kept0 = (*carry.kept).min(carry.keep.len()) as u32;
-    let mut block = BandBlock {
-        rows: RowsLess::new(0, 0),
-        heads: *heads,
-        links: links.as_ptr(),
-        n,
-        faces: faces.as_ptr(),
-        len: cache.len().min(u32::MAX as usize) as u32,
-        setup: [
-            zrow0,
-            clip.y0 as u32,
-            clip.y1 as u32,
-            clip.x0 as u32,
-            clip.x1 as u32,
-            pitch,
-            delta,
-        ],
-        color: u32::from(bits),
-        light,
-        to_color: core::ptr::null(),
-        entries: cache.as_ptr(),
-        read: carry.read.as_ptr().cast::<u16>(),
-        keep: carry.keep.as_mut_ptr().cast::<u16>(),
-        filled,
-        taken: taken0,
-        kept: kept0,
-        room: carry.keep.len().min(u32::MAX as usize) as u32,
-        tested: [0; 2],
-        failed: [0; 2],
-        drawn: FLUSH,
-        run: 0,
-        flushes: 0,
-        least: 0,
-    };
+    block.taken = taken0;
+    let room = carry.keep.len();
+    block.kept = (*carry.kept).min(room) as u32;
+    block.room = room.min(u32::MAX as usize) as u32;
+    // The set-ups: those the band above saved, resumed below `sfilled`; the slots this
+    // band saves into (at most one a colour it can keep), from the one after those it
+    // has saved.
+    let (filled, saved) = (carry.states.filled, carry.states.saved);
+    let (sread, skeep) = carry.states.halves();
+    let sroom = (skeep.len() / STATE_WORDS).min(room);
+    let snext = saved.min(sroom);
+    block.sfilled = filled.min(sread.len() / STATE_WORDS) as u32;
+    block.snext = snext as u32;
+    block.sread = sread.as_ptr();
+    block.skeep = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
+    block.sroom = sroom as u32;
     let status: u32;
     // SAFETY: the loop composes blocks whose bounds arguments hold as they do alone.
     // The merge reads `links[f]` and `faces[f]` only for the least head's face f (the
@@ -836,7 +1120,25 @@ fn band_faces_less_dsp<C: Copy>(
     // with the same operands at the same offsets of this block (`RowsLess` at 0,
     // word-aligned; the clip inside both buffers by `kernel_buffers`; its SAFETY
     // argument); a triangle it refuses goes to the caller. The counts are stored into
-    // the block by its pinned offsets. Registers and calls: as `fused_asm!` says.
+    // the block by its pinned offsets. The set-ups: a slot is read only for a face taken
+    // at `taken` < sfilled ≤ the read half's slots (at `sread` + 4·STATE_WORDS·taken,
+    // 21 words); one is written only at `skeep`, slot `snext` < sroom ≤ the other half's
+    // slots (`kept == snext` below `sroom`, which is at most `room`: its colour is kept
+    // at `keep[kept]` then too), after which `skeep` moves to the next slot and `snext`
+    // counts it. Every slot below `sfilled` holds what `keep_state` saved there in the
+    // band above (`KeptStates`: the loop's count alone makes `sfilled`): a triangle's
+    // set-up as `small_body` made it, whose rows the set-up's argument bounds
+    // (first row s, its two halves' rows before any clip, each edge's t stepped exactly
+    // and its columns inside [0, ⌊(xmax + 8)/16⌋ − px0] on every one of those rows). A
+    // resumed face's rows are those rows from s + skip on, skip ≥ 0 (USAT), its edges
+    // and depth stepped by skip rows with one MLA each (the values the rows would have
+    // stepped to, t below 2²⁸: no wrapping), at most clip.y1 − clip.y0 of them (USAT:
+    // at least 0) from clip.y0, and the second half's rows at least 0 (USAT): rows of
+    // this band's clip, addressed from its zrow0 and pitch; the columns as the set-up's
+    // (the clip's own test at 73 against this band's clip, px0 and xmax). A kept face's
+    // set-up (`small_body`'s `keep` form) runs with no last row (0x7fff), then its rows
+    // are cut at clip.y1 (n0 ≤ m, n1 ≤ m − n0, m = clip.y1 − s at least 0) before they
+    // run. Registers and calls: as `fused_asm!` says.
     unsafe {
         status = fused_asm!(band_body, block, to_color);
     }
@@ -849,6 +1151,7 @@ fn band_faces_less_dsp<C: Copy>(
         .taken
         .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
     *carry.kept = block.kept as usize;
+    carry.states.saved = block.snext.min(block.sroom) as usize;
     match status {
         0 => BandStop::Done,
         1 => BandStop::Whole(block.least),
@@ -1057,12 +1360,32 @@ pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
 /// as [`check_faces_kernel`]'s) walked from random bins: four chains' heads, links
 /// increasing, ending in `END` or a face past the faces, over links shorter or longer
 /// than the faces; tall faces among them; carried colours up to and past the read
-/// half, the keep half sometimes full. The faces the loop leaves are drawn by the twin
-/// as the band loop would. Returns the number of cases whose buffers, pixel counts,
-/// drawn faces, heads or carry differ. `buf` holds four 48 × 16 buffers (a shorter one
-/// is a failure).
+/// half, the keep half sometimes full. Every other case is two bands of eight rows, one
+/// below the other, the second taking the first's kept faces, the mesh often across
+/// the two. The faces the loop leaves are drawn by the twin as the band loop would.
+/// Returns the number of cases whose buffers, pixel counts, drawn faces, heads or carry
+/// differ. `buf` holds four 48 × 16 buffers (a shorter one is a failure). No set-ups
+/// are kept ([`check_band_carry_kernel`] keeps them).
 #[inline(never)]
 pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
+    band_faces_cases(buf, &mut [], cases, 0x3c6e_f372)
+}
+
+/// [`check_band_faces_kernel`] with the kept faces' set-ups in `carry` (up to four
+/// slots a band, none on some cases): the loop keeps them in the first band and
+/// resumes them in the second, where the twin sets them up again. `carry` holds at
+/// least [`BandBuffers::carry_needed`](crate::BandBuffers::carry_needed)`(4)` words (a
+/// shorter one is a failure).
+#[inline(never)]
+pub fn check_band_carry_kernel(buf: &mut [u16], carry: &mut [u32], cases: usize) -> usize {
+    match carry.get_mut(..2 * 4 * STATE_WORDS) {
+        Some(carry) => band_faces_cases(buf, carry, cases, 0x9e37_79b9),
+        None => usize::MAX,
+    }
+}
+
+/// The cases of [`check_band_faces_kernel`] from `seed`, kept set-ups in `scratch`.
+fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u32) -> usize {
     use super::light::lit_565_portable;
     use super::rows::{small_less_portable, SmallDone};
     use crate::raster::{Clip, ScreenVertex};
@@ -1099,6 +1422,10 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
                 self.kept += 1;
             }
         }
+        fn start_band(&mut self) {
+            core::mem::swap(&mut self.read, &mut self.keep);
+            (self.filled, self.taken, self.kept) = (self.kept, 0, 0);
+        }
     }
     let Some(buf) = buf.get_mut(..4 * N) else {
         return usize::MAX;
@@ -1106,7 +1433,7 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
     let (mine, theirs) = buf.split_at_mut(2 * N);
     let (z1, c1) = mine.split_at_mut(N);
     let (z2, c2) = theirs.split_at_mut(N);
-    let mut rnd = super::xorshift32(0x3c6e_f372);
+    let mut rnd = super::xorshift32(seed);
     let mut bad = 0;
     for case in 0..cases {
         for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
@@ -1115,30 +1442,45 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
         z2.copy_from_slice(z1);
         c2.copy_from_slice(c1);
         let off = case / 2 % 2;
+        let two = case % 2 == 1;
         let first_row = (rnd() % 5) as i32 - 2;
-        let rows = (H - off) as i32;
-        let clip = if case % 3 == 0 {
-            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
-            Clip {
-                x0,
-                y0: first_row + y0,
-                x1: x0 + (rnd() % 30) as i32,
-                y1: first_row + y0 + (rnd() % 10) as i32,
-            }
-        } else {
-            Clip {
-                x0: 0,
-                y0: first_row,
-                x1: W as i32,
-                y1: first_row + rows,
-            }
+        // The bands' first rows and rows (the colour rows end `off` sooner).
+        let band_rows = if two { 8 } else { H };
+        // Each band's clip, as small numbers (the check's stack is the bench's deepest).
+        let mut clip_of = |b: usize| {
+            let y = first_row + (b * band_rows) as i32;
+            let rows = (band_rows - if b == 0 && two { 0 } else { off }) as i32;
+            let [x0, y0, x1, y1] = if case % 3 == 0 {
+                let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+                [
+                    x0,
+                    y + y0,
+                    x0 + (rnd() % 30) as i32,
+                    (y + y0 + (rnd() % 10) as i32).min(y + rows),
+                ]
+            } else {
+                [0, y, W as i32, y + rows]
+            };
+            [x0, y0, x1, y1].map(|v| v as i8)
         };
-        let len = rnd() as usize % 13;
+        let clips = [clip_of(0), clip_of(1)];
+        let clip_at = |b: usize| {
+            let [x0, y0, x1, y1] = clips.get(b).copied().unwrap_or_default().map(i32::from);
+            Clip { x0, y0, x1, y1 }
+        };
+        let len = match two {
+            true => 4 + rnd() as usize % 9,
+            false => rnd() as usize % 13,
+        };
         let mut cache = [CachedVertex::EMPTY; 12];
         let span = 64 << (case % 4);
+        // Two bands: the corners about their common row.
         let (bx, by) = (
             (rnd() % (W as u32 * 16)) as i32 - 40,
-            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+            match two {
+                true => (first_row + 8) * 16 + (rnd() % 96) as i32 - 48,
+                false => (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+            },
         );
         for (i, e) in cache.iter_mut().enumerate() {
             let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
@@ -1163,7 +1505,9 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
                 }
             }
         }
-        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
+        // Two bands: more faces and links, each face in the chains more often.
+        let more = |n: u32, r: u32| if two { n / 2 + r % (n - n / 2) } else { r % n };
+        let faces = faces.get(..more(17, rnd()) as usize).unwrap_or(&[]);
         // The bins: links increasing (so every chain ends), to END or past the faces.
         let mut links = [0u16; 18];
         for (f, l) in links.iter_mut().enumerate() {
@@ -1173,25 +1517,43 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
                 _ => (f as u32 + 1 + rnd() % 3) as u16,
             };
         }
-        let links = links.get(..rnd() as usize % 19).unwrap_or(&[]);
-        let mut heads = [0u32; 4];
-        for (c, h) in heads.iter_mut().enumerate() {
-            let f = if rnd().is_multiple_of(5) {
+        let links = links.get(..more(19, rnd()) as usize).unwrap_or(&[]);
+        // Each band's four chains' first faces; the second band takes the first's kept
+        // chain and shares its tall one.
+        let mut first = [[0u16; 4]; 2];
+        for (c, f) in first.iter_mut().flatten().enumerate() {
+            *f = if rnd().is_multiple_of(5) {
                 END
             } else {
                 (rnd() % 18) as u16
             };
             // Tall faces (chain 3) on some cases only, as a band has few.
-            let c = if c == 3 && case % 4 != 0 { 2 } else { c as u32 };
-            *h = u32::from(f) << 2 | c;
+            if c % 4 == 3 && case % 4 != 0 {
+                *f = END;
+            }
         }
-        heads.sort_unstable();
+        if two {
+            first[0][1] = (rnd() % 6) as u16;
+        }
+        first[1][0] = first[0][1];
+        first[1][3] = first[0][3];
+        let heads_of = |f: [u16; 4]| {
+            let mut h = [0u32; 4];
+            for (c, (h, f)) in h.iter_mut().zip(f).enumerate() {
+                *h = u32::from(f) << 2 | c as u32;
+            }
+            h.sort_unstable();
+            h
+        };
         let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
         let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
         let ambient = (rnd() % 131_073) as i32 - 65536;
         let diffuse = ((rnd() % 131_073) as i32 - 65536) << 3;
         let channels = [0; 3].map(|_| rnd() as u8);
-        let count = rnd() as usize % (faces.len() + 2);
+        let count = match two && !rnd().is_multiple_of(4) {
+            true => faces.len(),
+            false => rnd() as usize % (faces.len() + 2),
+        };
         let block = LightBlock::new(
             light,
             ambient,
@@ -1218,12 +1580,21 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
             taken: rnd() as usize % 3,
             kept: rnd() as usize % 9,
         };
+        // Two bands mostly from a band's start, where set-ups are kept from the first.
+        if two && !rnd().is_multiple_of(4) {
+            (carry.taken, carry.kept) = (0, 0);
+        }
         let mut carry2 = carry.clone();
+        // Up to four slots of set-ups, none on some cases.
+        let slots = rnd() as usize % 6;
+        let mut states = KeptStates::new(&mut *scratch, slots);
         // One face as the band loop draws it (`carried`: its carry done by the fused
-        // loop); `false` at a corner past the cache (the band loop's error: it stops).
+        // loop) in band `b`; `false` at a corner past the cache (the band loop's
+        // error: it stops).
         let face = |head: u32,
                     carried: bool,
                     carry: &mut Carry8,
+                    b: usize,
                     z: &mut [u16],
                     c: &mut [u16],
                     counts: &mut FacesCounts| {
@@ -1232,7 +1603,7 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
                 return false;
             };
             let get = |i: u16| cache.get(usize::from(i));
-            let (Some(a), Some(b), Some(e)) = (get(t[0]), get(t[1]), get(t[2])) else {
+            let (Some(a), Some(e1), Some(e2)) = (get(t[0]), get(t[1]), get(t[2])) else {
                 return false;
             };
             let taken = match (k, carried) {
@@ -1244,11 +1615,12 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
             if k == 1 && !carried {
                 carry.keep(col);
             }
-            let [p, q, r] = [a, b, e].map(|e| {
+            let [p, q, r] = [a, e1, e2].map(|e| {
                 let (x, y) = e.xy();
                 ScreenVertex::from_raw(x, y, e.z)
             });
-            let done = small_less_portable([&p, &q, &r], &clip, first_row, W, z, c, col);
+            let (clip, row) = (clip_at(b), first_row + (b * band_rows) as i32);
+            let done = small_less_portable([&p, &q, &r], &clip, row, W, z, c, col);
             if let SmallDone::Drawn(tested, failed) = done {
                 counts.drawn += 1;
                 counts.tested += u64::from(tested);
@@ -1275,38 +1647,52 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
             }
             Some(least)
         };
-        // The fused loop, the faces it leaves drawn by the twin.
-        let mut mine = FacesCounts::default();
-        let mut heads1 = heads;
-        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
-            return usize::MAX;
-        };
-        let mut t = SmallTarget {
-            z: &mut z1[..],
-            c: ca,
-            width: W,
-            first_row,
-            clip,
-        };
-        let mut stopped = false;
-        loop {
-            let Carry8 {
-                read,
-                keep,
-                filled,
-                taken,
-                kept,
-            } = &mut carry;
-            let mut parts = BandCarry {
-                read: &read[..],
-                keep: &mut keep[..],
-                filled: *filled,
-                taken,
-                kept,
+        let (mut mine, mut theirs) = (FacesCounts::default(), FacesCounts::default());
+        let (mut stopped, mut stopped2) = (false, false);
+        let mut same_heads = true;
+        for (b, &first) in first.iter().enumerate().take(1 + usize::from(two)) {
+            let at = b * band_rows * W;
+            let (Some(za), Some(ca)) = (z1.get_mut(at..), c1.get_mut(off + at..)) else {
+                return usize::MAX;
             };
-            let tables = (links, faces, cache);
-            let (head, carried) =
-                match band_faces_less(&mut heads1, tables, &mut parts, &color, &mut t, &mut mine) {
+            let (Some(zb), Some(cb)) = (z2.get_mut(at..), c2.get_mut(off + at..)) else {
+                return usize::MAX;
+            };
+            let row = first_row + (b * band_rows) as i32;
+            // The fused loop, the faces it leaves drawn by the twin.
+            let mut heads1 = heads_of(first);
+            let mut t = SmallTarget {
+                z: za,
+                c: ca,
+                width: W,
+                first_row: row,
+                clip: clip_at(b),
+            };
+            while !stopped {
+                let Carry8 {
+                    read,
+                    keep,
+                    filled,
+                    taken,
+                    kept,
+                } = &mut carry;
+                let mut parts = BandCarry {
+                    read: &read[..],
+                    keep: &mut keep[..],
+                    filled: *filled,
+                    taken,
+                    kept,
+                    states: &mut states,
+                };
+                let tables = (links, faces, cache);
+                let (head, carried) = match band_faces_less(
+                    &mut heads1,
+                    tables,
+                    &mut parts,
+                    &color,
+                    &mut t,
+                    &mut mine,
+                ) {
                     BandStop::Done => break,
                     BandStop::Whole(h) => (h, false),
                     BandStop::Fill(h) => (h, true),
@@ -1316,25 +1702,27 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
                         None => break,
                     },
                 };
-            let (z, c) = (&mut *t.z, &mut *t.c);
-            if !face(head, carried, &mut carry, z, c, &mut mine) {
-                stopped = true;
-                break;
+                let (z, c) = (&mut *t.z, &mut *t.c);
+                if !face(head, carried, &mut carry, b, z, c, &mut mine) {
+                    stopped = true;
+                }
             }
-        }
-        // The twin.
-        let mut theirs = FacesCounts::default();
-        let mut heads2 = heads;
-        let mut stopped2 = false;
-        while let Some(head) = next(&mut heads2) {
-            if !face(head, false, &mut carry2, z2, cb, &mut theirs) {
-                stopped2 = true;
-                break;
+            // The twin.
+            let mut heads2 = heads_of(first);
+            while !stopped2 {
+                let Some(head) = next(&mut heads2) else {
+                    break;
+                };
+                stopped2 = !face(head, false, &mut carry2, b, zb, cb, &mut theirs);
             }
+            same_heads &= heads1 == heads2;
+            carry.start_band();
+            carry2.start_band();
+            states.start_band();
         }
         // After a stop (an error: the frame is not drawn on) the carry is not compared.
         let same_carry = stopped || carry == carry2;
-        let same_draw = mine == theirs && z1 == z2 && c1 == c2 && heads1 == heads2;
+        let same_draw = mine == theirs && z1 == z2 && c1 == c2 && same_heads;
         if !same_draw || stopped != stopped2 || !same_carry {
             bad += 1;
         }
@@ -1358,6 +1746,12 @@ mod tests {
         let mut buf = [0u16; 4 * 48 * 16];
         assert_eq!(check_band_faces_kernel(&mut buf, 4_000), 0);
         assert_eq!(check_band_faces_kernel(&mut buf[..100], 1), usize::MAX);
+        let mut carry = [0u32; 2 * 4 * STATE_WORDS];
+        assert_eq!(check_band_carry_kernel(&mut buf, &mut carry, 4_000), 0);
+        assert_eq!(
+            check_band_carry_kernel(&mut buf, &mut carry[1..], 1),
+            usize::MAX
+        );
     }
 
     /// `Raw565`'s promise: the colour of every packed value is two bytes holding it.

@@ -73,9 +73,9 @@ pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, C
 pub use faces::Raw565;
 pub(crate) use faces::{
     band_faces_less, faces_less, BandCarry, BandStop, FaceColor, FacesCounts, FacesStop,
-    FACES_KERNEL,
+    KeptStates, FACES_KERNEL, STATE_WORDS,
 };
-pub use faces::{check_band_faces_kernel, check_faces_kernel};
+pub use faces::{check_band_carry_kernel, check_band_faces_kernel, check_faces_kernel};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;

@@ -101,6 +101,34 @@ impl RowsLess {
         }
     }
 
+    /// Rows whose every field is `v` but the failed count, 0: for a block the assembly
+    /// fills before it reads it (a word repeated, where the zeros of [`new`] are one
+    /// call of `memclr` that the values worked out around it are kept on the stack for).
+    ///
+    /// [`new`]: RowsLess::new
+    #[cfg_attr(not(all(zraster_thumb, zraster_dsp)), allow(dead_code))]
+    #[inline(always)]
+    pub(crate) fn splat(v: u32) -> RowsLess {
+        let i = v as i32;
+        RowsLess {
+            sx: v,
+            lo: v,
+            span: v,
+            color: v,
+            delta: v,
+            dt: [v; 2],
+            cx: [i; 2],
+            sy: v,
+            pitch: v,
+            failed: 0,
+            t: [v; 2],
+            d: [v; 2],
+            n1: v,
+            side: v,
+            short1: [v; 3],
+        }
+    }
+
     /// The depth plane's steps `sx` and `sy`, and the clamp `lo..=hi` (`lo ≤ hi`: held
     /// as `lo` and `hi − lo`, one unsigned compare a row).
     #[inline(always)]
@@ -870,7 +898,12 @@ macro_rules! rows_start {
 /// `fused` first (the face loop's): the colour, its delta and the pitch already in the
 /// block, the clip's rows, zrow0 and its columns read from the block at 120, 116 and
 /// 128 (not r5, r8, r4, r9, r10: r5 and r8 come back as they were), failed neither
-/// zeroed nor read (the face loop's running sum; r3 left undefined).
+/// zeroed nor read (the face loop's running sum; r3 left undefined). With `keep` (the
+/// band loop's face reaching the band below): as `fused`, but its rows not cut at the
+/// clip's last row, and `$hook` run between the set-up and the rows (it finds the
+/// first row's depth in r3, px0 in r4, the first row in r5, n0 at sp + 8, xmax at
+/// sp + 12, n1 in the block, and must leave them so; label 73 follows it, where the
+/// band loop enters with a set-up of its own).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -880,6 +913,7 @@ macro_rules! small_body {
             "ldr r1, [sp, #16]\n",
             "ldrd r8, r10, [sp, #36]\n",
             "ldr r3, [r0, #44]\n",
+            "",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
@@ -889,10 +923,22 @@ macro_rules! small_body {
             "ldr r1, [r0, #116]\n",
             "ldrd r8, r10, [r0, #128]\n",
             "",
+            "",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
-    (@ $entry:literal, $zrow:literal, $clipx:literal, $failed:literal,
+    (keep, $hook:expr,
+     $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
+        small_body!(
+            @ "ldr r5, [r0, #120]\nmovw r8, #0x7fff\n",
+            "ldr r1, [r0, #116]\n",
+            "ldrd r8, r10, [r0, #128]\n",
+            "",
+            concat!($hook, "73:\n"),
+            $ly, $oy, $lx, $ox, $oz, $p0
+        )
+    };
+    (@ $entry:literal, $zrow:literal, $clipx:literal, $failed:literal, $hook:expr,
      $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
             // r0–r3 pushed to make the set-up's 16 bytes of scratch (r1, the first
@@ -1089,6 +1135,7 @@ macro_rules! small_body {
             "add r8, r8, #32768\n",
             "mla r8, r1, r6, r8\n",
             "mla r3, r3, r7, r8\n",
+            $hook,
             // The rows inside the clip's columns when px0 ≥ clip.x0 and
             // ⌊(xmax + 8)/16⌋ ≤ clip.x1 (at 200); else the clip's columns made local
             // for the rows' clamp (clip.x0, clip.x1 as pushed by the entry, at sp + 16 + 20).
