@@ -14,6 +14,11 @@ use crate::raster::Clip;
 /// Whether [`small_x86`] runs the assembly (x86-64); elsewhere it refuses every call.
 pub(crate) const SMALL_X86_KERNEL: bool = cfg!(zraster_x86_64);
 
+/// The screen column the assembly's columns count from (its local column 0), left of
+/// every cached x (−2¹⁴ in 1/16 pixel): the clip's columns are then worked out once a
+/// run and an edge's `t` stays positive (16 in the assembly's `16392` and `−16376`).
+const ORIGIN: i32 = -1024;
+
 /// The block the assembly reads and writes, at the offsets in the comments: the rows'
 /// operands (as [`rows_x86`](super::rows_x86)'s), the buffers and the clip, the lower
 /// half's short edge, and the set-up's values kept for later.
@@ -23,12 +28,13 @@ pub(crate) const SMALL_X86_KERNEL: bool = cfg!(zraster_x86_64);
 pub(super) struct Block {
     rows: [u32; 14], // 0: sx, sy, lo, hi, cx0, cx1, dtl, dtr, spare, spare, n, dl, dr, color
     pitch: usize,    // 56
-    zbase: usize,    // 64
+    /// The depth's address of screen column `ORIGIN` of screen row 0 (wrapping).
+    zbase: usize, // 64
     delta: isize,    // 72
     width: isize,    // 80
     /// First row, clip x0, y0, x1, y1, lower rows, spare.
     at: [i32; 10], // 88
-    /// dxl, dyl, dxs, dys, area, start, mid, n0, px0, ya, ym, xa', q, r.
+    /// dxl, dyl, dxs, dys, area, start, mid, n0, spare, ya, ym, xa', q, r.
     set: [i32; 14], // 128
     /// Pixels tested and failed, summed.
     tested: u64, // 184
@@ -36,6 +42,17 @@ pub(super) struct Block {
 }
 
 impl Block {
+    /// The address of screen column [`ORIGIN`] of screen row 0 in depth rows `z` of the
+    /// block's width from its first row (wrapping: an address the assembly adds only the
+    /// offsets of the clip's pixels to).
+    #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
+    #[inline(always)]
+    fn origin(&self, z: &mut [u16]) -> usize {
+        let [first_row, ..] = self.at;
+        let at = (ORIGIN as isize).wrapping_sub((first_row as isize).wrapping_mul(self.width));
+        (z.as_mut_ptr() as usize).wrapping_add_signed(at.wrapping_mul(2))
+    }
+
     /// The colour's bits (at 52: the rows' colour).
     #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
     pub(super) fn set_color(&mut self, bits: u16) {
@@ -69,8 +86,7 @@ const _: () = {
 macro_rules! small_x86_body {
     () => {
         concat!(
-            // Extents in x (the corners in any order): 512 pixels or more refused;
-            // px0 = xmin >> 4.
+            // Extents in x (the corners in any order): 512 pixels or more refused.
             "movsx eax, word ptr [rsi + 4]\n",
             "movsx r8d, word ptr [rdx + 4]\n",
             "movsx r9d, word ptr [rcx + 4]\n",
@@ -87,8 +103,6 @@ macro_rules! small_x86_body {
             "sub r11d, r10d\n",
             "cmp r11d, 8191\n",
             "jg 91f\n",
-            "sar r10d, 4\n",
-            "mov dword ptr [rdi + 160], r10d\n",
             // p0 kept; a, m, c sorted by y (stable, as `by_rows`).
             "mov r15, rsi\n",
             "movsx eax, word ptr [rsi + 6]\n",
@@ -156,11 +170,8 @@ macro_rules! small_x86_body {
             "sub r11d, r9d\n",
             "jz 90f\n",
             "mov dword ptr [rdi + 144], r11d\n",
-            // xa' = xa − 16·px0 + 8.
-            "mov r9d, r10d\n",
-            "shl r9d, 4\n",
-            "sub r12d, r9d\n",
-            "add r12d, 8\n",
+            // xa' = xa − 16·ORIGIN + 8.
+            "add r12d, 16392\n",
             "mov dword ptr [rdi + 172], r12d\n",
             // The depths: lo, hi (biased), dz₁, dz₂ of z >> 4.
             "mov eax, dword ptr [rsi]\n",
@@ -228,13 +239,11 @@ macro_rules! small_x86_body {
             "mov dword ptr [rdi + 180], eax\n",
             "shl eax, 4\n",
             "mov dword ptr [rdi + 4], eax\n",
-            // The first row's depth at local column 0, from p0:
-            // z + bias + q·(8 − (x − 16·px0)) + r·(8 − (y − 16·start)).
+            // The first row's depth at local column 0 (screen column ORIGIN), from p0:
+            // z + bias + q·(8 − (x − 16·ORIGIN)) + r·(8 − (y − 16·start)).
             "movsx eax, word ptr [r15 + 4]\n",
-            "mov r9d, dword ptr [rdi + 160]\n",
-            "shl r9d, 4\n",
+            "mov r9d, -16376\n",
             "sub r9d, eax\n",
-            "add r9d, 8\n",
             "imul r9d, dword ptr [rdi + 176]\n",
             "movsx eax, word ptr [r15 + 6]\n",
             "mov r12d, dword ptr [rdi + 148]\n",
@@ -262,21 +271,10 @@ macro_rules! small_x86_body {
             "mov r14d, dword ptr [rdi + 172]\n",
             "imul r14d, dword ptr [rdi + 140]\n",
             "lea r13d, [r13 + r14 - 1]\n",
-            // The first row's address; the clip's columns, local.
-            "mov r9d, dword ptr [rdi + 148]\n",
-            "sub r9d, dword ptr [rdi + 88]\n",
-            "movsxd r9, r9d\n",
-            "imul r9, qword ptr [rdi + 80]\n",
-            "movsxd rdx, dword ptr [rdi + 160]\n",
-            "add r9, rdx\n",
-            "mov r11, qword ptr [rdi + 64]\n",
-            "lea r11, [r11 + r9 * 2]\n",
-            "mov edx, dword ptr [rdi + 92]\n",
-            "sub edx, dword ptr [rdi + 160]\n",
-            "mov dword ptr [rdi + 16], edx\n",
-            "mov edx, dword ptr [rdi + 100]\n",
-            "sub edx, dword ptr [rdi + 160]\n",
-            "mov dword ptr [rdi + 20], edx\n",
+            // The first row's address: local column 0 of screen row `start`.
+            "movsxd r11, dword ptr [rdi + 148]\n",
+            "imul r11, qword ptr [rdi + 56]\n",
+            "add r11, qword ptr [rdi + 64]\n",
             // Sides: with the middle corner right of the long edge (area > 0) the
             // long edge is the left one (r8), else the right one (r9).
             "mov eax, dword ptr [rdi + 128]\n",
@@ -450,6 +448,22 @@ impl SmallRun {
         let need = (clip.y1 - first_row) as u32 as usize * width;
         Some(SmallRun {
             b: Block {
+                rows: [
+                    0,
+                    0,
+                    0,
+                    0,
+                    (clip.x0 - ORIGIN) as u32,
+                    (clip.x1 - ORIGIN) as u32,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                ],
                 pitch: width * 2,
                 width: width as isize,
                 at: [first_row, clip.x0, clip.y0, clip.x1, clip.y1, 0, 0, 0, 0, 0],
@@ -469,7 +483,7 @@ impl SmallRun {
             return None;
         }
         let mut b = self.b.clone();
-        b.zbase = z.as_mut_ptr() as usize;
+        b.zbase = b.origin(z);
         b.delta = (c.as_mut_ptr() as isize).wrapping_sub(z.as_mut_ptr() as isize);
         b.tested = 0;
         b.failed = 0;
@@ -507,7 +521,7 @@ impl SmallRun {
         #[cfg(zraster_x86_64)]
         {
             let b = &mut self.b;
-            b.zbase = z.as_mut_ptr() as usize;
+            b.zbase = b.origin(z);
             b.delta = (c.as_mut_ptr() as isize).wrapping_sub(z.as_mut_ptr() as isize);
             b.tested = 0;
             b.failed = 0;
@@ -519,8 +533,10 @@ impl SmallRun {
             // clip's y0..y1, each of its pixels at a column inside the clip's x0..x1 (the
             // row's columns clamped to them). `SmallRun::new` has checked that the clip lies
             // inside the rows (columns within the width, rows from `first_row`) and `draw`
-            // that `z` and `c` reach `need`, past the clip's last row: every depth written at
-            // `zbase + 2·index` and colour `delta` bytes on lies inside them. The divisors:
+            // that `z` and `c` reach `need`, past the clip's last row: every depth written
+            // (at `zbase` + row · pitch + 2 · (column − ORIGIN), `zbase` the address of
+            // screen column ORIGIN of row 0 for these rows) and colour `delta` bytes on lies
+            // inside them. The divisors:
             // |area| ≠ 0 (tested), an edge's 16·dy > 0 on the rows it bounds. Clobbers rax,
             // rcx, rdx, rsi, r8–r15 and the flags; no stack.
             unsafe {
