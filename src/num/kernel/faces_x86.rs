@@ -482,26 +482,25 @@ mod tests {
     ) -> [(Vec<C>, Vec<u16>, FrameStats); 2] {
         let mut r = crate::num::kernel::xorshift32(seed);
         let (w, h) = (96 + r() % 200, 64 + r() % 150);
-        let n = 4 + r() as usize % 300;
-        // Mostly small triangles about the origin, some large (refused by the set-up),
-        // some meshes reaching behind the camera (the loop then refuses the draw).
-        let spread = [2000, 8000, 32000][r() as usize % 3];
+        let n = 4 + r() as usize % 400;
+        // Small triangles (corners about a centre) anywhere, across the screen's
+        // edges too, and some large (refused by the set-up) joining any corners; some
+        // meshes reach behind the camera (the loop then refuses the draw).
+        let spread = [8000, 16000, 32000][r() as usize % 3];
+        let size = [64, 400, 2000][r() as usize % 3];
+        let mut within = |s: i32| (r() % (2 * s as u32 + 1)) as i32 - s;
         let positions: Vec<[i16; 3]> = (0..n)
-            .map(|_| [0; 3].map(|_| ((r() % (2 * spread + 1)) as i32 - spread as i32) as i16))
+            .flat_map(|_| {
+                let c = [0; 3].map(|_| within(spread - size));
+                [0; 3].map(|_| [0, 1, 2].map(|k| (c[k] + within(size)) as i16))
+            })
             .collect();
-        let faces: Vec<[u16; 3]> = (0..n * 2)
-            .map(|_| {
-                let a = r() as usize % n;
-                // Neighbours mostly: small triangles.
-                let near = |r: u32| ((a + r as usize % 7) % n) as u16;
+        let faces: Vec<[u16; 3]> = (0..n)
+            .map(|k| {
                 if r().is_multiple_of(8) {
-                    [
-                        a as u16,
-                        (r() as usize % n) as u16,
-                        (r() as usize % n) as u16,
-                    ]
+                    [0; 3].map(|_| (r() as usize % (3 * n)) as u16)
                 } else {
-                    [a as u16, near(r()), near(r())]
+                    [3 * k, 3 * k + 1, 3 * k + 2].map(|i| i as u16)
                 }
             })
             .collect();
@@ -511,9 +510,12 @@ mod tests {
         compute_face_normals(&plain, &mut normals).unwrap();
         // Now and then no normals (the loop refuses a lit draw).
         let mesh = plain.with_normals((!r().is_multiple_of(5)).then_some(&normals[..]), None);
+        // Now and then a view wider than the frame: triangles across its right edge (the
+        // rows' columns clamped to the clip's).
+        let view = Viewport::new(w + [0, 0, 40][r() as usize % 3], h).unwrap();
         let cam = Camera::look_at(Vec3::new(0.0, 0.0, 2.2), Vec3::new(0.0, 0.0, 0.0), Vec3::Y)
             .unwrap()
-            .perspective(radians(60.0), 0.1, 10.0, Viewport::new(w, h).unwrap())
+            .perspective(radians(60.0), 0.1, 10.0, view)
             .unwrap();
         let turn = (r() % 6283) as f32 / 1000.0;
         let xf = cam.with_model(Mat4::rotation_y(turn) * Mat4::rotation_x(turn * 0.7));

@@ -32,7 +32,8 @@ pub(super) struct Block {
     zbase: usize, // 64
     delta: isize,    // 72
     width: isize,    // 80
-    /// First row, clip x0, y0, x1, y1, lower rows, spare.
+    /// First row, clip x0, y0, x1, y1, lower rows, the inside test's xmin and xmax,
+    /// spare.
     at: [i32; 10], // 88
     /// dxl, dyl, dxs, dys, area, start, mid, n0, spare, ya, ym, xa', q, r.
     set: [i32; 14], // 128
@@ -100,6 +101,48 @@ macro_rules! small_x86_body {
             "cmovg r11d, r8d\n",
             "cmp r9d, r11d\n",
             "cmovg r11d, r9d\n",
+            // A triangle well inside the clip's columns (one pixel to spare on each
+            // side) needs no clamp of its rows' columns: the rows without it.
+            "cmp r10d, dword ptr [rdi + 112]\n",
+            "jl 29f\n",
+            "cmp r11d, dword ptr [rdi + 116]\n",
+            "jg 29f\n",
+            small_x86_rest!(inside),
+            "29:\n",
+            small_x86_rest!(clamp),
+        )
+    };
+}
+
+/// The clamp of a row's edge column to the clip's (`clamp`: `$op` with the clip's
+/// column at `$at`), or none (`inside`).
+#[cfg(zraster_x86_64)]
+macro_rules! small_x86_clamp {
+    (inside, $op:literal, $at:literal) => {
+        ""
+    };
+    (clamp, $op:literal, $at:literal) => {
+        concat!(
+            "cmp eax, dword ptr [rdi + ",
+            $at,
+            "]\n",
+            $op,
+            " eax, dword ptr [rdi + ",
+            $at,
+            "]\n",
+        )
+    };
+}
+
+/// [`small_x86_body`] after the extents (xmin in r10d, xmax in r11d), its rows with
+/// the columns clamped to the clip's (`clamp`) or not (`inside`). Its local labels are
+/// its own: the two copies follow each other, every jump inside one copy but those to
+/// `90`, `91` (after both).
+#[cfg(zraster_x86_64)]
+#[rustfmt::skip]
+macro_rules! small_x86_rest {
+    ($clamp:ident) => {
+        concat!(
             "sub r11d, r10d\n",
             "cmp r11d, 8191\n",
             "jg 91f\n",
@@ -315,14 +358,12 @@ macro_rules! small_x86_body {
             "mov eax, r8d\n",
             "xor edx, edx\n",
             "div dword ptr [rdi + 44]\n",
-            "cmp eax, dword ptr [rdi + 16]\n",
-            "cmovl eax, dword ptr [rdi + 16]\n",
+            small_x86_clamp!($clamp, "cmovl", 16),
             "movsxd r12, eax\n",
             "mov eax, r9d\n",
             "xor edx, edx\n",
             "div dword ptr [rdi + 48]\n",
-            "cmp eax, dword ptr [rdi + 20]\n",
-            "cmovg eax, dword ptr [rdi + 20]\n",
+            small_x86_clamp!($clamp, "cmovg", 20),
             "add r8d, dword ptr [rdi + 24]\n",
             "add r9d, dword ptr [rdi + 28]\n",
             "sub eax, r12d\n",
@@ -466,7 +507,19 @@ impl SmallRun {
                 ],
                 pitch: width * 2,
                 width: width as isize,
-                at: [first_row, clip.x0, clip.y0, clip.x1, clip.y1, 0, 0, 0, 0, 0],
+                at: [
+                    first_row,
+                    clip.x0,
+                    clip.y0,
+                    clip.x1,
+                    clip.y1,
+                    0,
+                    // xmin and xmax of a triangle inside the clip's columns by a pixel.
+                    16 * (clip.x0 + 1),
+                    16 * (clip.x1 - 1) - 1,
+                    0,
+                    0,
+                ],
                 ..Block::default()
             },
             need,
