@@ -39,8 +39,8 @@ struct FacesBlock {
     /// Each channel's `v · max · MUL`, and `HALF · MUL` (`LightBlock::wide_parts`).
     channels: [u64; 3], // 272
     half: u64,    // 296
-    /// The 5- and 6-bit fields' greatest values.
-    max: [u32; 2], // 304
+    /// The 5- and 6-bit fields' greatest values, 0 and the greatest intensity.
+    max: [u32; 4], // 304
 }
 
 #[cfg(target_pointer_width = "64")]
@@ -79,17 +79,15 @@ macro_rules! faces_x86_color {
             "movsx r10d, word ptr [r8 + 4]\n",
             "imul r10d, dword ptr [rdi + 256]\n",
             "add r9d, r10d\n",
-            "xor r10d, r10d\n",
             "test r9d, r9d\n",
-            "cmovs r9d, r10d\n",
+            "cmovs r9d, dword ptr [rdi + 312]\n",
             "imul r9, qword ptr [rdi + 264]\n",
             "sub r9, -2147483648\n",
             "sar r9, 32\n",
             "add r9d, dword ptr [rdi + 260]\n",
-            "cmovs r9d, r10d\n",
-            "mov r10d, 65535\n",
-            "cmp r9d, r10d\n",
-            "cmova r9d, r10d\n",
+            "cmovs r9d, dword ptr [rdi + 312]\n",
+            "cmp r9d, 65535\n",
+            "cmova r9d, dword ptr [rdi + 316]\n",
             // Each channel (i · v·max·MUL + HALF·MUL) >> 54, at most its field's
             // greatest value, high to low.
             "mov r10, r9\n",
@@ -230,7 +228,7 @@ impl<'a, C: Copy> FacesX86<'a, C> {
             diffuse: 0,
             channels: [0; 3],
             half: 0,
-            max: [31, 63],
+            max: [31, 63, 0, 65535],
         };
         let (color, lit, normals) = match *color {
             FaceColor::Flat(c) => (c, false, &[][..]),
