@@ -41,6 +41,8 @@ struct FacesBlock {
     half: u64,    // 296
     /// The 5- and 6-bit fields' greatest values, 0 and the greatest intensity.
     max: [u32; 4], // 304
+    /// rbx and rbp while the loop runs.
+    saved: [u64; 2], // 320
 }
 
 #[cfg(target_pointer_width = "64")]
@@ -54,10 +56,31 @@ const _: () = {
     assert!(offset_of!(B, light) == 248 && offset_of!(B, ambient) == 260);
     assert!(offset_of!(B, diffuse) == 264 && offset_of!(B, channels) == 272);
     assert!(offset_of!(B, half) == 296 && offset_of!(B, max) == 304);
+    assert!(offset_of!(B, saved) == 320);
 };
 
+/// On to `52` with a face of area r8d the cull mode keeps: `back` (`Cull::Back`: a
+/// negative area), else `area − lo ≤ span` (unsigned) drops it.
+#[cfg(zraster_x86_64)]
+#[rustfmt::skip]
+macro_rules! faces_x86_drop {
+    (back) => {
+        concat!(
+            "test r8d, r8d\n",
+            "js 52f\n",
+        )
+    };
+    (range) => {
+        concat!(
+            "add r8d, dword ptr [rdi + 232]\n",
+            "cmp r8d, dword ptr [rdi + 236]\n",
+            "ja 52f\n",
+        )
+    };
+}
+
 /// A lit face's packed 5-6-5 colour into the rows' colour (at 52), as `lit_565`: the
-/// face at `r12 + rsi`, its normal `[rdi + 224]` bytes on; keeps rax, rcx, rdx
+/// face at `rbx + rsi`, its normal `[rdi + 224]` bytes on; keeps rax, rcx, rdx
 /// (the corners' indices); clobbers r8–r11.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
@@ -67,7 +90,7 @@ macro_rules! faces_x86_color {
     };
     (lit) => {
         concat!(
-            "lea r8, [r12 + rsi]\n",
+            "lea r8, [rbx + rsi]\n",
             "add r8, qword ptr [rdi + 224]\n",
             // n·L (wrapping), max(0, n·L), the rounded high word of its product with
             // the diffuse weight, plus ambient, clamped to 0 ..= 65535.
@@ -123,30 +146,32 @@ macro_rules! faces_x86_color {
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
 macro_rules! faces_x86_body {
-    ($color:ident) => {
+    ($color:ident, $cull:ident) => {
         concat!(
-            "mov r12, qword ptr [rdi + 208]\n",
-            "mov r13, qword ptr [rdi + 216]\n",
+            // rbx and rbp (not operands) kept in the block: the faces' end and the
+            // cache in them, which the set-up leaves alone.
+            "mov qword ptr [rdi + 320], rbx\n",
+            "mov qword ptr [rdi + 328], rbp\n",
+            "mov rbx, qword ptr [rdi + 208]\n",
+            "mov rbp, qword ptr [rdi + 216]\n",
             "mov rsi, qword ptr [rdi + 200]\n",
             "movd xmm4, dword ptr [rdi + 240]\n",
             // The scan: the corners' x/y words; (b − a) · (1, −1) and (c − a) swapped,
             // multiplied and added: (xb − xa)(yc − ya) − (yb − ya)(xc − xa).
             "50:\n",
-            "movzx eax, word ptr [r12 + rsi]\n",
-            "movzx edx, word ptr [r12 + rsi + 2]\n",
-            "movzx ecx, word ptr [r12 + rsi + 4]\n",
-            "movd xmm0, dword ptr [r13 + rax * 8 + 4]\n",
-            "movd xmm1, dword ptr [r13 + rdx * 8 + 4]\n",
-            "movd xmm2, dword ptr [r13 + rcx * 8 + 4]\n",
+            "movzx eax, word ptr [rbx + rsi]\n",
+            "movzx edx, word ptr [rbx + rsi + 2]\n",
+            "movzx ecx, word ptr [rbx + rsi + 4]\n",
+            "movd xmm0, dword ptr [rbp + rax * 8 + 4]\n",
+            "movd xmm1, dword ptr [rbp + rdx * 8 + 4]\n",
+            "movd xmm2, dword ptr [rbp + rcx * 8 + 4]\n",
             "psubw xmm1, xmm0\n",
             "psubw xmm2, xmm0\n",
             "pshuflw xmm2, xmm2, 0xe1\n",
             "pmullw xmm1, xmm4\n",
             "pmaddwd xmm1, xmm2\n",
             "movd r8d, xmm1\n",
-            "add r8d, dword ptr [rdi + 232]\n",
-            "cmp r8d, dword ptr [rdi + 236]\n",
-            "ja 52f\n",
+            faces_x86_drop!($cull),
             "add rsi, 6\n",
             "jnz 50b\n",
             "jmp 58f\n",
@@ -154,15 +179,13 @@ macro_rules! faces_x86_body {
             "52:\n",
             "mov qword ptr [rdi + 200], rsi\n",
             faces_x86_color!($color),
-            "lea rsi, [r13 + rax * 8]\n",
-            "lea rdx, [r13 + rdx * 8]\n",
-            "lea rcx, [r13 + rcx * 8]\n",
+            "lea rsi, [rbp + rax * 8]\n",
+            "lea rdx, [rbp + rdx * 8]\n",
+            "lea rcx, [rbp + rcx * 8]\n",
             small_x86_body!(),
             // Drawn (perhaps nothing): counted, the scan's registers back, on.
             "90:\n",
             "inc dword ptr [rdi + 244]\n",
-            "mov r12, qword ptr [rdi + 208]\n",
-            "mov r13, qword ptr [rdi + 216]\n",
             "mov rsi, qword ptr [rdi + 200]\n",
             "add rsi, 6\n",
             "jnz 50b\n",
@@ -173,6 +196,8 @@ macro_rules! faces_x86_body {
             "91:\n",
             "mov eax, 1\n",
             "59:\n",
+            "mov rbx, qword ptr [rdi + 320]\n",
+            "mov rbp, qword ptr [rdi + 328]\n",
         )
     };
 }
@@ -229,6 +254,7 @@ impl<'a, C: Copy> FacesX86<'a, C> {
             channels: [0; 3],
             half: 0,
             max: [31, 63, 0, 65535],
+            saved: [0; 2],
         };
         let (color, lit, normals) = match *color {
             FaceColor::Flat(c) => (c, false, &[][..]),
@@ -315,6 +341,24 @@ impl<'a, C: Copy> FacesX86<'a, C> {
     }
 }
 
+/// The fused loop's `asm!` for a colouring and a cull test, the block `$b`, the status
+/// into `$status`.
+#[cfg(zraster_x86_64)]
+macro_rules! faces_x86_asm {
+    ($color:ident, $cull:ident, $b:ident, $status:ident) => {
+        core::arch::asm!(
+            faces_x86_body!($color, $cull),
+            in("rdi") &raw mut *$b,
+            out("eax") $status,
+            out("rcx") _, out("rdx") _, out("rsi") _,
+            out("r8") _, out("r9") _, out("r10") _, out("r11") _,
+            out("r12") _, out("r13") _, out("r14") _, out("r15") _,
+            out("xmm0") _, out("xmm1") _, out("xmm2") _, out("xmm4") _,
+            options(nostack),
+        )
+    };
+}
+
 /// The assembly loop on the block `b` (a [`FacesX86`]'s, `lit` its colouring):
 /// whether it stopped at a face the set-up refused.
 #[inline(always)]
@@ -336,30 +380,16 @@ fn fused(b: &mut FacesBlock, lit: bool) -> bool {
         // clip's last row. Every area is exact in the words' arithmetic: each entry's
         // x and y lie within −2¹⁴ … 2¹⁴ − 1 (`all_placed`), so differences fit 16 bits
         // and two products' sum 32. Clobbers rax, rcx, rdx, rsi, r8–r15, xmm0–xmm2,
-        // xmm4 and the flags; no stack.
+        // xmm4 and the flags; rbx and rbp (which cannot be operands) are saved in the
+        // block first and restored last; no stack.
         unsafe {
-            if lit {
-                core::arch::asm!(
-                    faces_x86_body!(lit),
-                    in("rdi") &raw mut *b,
-                    out("eax") status,
-                    out("rcx") _, out("rdx") _, out("rsi") _,
-                    out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                    out("r12") _, out("r13") _, out("r14") _, out("r15") _,
-                    out("xmm0") _, out("xmm1") _, out("xmm2") _, out("xmm4") _,
-                    options(nostack),
-                );
-            } else {
-                core::arch::asm!(
-                    faces_x86_body!(flat),
-                    in("rdi") &raw mut *b,
-                    out("eax") status,
-                    out("rcx") _, out("rdx") _, out("rsi") _,
-                    out("r8") _, out("r9") _, out("r10") _, out("r11") _,
-                    out("r12") _, out("r13") _, out("r14") _, out("r15") _,
-                    out("xmm0") _, out("xmm1") _, out("xmm2") _, out("xmm4") _,
-                    options(nostack),
-                );
+            // Cull::Back drops the areas 0 ..= i32::MAX: the sign test.
+            let back = b.neg_lo == 0 && b.span == i32::MAX as u32;
+            match (lit, back) {
+                (true, true) => faces_x86_asm!(lit, back, b, status),
+                (true, false) => faces_x86_asm!(lit, range, b, status),
+                (false, true) => faces_x86_asm!(flat, back, b, status),
+                (false, false) => faces_x86_asm!(flat, range, b, status),
             }
         }
         status != 0
@@ -466,7 +496,7 @@ mod tests {
     use crate::math::{radians, Mat4, Vec3};
     use crate::mesh::{compute_face_normals, Mesh};
     use crate::shade::Shading;
-    use crate::{CachedVertex, Frame, FrameStats, RenderOptions, Renderer, Viewport};
+    use crate::{CachedVertex, Cull, Frame, FrameStats, RenderOptions, Renderer, Viewport};
     use embedded_graphics::pixelcolor::{Bgr565, Rgb565, Rgb888};
     use embedded_graphics::prelude::RgbColor;
     use std::vec;
@@ -519,6 +549,7 @@ mod tests {
         let xf = cam.with_model(Mat4::rotation_y(turn) * Mat4::rotation_x(turn * 0.7));
         let opts = RenderOptions {
             shading,
+            cull: [Cull::Back, Cull::Back, Cull::Front, Cull::None][r() as usize % 4],
             ..Default::default()
         };
         [false, true].map(|twin| {
