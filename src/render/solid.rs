@@ -5,9 +5,11 @@
 
 use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
+#[cfg(zraster_x86_64)]
+use crate::num::kernel::FacesX86;
 use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop};
-use crate::num::kernel::{FacesX86, FACES_KERNEL, FACES_X86_KERNEL};
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
+use crate::num::kernel::{FACES_KERNEL, FACES_X86_KERNEL};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
 /// for the renderer's materials and shading, in one arm for each way of colouring (one
@@ -328,6 +330,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // among them.
         // x86-64: the same in `num::kernel::faces_x86`, where its checks of the faces
         // and the cache, made once here, pass.
+        #[cfg(zraster_x86_64)]
         let mut x86 = match &fused {
             Some(color) if FACES_X86_KERNEL && rows.is_none() => {
                 let (_, faces, cache) = walk.fused();
@@ -372,6 +375,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         FacesStop::Refused => fused = None,
                     }
                 }
+                #[cfg(zraster_x86_64)]
                 if let (Some(k), Some(run), FlatTarget::Fused { b, .. }) =
                     (&mut x86, &small, &mut target)
                 {

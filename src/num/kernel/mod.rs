@@ -80,7 +80,9 @@ pub(crate) use faces::{
     FACES_KERNEL,
 };
 pub use faces::{check_band_faces_kernel, check_faces_kernel};
-pub(crate) use faces_x86::{FacesX86, FACES_X86_KERNEL};
+#[cfg(zraster_x86_64)]
+pub(crate) use faces_x86::FacesX86;
+pub(crate) use faces_x86::FACES_X86_KERNEL;
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;
