@@ -1,8 +1,9 @@
 //! A small flat triangle read from the vertex cache, set-up and rows, in one x86-64
 //! assembly block: the corners sorted by y, the extents tested, the clip's rows, the
-//! edges in the `EdgeDivide` form, the depth steps by two 64-bit unsigned divisions
-//! with the signs folded in, the first row's depth, then both halves' rows (the loop of
-//! [`rows_x86`](super::rows_x86)). Its portable twin is `fill::small`'s
+//! edges in the `EdgeDivide` form (columns counted from a fixed screen column), the
+//! depth steps by two floored 64-bit divisions, the first row's depth, then both
+//! halves' rows (the loop of [`rows_x86`](super::rows_x86); without the clip's column
+//! clamps for a triangle well inside the clip's columns). Its portable twin is `fill::small`'s
 //! `fill_small_divide` (set-up and `rows_divide`), which the renderer runs on other
 //! targets and for what this block refuses; a host test compares the two.
 #![allow(unsafe_code)]
