@@ -5,9 +5,11 @@
 
 use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
-use crate::num::kernel::FACES_KERNEL;
+#[cfg(zraster_x86_64)]
+use crate::num::kernel::FacesX86;
 use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop};
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
+use crate::num::kernel::{FACES_KERNEL, FACES_X86_KERNEL};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
 /// for the renderer's materials and shading, in one arm for each way of colouring (one
@@ -271,7 +273,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // One opaque material, unlit or lit in 5-6-5: for the fused face loop.
         let lit;
         let fused = match materials {
-            crate::mesh::Materials::Uniform(m) if FACES_KERNEL && !see_through::<C, M>(&m) => {
+            crate::mesh::Materials::Uniform(m)
+                if (FACES_KERNEL || FACES_X86_KERNEL) && !see_through::<C, M>(&m) =>
+            {
                 match self.flat_color(materials, lambert) {
                     Some(c) => Some(FaceColor::Flat(c)),
                     None => {
@@ -324,6 +328,16 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // The common case's faces in one assembly loop (`num::kernel::faces`), where
         // there is one, up to a face it leaves to this loop; a band's row test is not
         // among them.
+        // x86-64: the same in `num::kernel::faces_x86`, where its checks of the faces
+        // and the cache, made once here, pass.
+        #[cfg(zraster_x86_64)]
+        let mut x86 = match &fused {
+            Some(color) if FACES_X86_KERNEL && rows.is_none() => {
+                let (_, faces, cache) = walk.fused();
+                FacesX86::new(&operands, faces, cache, walk.first(), color)
+            }
+            _ => None,
+        };
         let mut fused = fused.filter(|_| FACES_KERNEL && rows.is_none());
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
@@ -359,6 +373,21 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                         }
                         FacesStop::Scan => walk.fused_to(pos, 0),
                         FacesStop::Refused => fused = None,
+                    }
+                }
+                #[cfg(zraster_x86_64)]
+                if let (Some(k), Some(run), FlatTarget::Fused { b, .. }) =
+                    (&mut x86, &small, &mut target)
+                {
+                    let (mut pos, _, _) = walk.fused();
+                    let (zdata, cdata) = b.parts();
+                    match k.run(run, zdata, cdata, &mut pos, &mut fused_counts) {
+                        FacesStop::Face(k, tri) => {
+                            walk.fused_to(pos, 1);
+                            left = Some((walk.first() + k, Some(tri)));
+                        }
+                        FacesStop::Scan => walk.fused_to(pos, 0),
+                        FacesStop::Refused => x86 = None,
                     }
                 }
                 let next = match left {

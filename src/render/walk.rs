@@ -227,13 +227,22 @@ impl<'a> CachedWalk<'a> {
     /// (`num::kernel::faces`), which goes on from there ([`CachedWalk::fused_to`]).
     #[inline(always)]
     pub(crate) fn fused(&self) -> (usize, &'a [[u16; 3]], &'a [CachedVertex]) {
-        (self.pos, self.scan.faces(), self.cache)
+        // Without an assembly scan the walk goes by `faces`.
+        let pos = if CULL_KERNEL {
+            self.pos
+        } else {
+            self.walked - self.faces.len()
+        };
+        (pos, self.scan.faces(), self.cache)
     }
 
     /// The walk on from the scan's place `pos`, `drawn` more faces drawn before it.
     #[inline(always)]
     pub(crate) fn fused_to(&mut self, pos: usize, drawn: u32) {
         self.pos = pos;
+        if !CULL_KERNEL {
+            self.faces = self.scan.faces().get(pos..).unwrap_or(&[]).iter();
+        }
         self.tally[2] += drawn;
     }
 

@@ -65,8 +65,26 @@ impl<'n> LightBlock<'n> {
         }
     }
 
+    /// The light, ambient and diffuse (for the x86-64 face loop, `faces_x86`).
+    #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
+    pub(super) fn light_parts(&self) -> ([i32; 3], i32, i32) {
+        (self.light, self.ambient, self.diffuse)
+    }
+
+    /// Each channel's `v · max · MUL` and `HALF · MUL`: a channel is then
+    /// `(i · v·max·MUL + HALF·MUL) >> 54`, the same product as [`lit_565_portable`]'s
+    /// (for the x86-64 face loop, `faces_x86`).
+    #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
+    pub(super) fn wide_channels(&self) -> ([u64; 3], u64) {
+        let mul = u64::from(self.mul);
+        (
+            self.channels.map(|v| u64::from(v) * mul),
+            u64::from(self.half) * mul,
+        )
+    }
+
     /// The normals.
-    fn normals(&self) -> &'n [[i16; 3]] {
+    pub(super) fn normals(&self) -> &'n [[i16; 3]] {
         // SAFETY: the parts of a slice borrowed for 'n (see `new`).
         unsafe { core::slice::from_raw_parts(self.normals, self.count) }
     }

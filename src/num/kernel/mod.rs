@@ -23,11 +23,12 @@
 //! On x86-64, checked against their twins by host tests: the vertex cache's usual
 //! vertex four at a time in SSE2 ([`place_quads`](place4::place_quads)), a small
 //! triangle's rows ([`rows_x86`](rows_x86::rows_x86)) and its set-up with them
-//! ([`small_x86`](small_x86::small_x86)).
+//! ([`small_x86`](small_x86::small_x86)); the whole frame's face loop, scan, colour,
+//! set-up and rows ([`FacesX86`](faces_x86::FacesX86)).
 //!
 //! The only `unsafe` code of the crate lives here
 //! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `place_v6m`, `light`,
-//! `faces`, `mac`, `texel`, `place4`, `rows_x86` and `small_x86`, each with
+//! `faces`, `mac`, `texel`, `place4`, `rows_x86`, `small_x86` and `faces_x86`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
@@ -63,7 +64,10 @@ mod rows;
 mod faces;
 mod rows_v6m;
 mod rows_x86;
+// Before `faces_x86`, which uses the set-up's body.
+#[macro_use]
 mod small_x86;
+mod faces_x86;
 mod texel;
 
 pub use bin::check_bin_kernel;
@@ -76,6 +80,9 @@ pub(crate) use faces::{
     KeptStates, FACES_KERNEL, STATE_WORDS,
 };
 pub use faces::{check_band_carry_kernel, check_band_faces_kernel, check_faces_kernel};
+#[cfg(zraster_x86_64)]
+pub(crate) use faces_x86::FacesX86;
+pub(crate) use faces_x86::FACES_X86_KERNEL;
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;
