@@ -405,6 +405,8 @@ pub use num::kernel::check_cull_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_faces_kernel;
 #[doc(hidden)]
+pub use num::kernel::check_faces_v6m_kernel;
+#[doc(hidden)]
 pub use num::kernel::check_light_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_place_kernel;

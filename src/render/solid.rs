@@ -7,6 +7,7 @@ use super::*;
 use crate::fill::blend::{blend_triangle, screen_door_triangle};
 use crate::num::kernel::FACES_KERNEL;
 use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop};
+use crate::num::kernel::{faces_less_v6m, FACES_V6M_KERNEL};
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 
 /// `$body` with `$shade` bound to the colour of a face (`Fn(usize) -> Result<C, Error>`)
@@ -45,6 +46,10 @@ macro_rules! per_colouring {
     };
 }
 pub(crate) use per_colouring;
+
+/// Whether the whole frame has a fused face loop: ARMv7E-M's `faces_less`, ARMv6-M's
+/// `faces_less_v6m`.
+const FUSED_FACES: bool = FACES_KERNEL || FACES_V6M_KERNEL;
 
 impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// The one colour of every face when it does not depend on the face (a uniform
@@ -271,7 +276,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // One opaque material, unlit or lit in 5-6-5: for the fused face loop.
         let lit;
         let fused = match materials {
-            crate::mesh::Materials::Uniform(m) if FACES_KERNEL && !see_through::<C, M>(&m) => {
+            crate::mesh::Materials::Uniform(m) if FUSED_FACES && !see_through::<C, M>(&m) => {
                 match self.flat_color(materials, lambert) {
                     Some(c) => Some(FaceColor::Flat(c)),
                     None => {
@@ -324,7 +329,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         // The common case's faces in one assembly loop (`num::kernel::faces`), where
         // there is one, up to a face it leaves to this loop; a band's row test is not
         // among them.
-        let mut fused = fused.filter(|_| FACES_KERNEL && rows.is_none());
+        let mut fused = fused.filter(|_| FUSED_FACES && rows.is_none());
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
@@ -350,9 +355,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     (&fused, &mut target)
                 {
                     let (mut pos, faces, cache) = walk.fused();
-                    let mut t = b.target();
                     let scan = (&operands, faces, cache);
-                    match faces_less(&mut pos, scan, color, &mut t, &mut fused_counts) {
+                    let stop = if FACES_V6M_KERNEL {
+                        faces_less_v6m(&mut pos, scan, color, b, &mut fused_counts)
+                    } else {
+                        let mut t = b.target();
+                        faces_less(&mut pos, scan, color, &mut t, &mut fused_counts)
+                    };
+                    match stop {
                         FacesStop::Face(k, tri) => {
                             walk.fused_to(pos, 1);
                             left = Some((walk.first() + k, Some(tri)));

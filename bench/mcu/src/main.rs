@@ -166,6 +166,7 @@ fn main() -> ! {
     // The fused band loop (merge, carry, colour, set-up and rows) likewise: random bins.
     let bad = zraster::check_band_faces_kernel(&mut depth[..4096], 4_000);
     hprintln!("band faces kernel cases differing from the portable twin: {}", bad);
+    check_faces_v6m(&mut depth[..4096]);
     check_light();
     check_place();
     check_place_v6m();
@@ -250,6 +251,15 @@ fn bins_band() -> &'static mut [u16] {
 fn pixels_band() -> (&'static mut [Rgb565], ()) {
     // SAFETY: borrowed once.
     (unsafe { &mut *addr_of_mut!(BAND_PIXELS) }, ())
+}
+
+/// The ARMv6-M fused face loop (scan, colour, set-up and rows) against its twins
+/// (random meshes; bench/mcu.sh fails unless none differ; 0 where there is no such
+/// loop). Out of line, as `check_place`.
+#[inline(never)]
+fn check_faces_v6m(buf: &mut [u16]) {
+    let bad = zraster::check_faces_v6m_kernel(buf, 4_000);
+    hprintln!("faces v6m kernel cases differing from the portable twin: {}", bad);
 }
 
 /// The lit face colour against its portable twin (random normals, lights and

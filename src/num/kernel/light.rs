@@ -18,12 +18,12 @@ const MUL: u32 = ((1u64 << 39) / 255 + 1) as u32;
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LightBlock<'n> {
-    light: [i32; 3],
-    ambient: i32,
-    diffuse: i32,
-    half: u32,
+    pub(super) light: [i32; 3],
+    pub(super) ambient: i32,
+    pub(super) diffuse: i32,
+    pub(super) half: u32,
     mul: u32,
-    channels: [u32; 3],
+    pub(super) channels: [u32; 3],
     /// The normals, `count` of them (the slice's parts, at known offsets).
     normals: *const [i16; 3],
     count: usize,
@@ -66,7 +66,7 @@ impl<'n> LightBlock<'n> {
     }
 
     /// The normals.
-    fn normals(&self) -> &'n [[i16; 3]] {
+    pub(super) fn normals(&self) -> &'n [[i16; 3]] {
         // SAFETY: the parts of a slice borrowed for 'n (see `new`).
         unsafe { core::slice::from_raw_parts(self.normals, self.count) }
     }
