@@ -19,8 +19,13 @@ use crate::num::kernel::{
     band_faces_less, BandCarry, BandStop, BinChains, CachedVertex, FaceColor, FacesCounts,
     SmallTarget, FACES_KERNEL,
 };
+use crate::num::kernel::{band_faces_less_v6m, Buffers, FACES_V6M_KERNEL};
 #[cfg(zraster_x86_64)]
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
+
+/// Whether the bands have a fused loop: ARMv7E-M's `band_faces_less`, ARMv6-M's
+/// `band_faces_less_v6m`.
+const FUSED_BANDS: bool = FACES_KERNEL || FACES_V6M_KERNEL;
 use crate::raster::Clip;
 use crate::render::{
     cached_outside_rows, cached_triangle, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
@@ -330,7 +335,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let lit;
         let fused = match materials {
             crate::mesh::Materials::Uniform(m)
-                if FACES_KERNEL && !(M::TRANSLUCENT && m.alpha() < u8::MAX) =>
+                if FUSED_BANDS && !(M::TRANSLUCENT && m.alpha() < u8::MAX) =>
             {
                 match self.flat_color(materials, lambert) {
                     Some(c) => Some(FaceColor::Flat(c)),
@@ -377,7 +382,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut counts = FrameStats::fill_counts();
         // The common case's faces in one assembly loop (`num::kernel::faces`), where
         // there is one, up to a face it leaves to this loop.
-        let mut fused = fused.filter(|_| FACES_KERNEL);
+        let mut fused = fused.filter(|_| FUSED_BANDS);
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
@@ -474,14 +479,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
                         (&fused, &mut target)
                     {
-                        let mut t = b.target();
-                        match faces.fused(
-                            cache,
-                            &mut carry.parts(),
-                            color,
-                            &mut t,
-                            &mut fused_counts,
-                        ) {
+                        let carried = &mut carry.parts();
+                        let stop = if FACES_V6M_KERNEL {
+                            faces.fused_v6m(cache, carried, color, b, &mut fused_counts)
+                        } else {
+                            let mut t = b.target();
+                            faces.fused(cache, carried, color, &mut t, &mut fused_counts)
+                        };
+                        match stop {
                             BandStop::Done => break,
                             BandStop::Whole(head) => left = faces.face_of(head).map(|x| (x, false)),
                             BandStop::Fill(head) => left = faces.face_of(head).map(|x| (x, true)),
@@ -595,6 +600,21 @@ impl<'m> BandTriangles<'_, 'm> {
     ) -> BandStop {
         let BandFaces { links, heads } = &mut self.faces;
         band_faces_less(heads, (links, self.indices, cache), carry, color, t, counts)
+    }
+
+    /// [`fused`](BandTriangles::fused) into `b` by ARMv6-M's loop
+    /// ([`band_faces_less_v6m`]).
+    #[inline(always)]
+    fn fused_v6m<C: Copy>(
+        &mut self,
+        cache: &[CachedVertex],
+        carry: &mut BandCarry<'_, C>,
+        color: &FaceColor<'_, C>,
+        b: &mut Buffers<'_, '_, C>,
+        counts: &mut FacesCounts,
+    ) -> BandStop {
+        let BandFaces { links, heads } = &mut self.faces;
+        band_faces_less_v6m(heads, (links, self.indices, cache), carry, color, b, counts)
     }
 
     /// The face the fused loop stopped at, by its chain's head (as [`next`] gives

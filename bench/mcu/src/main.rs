@@ -253,13 +253,15 @@ fn pixels_band() -> (&'static mut [Rgb565], ()) {
     (unsafe { &mut *addr_of_mut!(BAND_PIXELS) }, ())
 }
 
-/// The ARMv6-M fused face loop (scan, colour, set-up and rows) against its twins
-/// (random meshes; bench/mcu.sh fails unless none differ; 0 where there is no such
-/// loop). Out of line, as `check_place`.
+/// The ARMv6-M fused face and band loops (scan or merge and carry, colour, set-up and
+/// rows) against their twins (random meshes and bins; bench/mcu.sh fails unless none
+/// differ; 0 where there are no such loops). Out of line, as `check_place`.
 #[inline(never)]
 fn check_faces_v6m(buf: &mut [u16]) {
     let bad = zraster::check_faces_v6m_kernel(buf, 4_000);
     hprintln!("faces v6m kernel cases differing from the portable twin: {}", bad);
+    let bad = zraster::check_band_faces_v6m_kernel(buf, 4_000);
+    hprintln!("band faces v6m kernel cases differing from the portable twin: {}", bad);
 }
 
 /// The lit face colour against its portable twin (random normals, lights and

@@ -6,7 +6,7 @@
 #![allow(unsafe_code)]
 
 use super::cull::ScanRegs;
-use super::faces::{FaceColor, FacesCounts, FacesStop};
+use super::faces::{BandCarry, BandStop, FaceColor, FacesCounts, FacesStop};
 use super::{Buffers, CachedVertex};
 
 /// Whether [`faces_less_v6m`] runs the assembly loop (ARMv6-M); elsewhere it leaves
@@ -75,6 +75,95 @@ const _: () = {
 const WALK_COLOR: usize = 12;
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 const WALK_FAILED: usize = 28;
+
+/// The Lambert colour of the face at r4 (its address; the block in r7) into r0, as
+/// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
+/// on to `$none`; n·L (wrapping), at least 0; the term as `lambert_term_narrow` (dot =
+/// h·2¹⁶ + m·2⁸ + n: (h·w + ⌊(m·w + ⌊n·w/2⁸⌋)/2⁸⌋ + 2¹²) >> 13) plus ambient, clamped
+/// to 0..=65535; each channel min(((i·v + half) >> 15) · 32897 >> 23, max), packed
+/// 5-6-5. Writes r0–r3, r5–r7 (r7 past the constants) and the flags.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_colour {
+    ($none:literal) => {
+        concat!(
+            "ldr r2, [r7, #44]\n",
+            "cmp r4, r2\n",
+            "bhs ",
+            $none,
+            "\n",
+            "ldr r2, [r7, #48]\n",
+            "ldrsh r3, [r4, r2]\n",
+            "adds r2, #2\n",
+            "ldrsh r5, [r4, r2]\n",
+            "adds r2, #2\n",
+            "ldrsh r6, [r4, r2]\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            "muls r3, r0, r3\n",
+            "muls r5, r1, r5\n",
+            "muls r6, r2, r6\n",
+            "adds r3, r3, r5\n",
+            "adds r3, r3, r6\n",
+            "asrs r0, r3, #31\n",
+            "bics r3, r0\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            "lsrs r5, r3, #16\n",
+            "muls r5, r1, r5\n",
+            "uxtb r6, r3\n",
+            "muls r6, r1, r6\n",
+            "asrs r6, r6, #8\n",
+            "lsrs r3, r3, #8\n",
+            "uxtb r3, r3\n",
+            "muls r3, r1, r3\n",
+            "adds r3, r3, r6\n",
+            "asrs r3, r3, #8\n",
+            "adds r3, r3, r5\n",
+            "adds r3, r3, r2\n",
+            "asrs r3, r3, #13\n",
+            "adds r3, r3, r0\n",
+            "asrs r0, r3, #31\n",
+            "bics r3, r0\n",
+            "lsrs r0, r3, #16\n",
+            "beq 6f\n",
+            "movs r3, #0\n",
+            "subs r3, #1\n",
+            "lsrs r3, r3, #16\n",
+            "6:\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            "ldm r7!, {{r5, r6}}\n",
+            "muls r0, r3, r0\n",
+            "adds r0, r0, r5\n",
+            "lsrs r0, r0, #15\n",
+            "muls r0, r6, r0\n",
+            "lsrs r0, r0, #23\n",
+            "cmp r0, #31\n",
+            "bls 1f\n",
+            "movs r0, #31\n",
+            "1:\n",
+            "muls r1, r3, r1\n",
+            "adds r1, r1, r5\n",
+            "lsrs r1, r1, #15\n",
+            "muls r1, r6, r1\n",
+            "lsrs r1, r1, #23\n",
+            "cmp r1, #63\n",
+            "bls 1f\n",
+            "movs r1, #63\n",
+            "1:\n",
+            "muls r2, r3, r2\n",
+            "adds r2, r2, r5\n",
+            "lsrs r2, r2, #15\n",
+            "muls r2, r6, r2\n",
+            "lsrs r2, r2, #23\n",
+            "cmp r2, #31\n",
+            "bls 1f\n",
+            "movs r2, #31\n",
+            "1:\n",
+            "lsls r0, r0, #11\n",
+            "lsls r1, r1, #5\n",
+            "orrs r0, r1\n",
+            "orrs r0, r2\n",
+        )
+    };
+}
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
@@ -183,84 +272,11 @@ core::arch::global_asm!(
     "str r0, [r7, #52]",
     "movs r0, #0",
     "b 9f",
-    // Drawn (the face in r4): its normal, else the flat colour or the caller's.
+    // Drawn (the face in r4): its colour, else the flat colour or the caller's.
     "4:",
     "ldr r7, [sp]",
     "mov r4, r0",
-    "ldr r2, [r7, #44]",
-    "cmp r0, r2",
-    "bhs 5f",
-    "ldr r2, [r7, #48]",
-    "ldrsh r3, [r0, r2]",
-    "adds r0, #2",
-    "ldrsh r5, [r0, r2]",
-    "adds r0, #2",
-    "ldrsh r6, [r0, r2]",
-    // n·L (wrapping), at least 0; the term as `lambert_term_narrow`: dot = h·2¹⁶ +
-    // m·2⁸ + n, (h·w + ⌊(m·w + ⌊n·w/2⁸⌋)/2⁸⌋ + 2¹²) >> 13; plus ambient.
-    "ldm r7!, {{r0, r1, r2}}",
-    "muls r3, r0, r3",
-    "muls r5, r1, r5",
-    "muls r6, r2, r6",
-    "adds r3, r3, r5",
-    "adds r3, r3, r6",
-    "asrs r0, r3, #31",
-    "bics r3, r0",
-    "ldm r7!, {{r0, r1, r2}}",
-    "lsrs r5, r3, #16",
-    "muls r5, r1, r5",
-    "uxtb r6, r3",
-    "muls r6, r1, r6",
-    "asrs r6, r6, #8",
-    "lsrs r3, r3, #8",
-    "uxtb r3, r3",
-    "muls r3, r1, r3",
-    "adds r3, r3, r6",
-    "asrs r3, r3, #8",
-    "adds r3, r3, r5",
-    "adds r3, r3, r2",
-    "asrs r3, r3, #13",
-    "adds r3, r3, r0",
-    // The intensity clamped to 0..=65535.
-    "asrs r0, r3, #31",
-    "bics r3, r0",
-    "lsrs r0, r3, #16",
-    "bne 7f",
-    // Each channel min(((i·v + half) >> 15) · 32897 >> 23, max), packed 5-6-5.
-    "6:",
-    "ldm r7!, {{r0, r1, r2}}",
-    "ldm r7!, {{r5, r6}}",
-    "muls r0, r3, r0",
-    "adds r0, r0, r5",
-    "lsrs r0, r0, #15",
-    "muls r0, r6, r0",
-    "lsrs r0, r0, #23",
-    "cmp r0, #31",
-    "bls 1f",
-    "movs r0, #31",
-    "1:",
-    "muls r1, r3, r1",
-    "adds r1, r1, r5",
-    "lsrs r1, r1, #15",
-    "muls r1, r6, r1",
-    "lsrs r1, r1, #23",
-    "cmp r1, #63",
-    "bls 1f",
-    "movs r1, #63",
-    "1:",
-    "muls r2, r3, r2",
-    "adds r2, r2, r5",
-    "lsrs r2, r2, #15",
-    "muls r2, r6, r2",
-    "lsrs r2, r2, #23",
-    "cmp r2, #31",
-    "bls 1f",
-    "movs r2, #31",
-    "1:",
-    "lsls r0, r0, #11",
-    "lsls r1, r1, #5",
-    "orrs r0, r1",
-    "orrs r0, r2",
+    v6m_colour!("5f"),
     // The colour (r0) into the set-up's block, the corners' entries, the call.
     "8:",
     "ldr r7, [sp]",
@@ -305,12 +321,6 @@ core::arch::global_asm!(
     "beq 67f",
     "uxth r0, r0",
     "b 8b",
-    // Above full scale.
-    "7:",
-    "movs r3, #0",
-    "subs r3, #1",
-    "lsrs r3, r3, #16",
-    "b 6b",
     // The face in r4 left to the caller.
     "67:",
     "ldr r7, [sp]",
@@ -461,6 +471,411 @@ fn faces_v6m<'a, C: Copy>(
             _ => FacesStop::Scan,
         },
         None => FacesStop::Scan,
+    }
+}
+
+/// What the band loop reads and writes, at the offsets in the comments: the colour's
+/// constants and the set-up's and counts' words at [`FacesV6m`]'s offsets (the same
+/// colour code reads them), the faces, the merge's heads and links, the carry.
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+#[repr(C)]
+struct BandV6m {
+    light: [i32; 3],    // 0
+    ambient: i32,       // 12
+    diffuse: i32,       // 16
+    round: i32,         // 20
+    channels: [u32; 3], // 24
+    half: u32,          // 36
+    k: u32,             // 40
+    nend: u32,          // 44
+    ndelta: u32,        // 48
+    /// The faces' address, the links', the faces below which both lie, the entries.
+    faces: u32, // 52
+    links: u32,         // 56
+    n: u32,             // 60
+    len: u32,           // 64
+    /// The colours to take and the half to keep into.
+    read: u32, // 68
+    keep: u32,          // 72
+    walk: u32,          // 76
+    entries: u32,       // 80
+    flat: u32,          // 84
+    tested: u32,        // 88
+    drawn: u32,         // 92
+    /// Taken below `filled`, kept below `room`.
+    filled: u32, // 96
+    taken: u32,         // 100
+    kept: u32,          // 104
+    room: u32,          // 108
+    /// The head of the face the loop stopped at.
+    least: u32, // 112
+    /// The chains' heads in increasing order (`face << 2 | chain`).
+    heads: [u32; 4], // 116
+}
+
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::offset_of;
+    type B = BandV6m;
+    assert!(offset_of!(B, nend) == 44 && offset_of!(B, faces) == 52);
+    assert!(offset_of!(B, links) == 56 && offset_of!(B, n) == 60);
+    assert!(offset_of!(B, len) == 64 && offset_of!(B, read) == 68);
+    assert!(offset_of!(B, keep) == 72 && offset_of!(B, walk) == 76);
+    assert!(offset_of!(B, entries) == 80 && offset_of!(B, flat) == 84);
+    assert!(offset_of!(B, tested) == 88 && offset_of!(B, drawn) == 92);
+    assert!(offset_of!(B, filled) == 96 && offset_of!(B, taken) == 100);
+    assert!(offset_of!(B, kept) == 104 && offset_of!(B, room) == 108);
+    assert!(offset_of!(B, least) == 112 && offset_of!(B, heads) == 116);
+};
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+extern "C" {
+    /// The band loop over block `b`: returns 0 at the end of the band's faces, 1 at a
+    /// face it leaves whole to the caller (tall, or no colour), 2 at a face whose carry
+    /// it did but which it does not draw (a corner past the cache, or refused by the
+    /// set-up), both with the face's head in `least`, 3 after `FLUSH` drawn faces; the
+    /// heads stored back, past the face it stopped at.
+    ///
+    /// # Safety
+    ///
+    /// As [`band_faces_less_v6m`] builds the block.
+    fn zraster_band_faces_v6m(b: *mut BandV6m) -> u32;
+}
+
+// SAFETY (for `band_faces_less_v6m`): the merge reads `links[f]` and forms face f's
+// address only for the least head's f (head >> 2) below n, the smaller of the links'
+// and faces' lengths, whatever the heads and links hold (END or any number past the
+// faces fails the test and ends the loop); the chain's next head is the 16-bit link
+// shifted above the chain's number. The colour code reads the normal at face + `ndelta`
+// only below `nend` (the faces' address plus 6 · the normals there are, at most the
+// faces'). A carried colour is read at `read[taken]` only when taken < filled ≤ the
+// read half's length, one kept at `keep[kept]` only when kept < `room`, its length;
+// `C` is two bytes (the buffers' block is started only then), and each value kept a
+// `C`'s bytes (taken from `read`, the flat colour's, or the packed value `Raw565`
+// proves is). A face's three indices are tested below the cache's length before its
+// entries' addresses (entries + 8 · index) are formed; the set-up is
+// `zraster_faces_v6m`'s call. It keeps r4–r11: the heads live in r8–r11 across it.
+// The block's address is at [sp], the least head at [sp, #4]; the frame is 48 bytes
+// (8-aligned at the calls); the colour is a local subroutine (BL, its return by
+// `bx lr`: lr was saved by the prologue).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+core::arch::global_asm!(
+    ".pushsection .text.zraster_band_faces_v6m,\"ax\",%progbits",
+    ".balign 4",
+    ".global zraster_band_faces_v6m",
+    ".hidden zraster_band_faces_v6m",
+    ".type zraster_band_faces_v6m, %function",
+    ".thumb_func",
+    "zraster_band_faces_v6m:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4, r5, r6, r7}}",
+    "sub sp, #12",
+    "str r0, [sp]",
+    "adds r0, #116",
+    "ldm r0!, {{r1, r2, r3, r4}}",
+    "mov r8, r1",
+    "mov r9, r2",
+    "mov r10, r3",
+    "mov r11, r4",
+    // The least head (r5): its face f (r4) below n, else the end.
+    "60:",
+    "ldr r7, [sp]",
+    "mov r5, r8",
+    "str r5, [sp, #4]",
+    "lsrs r4, r5, #2",
+    "ldr r1, [r7, #60]",
+    "cmp r4, r1",
+    "bhs 66f",
+    // Its chain's next face (the link above the chain's number) moved down past the
+    // heads below it.
+    "ldr r1, [r7, #56]",
+    "lsls r2, r4, #1",
+    "ldrh r2, [r1, r2]",
+    "lsls r2, r2, #2",
+    "lsls r3, r5, #30",
+    "lsrs r3, r3, #30",
+    "orrs r2, r3",
+    "cmp r2, r9",
+    "bhs 61f",
+    "mov r8, r2",
+    "b 64f",
+    "61:",
+    "mov r8, r9",
+    "cmp r2, r10",
+    "bhs 62f",
+    "mov r9, r2",
+    "b 64f",
+    "62:",
+    "mov r9, r10",
+    "cmp r2, r11",
+    "bhs 63f",
+    "mov r10, r2",
+    "b 64f",
+    "63:",
+    "mov r10, r11",
+    "mov r11, r2",
+    // The face's address (r4), then by the chain (bit 0 to N, bit 1 to C): tall (3)
+    // the caller's; its own (2) worked out; kept (1) worked out and kept; taken (0)
+    // the next carried colour while there is one, else worked out, and counted.
+    "64:",
+    "lsls r0, r4, #1",
+    "adds r0, r0, r4",
+    "lsls r0, r0, #1",
+    "ldr r1, [r7, #52]",
+    "adds r4, r1, r0",
+    "lsls r1, r5, #31",
+    "bcs 20f",
+    "bmi 25f",
+    "ldr r0, [r7, #100]",
+    "ldr r1, [r7, #96]",
+    "cmp r0, r1",
+    "bhs 26f",
+    "adds r1, r0, #1",
+    "str r1, [r7, #100]",
+    "ldr r1, [r7, #68]",
+    "lsls r0, r0, #1",
+    "ldrh r0, [r1, r0]",
+    "b 22f",
+    "26:",
+    "bl 30f",
+    "ldr r7, [sp]",
+    "ldr r1, [r7, #100]",
+    "adds r1, #1",
+    "str r1, [r7, #100]",
+    "b 22f",
+    "25:",
+    "bl 30f",
+    "ldr r7, [sp]",
+    "ldr r1, [r7, #104]",
+    "ldr r2, [r7, #108]",
+    "cmp r1, r2",
+    "bhs 22f",
+    "ldr r2, [r7, #72]",
+    "lsls r3, r1, #1",
+    "strh r0, [r2, r3]",
+    "adds r1, #1",
+    "str r1, [r7, #104]",
+    "b 22f",
+    "20:",
+    "bmi 68f",
+    "bl 30f",
+    // The colour in r0: the corners' indices below the cache's length, else the
+    // caller's (its carry done); the colour into the set-up's block, the call.
+    "22:",
+    "ldr r7, [sp]",
+    "ldr r6, [r7, #64]",
+    "ldrh r1, [r4, #0]",
+    "ldrh r2, [r4, #2]",
+    "ldrh r3, [r4, #4]",
+    "cmp r1, r6",
+    "bhs 67f",
+    "cmp r2, r6",
+    "bhs 67f",
+    "cmp r3, r6",
+    "bhs 67f",
+    "ldr r6, [r7, #80]",
+    "lsls r1, r1, #3",
+    "adds r1, r1, r6",
+    "lsls r2, r2, #3",
+    "adds r2, r2, r6",
+    "lsls r3, r3, #3",
+    "adds r3, r3, r6",
+    "ldr r6, [r7, #76]",
+    "str r0, [r6, #{color}]",
+    "mov r0, r6",
+    "ldr r6, 11f",
+    "blx r6",
+    // Refused: the caller's (its carry done). Else the counts, as the face loop's.
+    "adds r1, r0, #1",
+    "beq 67f",
+    "ldr r7, [sp]",
+    "ldr r1, [r7, #88]",
+    "adds r1, r1, r0",
+    "str r1, [r7, #88]",
+    "ldr r2, [r7, #92]",
+    "subs r2, #1",
+    "str r2, [r7, #92]",
+    "beq 10f",
+    "b 60b",
+    "66:",
+    "movs r0, #0",
+    "b 9f",
+    "10:",
+    "movs r0, #3",
+    "b 9f",
+    "67:",
+    "movs r0, #2",
+    "b 65f",
+    "68:",
+    "movs r0, #1",
+    "65:",
+    "ldr r1, [sp, #4]",
+    "ldr r7, [sp]",
+    "str r1, [r7, #112]",
+    // The heads back into the block.
+    "9:",
+    "ldr r7, [sp]",
+    "adds r7, #116",
+    "mov r1, r8",
+    "mov r2, r9",
+    "mov r3, r10",
+    "mov r4, r11",
+    "stm r7!, {{r1, r2, r3, r4}}",
+    "add sp, #12",
+    "pop {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4, r5, r6, r7, pc}}",
+    // The colour of the face at r4 into r0; without a normal the flat colour, else
+    // the face is the caller's whole (nothing of its carry done yet).
+    "30:",
+    "ldr r7, [sp]",
+    v6m_colour!("31f"),
+    "bx lr",
+    "31:",
+    "ldr r0, [r7, #84]",
+    "cmp r0, #0",
+    "bne 32f",
+    "b 68b",
+    "32:",
+    "uxth r0, r0",
+    "bx lr",
+    ".balign 4",
+    "11:",
+    ".word zraster_small_walk_v6m",
+    ".size zraster_band_faces_v6m, . - zraster_band_faces_v6m",
+    ".popsection",
+    color = const WALK_COLOR,
+);
+
+/// Draw a band's faces from its merged bin chains (`heads` in increasing order, each
+/// `face << 2 | chain`, the chains linked through `links`), those the common case
+/// covers, into `b`: each face's colour taken from the band above (chain 0) while
+/// `carry` has one, else coloured by `color` (one colour, or lit into 5-6-5 written as
+/// it is: `Raw565`), and kept for the band below (chain 1) while there is room; drawn
+/// by the small triangles' set-up and rows (`Less` with depth writes, a two-byte
+/// colour); its counts into `counts`. The heads move past each face it takes. Returns
+/// where it stopped ([`BandStop`], as `band_faces_less`). On ARMv6-M one assembly
+/// loop; elsewhere it leaves every face to the caller ([`BandStop::Refused`]).
+#[inline(always)]
+pub(crate) fn band_faces_less_v6m<C: Copy>(
+    heads: &mut [u32; 4],
+    tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
+    carry: &mut BandCarry<'_, C>,
+    color: &FaceColor<'_, C>,
+    b: &mut Buffers<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> BandStop {
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    return band_faces_v6m(heads, tables, carry, color, b, counts);
+    #[allow(unreachable_code)]
+    {
+        let _ = (heads, tables, carry, color, b, counts);
+        BandStop::Refused
+    }
+}
+
+/// [`band_faces_less_v6m`] on ARMv6-M. Out of line (it runs once for a band's run of
+/// faces): its block is not stacked on the caller's frame.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+#[inline(never)]
+fn band_faces_v6m<C: Copy>(
+    heads: &mut [u32; 4],
+    (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
+    carry: &mut BandCarry<'_, C>,
+    color: &FaceColor<'_, C>,
+    b: &mut Buffers<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> BandStop {
+    // The block is started only for a two-byte `C` aligned to two: the carried
+    // colours are read and kept as u16s too.
+    let Some(walk) = b.walk_block() else {
+        return BandStop::Refused;
+    };
+    let at = faces.as_ptr() as u32;
+    let filled = carry.filled.min(carry.read.len()) as u32;
+    // Only compared with `filled` (at most the read half's length) and counted on: the
+    // delta goes back into the caller's cursor.
+    let taken0 = (*carry.taken).min(carry.read.len() + 1) as u32;
+    let kept0 = (*carry.kept).min(carry.keep.len()) as u32;
+    let mut block = BandV6m {
+        light: [0; 3],
+        ambient: 0,
+        diffuse: 0,
+        round: 1 << 12,
+        channels: [0; 3],
+        half: 0,
+        k: 32_897,
+        nend: at,
+        ndelta: 0,
+        faces: at,
+        links: links.as_ptr() as u32,
+        n: links.len().min(faces.len()).min(u32::MAX as usize) as u32,
+        len: cache.len().min(u32::MAX as usize) as u32,
+        walk: walk as u32,
+        entries: cache.as_ptr() as u32,
+        flat: 0,
+        tested: 0,
+        drawn: FLUSH,
+        heads: *heads,
+        read: carry.read.as_ptr() as u32,
+        keep: carry.keep.as_mut_ptr() as u32,
+        filled,
+        taken: taken0,
+        kept: kept0,
+        room: carry.keep.len().min(u32::MAX as usize) as u32,
+        least: 0,
+    };
+    match *color {
+        FaceColor::Flat(c) => match super::rows::as_u16(&mut [], c) {
+            Some((_, bits)) => block.flat = 1 << 16 | u32::from(bits),
+            None => return BandStop::Refused,
+        },
+        FaceColor::Lit(l, _, Some(_)) => {
+            let normals = l.normals();
+            let n = normals.len().min(faces.len());
+            block.light = l.light;
+            block.ambient = l.ambient;
+            block.diffuse = l.diffuse;
+            block.channels = l.channels;
+            block.half = l.half;
+            block.nend = at.wrapping_add(6 * n as u32);
+            block.ndelta = (normals.as_ptr() as u32).wrapping_sub(at);
+        }
+        FaceColor::Lit(_, _, None) => return BandStop::Refused,
+    }
+    let status = loop {
+        let failed = walk.wrapping_add(WALK_FAILED).cast::<u32>();
+        // SAFETY: as `faces_v6m`'s (the set-up block's `failed`), the call: the block
+        // as built above (see the assembly's SAFETY comment).
+        let (status, failed) = unsafe {
+            failed.write(0);
+            let status = zraster_band_faces_v6m(&mut block);
+            (status, failed.read())
+        };
+        counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
+        counts.failed = counts.failed.wrapping_add(u64::from(failed));
+        counts.drawn = counts.drawn.wrapping_add(FLUSH - block.drawn);
+        if status != 3 {
+            break status;
+        }
+        (block.tested, block.drawn) = (0, FLUSH);
+    };
+    *heads = block.heads;
+    *carry.taken = carry
+        .taken
+        .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
+    *carry.kept = block.kept as usize;
+    match status {
+        0 => BandStop::Done,
+        1 => BandStop::Whole(block.least),
+        _ => BandStop::Fill(block.least),
     }
 }
 
@@ -655,6 +1070,302 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
     bad
 }
 
+/// On-target check of the ARMv6-M band loop (`band_faces_less_v6m`) against its twin
+/// (the band loop's merge, carry, colour and the set-up's portable twin, face by
+/// face), for the bench firmware: `cases` random bands (buffers, clips, caches, meshes
+/// and colours as [`check_faces_v6m_kernel`]'s) walked from random bins: four chains' heads, links
+/// increasing, ending in `END` or a face past the faces, over links shorter or longer
+/// than the faces; tall faces among them; carried colours up to and past the read
+/// half, the keep half sometimes full. The faces the loop leaves are drawn by the twin
+/// as the band loop would. Returns the number of cases whose buffers, pixel counts,
+/// drawn faces, heads or carry differ. `buf` holds four 48 × 16 buffers (a shorter one
+/// is a failure).
+#[inline(never)]
+pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
+    use super::faces::Raw565;
+    use super::light::{lit_565_portable, LightBlock};
+    use super::rows_v6m::small_walk_portable;
+    use super::SmallDone;
+    use crate::raster::{Clip, ScreenVertex};
+    const W: usize = 48;
+    const H: usize = 16;
+    const N: usize = W * H;
+    const END: u16 = u16::MAX;
+    /// The band loop's carry (`ColorCarry`) over two halves of eight.
+    #[derive(Clone, PartialEq)]
+    struct Carry8 {
+        read: [u16; 8],
+        keep: [u16; 8],
+        filled: usize,
+        taken: usize,
+        kept: usize,
+    }
+    impl Carry8 {
+        fn take(&mut self) -> Option<u16> {
+            let i = self.taken;
+            self.taken += 1;
+            (i < self.filled)
+                .then(|| self.read.get(i).copied())
+                .flatten()
+        }
+        fn last_taken(&self) -> Option<u16> {
+            let i = self.taken.checked_sub(1)?;
+            (i < self.filled)
+                .then(|| self.read.get(i).copied())
+                .flatten()
+        }
+        fn keep(&mut self, c: u16) {
+            if let Some(slot) = self.keep.get_mut(self.kept) {
+                *slot = c;
+                self.kept += 1;
+            }
+        }
+    }
+    let Some(buf) = buf.get_mut(..4 * N) else {
+        return usize::MAX;
+    };
+    let (mine, theirs) = buf.split_at_mut(2 * N);
+    let (z1, c1) = mine.split_at_mut(N);
+    let (z2, c2) = theirs.split_at_mut(N);
+    let mut rnd = super::xorshift32(0xa54f_f53a);
+    let mut bad = 0;
+    for case in 0..cases {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let off = case / 2 % 2;
+        let first_row = (rnd() % 5) as i32 - 2;
+        let rows = (H - off) as i32;
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (rnd() % 29) as i32,
+                y1: first_row + y0 + (rnd() % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + rows,
+            }
+        };
+        let len = rnd() as usize % 13;
+        let mut cache = [CachedVertex::EMPTY; 12];
+        let span = 64 << (case % 4);
+        let (bx, by) = (
+            (rnd() % (W as u32 * 16)) as i32 - 40,
+            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        for (i, e) in cache.iter_mut().enumerate() {
+            let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
+            let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
+            let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
+            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
+            *e = CachedVertex {
+                z,
+                xy: super::XyWord::new(x, y),
+            };
+            if rnd().is_multiple_of(24) {
+                e.xy = super::XyWord::new(i16::MIN, (rnd() % 64) as i16);
+            }
+        }
+        let cache = cache.get(..len).unwrap_or(&[]);
+        let mut faces = [[0u16; 3]; 16];
+        for t in faces.iter_mut() {
+            for i in t.iter_mut() {
+                *i = (rnd() % (len as u32 + 1).min(12)) as u16;
+                if rnd().is_multiple_of(64) {
+                    *i = (len as u32 + rnd() % 4) as u16; // out of range
+                }
+            }
+        }
+        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
+        // The bins: links increasing (so every chain ends), to END or past the faces.
+        let mut links = [0u16; 18];
+        for (f, l) in links.iter_mut().enumerate() {
+            *l = match rnd() % 8 {
+                0 => END,
+                1 => 16 + (rnd() % 3) as u16,
+                _ => (f as u32 + 1 + rnd() % 3) as u16,
+            };
+        }
+        let links = links.get(..rnd() as usize % 19).unwrap_or(&[]);
+        let mut heads = [0u32; 4];
+        for (c, h) in heads.iter_mut().enumerate() {
+            let f = if rnd().is_multiple_of(5) {
+                END
+            } else {
+                (rnd() % 18) as u16
+            };
+            // Tall faces (chain 3) on some cases only, as a band has few.
+            let c = if c == 3 && case % 4 != 0 { 2 } else { c as u32 };
+            *h = u32::from(f) << 2 | c;
+        }
+        heads.sort_unstable();
+        let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
+        let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
+        let ambient = (rnd() % 131_073) as i32 - 65536;
+        let diffuse = (rnd() % 131_073) as i32 - 65536;
+        let channels = [0; 3].map(|_| rnd() as u8);
+        let count = rnd() as usize % (faces.len() + 2);
+        let block = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&normals),
+        );
+        let flat = rnd() as u16;
+        let same: fn(u16) -> u16 = |c| c;
+        let color = match case % 4 {
+            3 => FaceColor::Flat(flat),
+            _ => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
+        };
+        let color_of = |k: usize| match color {
+            FaceColor::Flat(c) => c,
+            FaceColor::Lit(b, f, _) => lit_565_portable(k, b).map_or(0x1234, f),
+        };
+        let mut carry = Carry8 {
+            read: [0; 8].map(|_| rnd() as u16),
+            keep: [0; 8].map(|_| rnd() as u16),
+            filled: rnd() as usize % 11,
+            taken: rnd() as usize % 3,
+            kept: rnd() as usize % 9,
+        };
+        let mut carry2 = carry.clone();
+        // One face as the band loop draws it (`carried`: its carry done by the fused
+        // loop); `false` at a corner past the cache (the band loop's error: it stops).
+        let face = |head: u32,
+                    carried: bool,
+                    carry: &mut Carry8,
+                    z: &mut [u16],
+                    c: &mut [u16],
+                    counts: &mut FacesCounts| {
+            let (f, k) = ((head >> 2) as usize, head & 3);
+            let Some(&t) = faces.get(f) else {
+                return false;
+            };
+            let get = |i: u16| cache.get(usize::from(i));
+            let (Some(a), Some(b), Some(e)) = (get(t[0]), get(t[1]), get(t[2])) else {
+                return false;
+            };
+            let taken = match (k, carried) {
+                (0, false) => carry.take(),
+                (0, true) => carry.last_taken(),
+                _ => None,
+            };
+            let col = taken.unwrap_or_else(|| color_of(f));
+            if k == 1 && !carried {
+                carry.keep(col);
+            }
+            let [p, q, r] = [a, b, e].map(|e| {
+                let (x, y) = e.xy();
+                ScreenVertex::from_raw(x, y, e.z)
+            });
+            let done = small_walk_portable([&p, &q, &r], &clip, first_row, W, z, c, col);
+            if let SmallDone::Drawn(tested, failed) = done {
+                counts.drawn += 1;
+                counts.tested += u64::from(tested);
+                counts.failed += u64::from(failed);
+            }
+            true
+        };
+        // The band loop's merge: the least head's face, its chain's next in its place.
+        let n = links.len().min(faces.len());
+        let next = |heads: &mut [u32; 4]| {
+            let least = heads[0];
+            let f = (least >> 2) as usize;
+            let &link = links.get(f).filter(|_| f < n)?;
+            let next = u32::from(link) << 2 | least & 3;
+            let mut i = 0;
+            while let Some(&h) = heads.get(i + 1).filter(|&&h| next >= h) {
+                if let Some(slot) = heads.get_mut(i) {
+                    *slot = h;
+                }
+                i += 1;
+            }
+            if let Some(slot) = heads.get_mut(i) {
+                *slot = next;
+            }
+            Some(least)
+        };
+        // The fused loop, the faces it leaves drawn by the twin.
+        let mut mine = FacesCounts::default();
+        let mut heads1 = heads;
+        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
+            return usize::MAX;
+        };
+        let mut t = Buffers::unstarted(&mut z1[..], ca, W, first_row, clip);
+        t.start();
+        let mut stopped = false;
+        let mut refused = false;
+        loop {
+            let Carry8 {
+                read,
+                keep,
+                filled,
+                taken,
+                kept,
+            } = &mut carry;
+            let mut parts = BandCarry {
+                read: &read[..],
+                keep: &mut keep[..],
+                filled: *filled,
+                taken,
+                kept,
+            };
+            let tables = (links, faces, cache);
+            let (head, carried) = match band_faces_less_v6m(
+                &mut heads1,
+                tables,
+                &mut parts,
+                &color,
+                &mut t,
+                &mut mine,
+            ) {
+                BandStop::Done => break,
+                BandStop::Whole(h) => (h, false),
+                BandStop::Fill(h) => (h, true),
+                BandStop::Refused => {
+                    // Only where there is no assembly: the twin's face by face.
+                    refused = true;
+                    match next(&mut heads1) {
+                        Some(h) => (h, false),
+                        None => break,
+                    }
+                }
+            };
+            let (z, c) = t.parts();
+            if !face(head, carried, &mut carry, z, c, &mut mine) {
+                stopped = true;
+                break;
+            }
+        }
+        // The twin.
+        let mut theirs = FacesCounts::default();
+        let mut heads2 = heads;
+        let mut stopped2 = false;
+        while let Some(head) = next(&mut heads2) {
+            if !face(head, false, &mut carry2, z2, cb, &mut theirs) {
+                stopped2 = true;
+                break;
+            }
+        }
+        // After a stop (an error: the frame is not drawn on) the carry is not compared.
+        let same_carry = stopped || carry == carry2;
+        let same_draw = mine == theirs && z1 == z2 && c1 == c2 && heads1 == heads2;
+        if !same_draw || stopped != stopped2 || !same_carry || (FACES_V6M_KERNEL && refused) {
+            bad += 1;
+        }
+    }
+    bad
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -664,5 +1375,12 @@ mod tests {
         let mut buf = [0u16; 4 * 48 * 16];
         assert_eq!(check_faces_v6m_kernel(&mut buf, 2_000), 0);
         assert_eq!(check_faces_v6m_kernel(&mut buf[..100], 1), usize::MAX);
+    }
+
+    #[test]
+    fn band_faces_v6m_kernel_matches_its_twin() {
+        let mut buf = [0u16; 4 * 48 * 16];
+        assert_eq!(check_band_faces_v6m_kernel(&mut buf, 4_000), 0);
+        assert_eq!(check_band_faces_v6m_kernel(&mut buf[..100], 1), usize::MAX);
     }
 }

@@ -77,8 +77,8 @@ pub(crate) use faces::{
     FACES_KERNEL,
 };
 pub use faces::{check_band_faces_kernel, check_faces_kernel};
-pub use faces_v6m::check_faces_v6m_kernel;
-pub(crate) use faces_v6m::{faces_less_v6m, FACES_V6M_KERNEL};
+pub(crate) use faces_v6m::{band_faces_less_v6m, faces_less_v6m, FACES_V6M_KERNEL};
+pub use faces_v6m::{check_band_faces_v6m_kernel, check_faces_v6m_kernel};
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;
