@@ -81,7 +81,8 @@ const WALK_FAILED: usize = 28;
 /// on to `$none`; n·L (wrapping), at least 0; the term as `lambert_term_narrow` (dot =
 /// h·2¹⁶ + m·2⁸ + n: (h·w + ⌊(m·w + ⌊n·w/2⁸⌋)/2⁸⌋ + 2¹²) >> 13) plus ambient, clamped
 /// to 0..=65535; each channel min(((i·v + half) >> 15) · 32897 >> 23, max), packed
-/// 5-6-5. Writes r0–r3, r5–r7 (r7 past the constants) and the flags.
+/// 5-6-5 (from full light on by [`v6m_colour_cold`], which the caller places after
+/// the loop). Writes r0–r3, r5–r7 and the flags.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_colour {
     ($none:literal) => {
@@ -122,14 +123,49 @@ macro_rules! v6m_colour {
             "adds r3, r3, r0\n",
             "asrs r0, r3, #31\n",
             "bics r3, r0\n",
-            "lsrs r0, r3, #16\n",
-            "beq 6f\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            "ldm r7!, {{r5, r6}}\n",
+            // Below full light (i < 2¹⁵) no channel passes its maximum: no clamps.
+            "lsrs r7, r3, #15\n",
+            "bne 7f\n",
+            "muls r0, r3, r0\n",
+            "adds r0, r0, r5\n",
+            "lsrs r0, r0, #15\n",
+            "muls r0, r6, r0\n",
+            "lsrs r0, r0, #23\n",
+            "muls r1, r3, r1\n",
+            "adds r1, r1, r5\n",
+            "lsrs r1, r1, #15\n",
+            "muls r1, r6, r1\n",
+            "lsrs r1, r1, #23\n",
+            "muls r2, r3, r2\n",
+            "adds r2, r2, r5\n",
+            "lsrs r2, r2, #15\n",
+            "muls r2, r6, r2\n",
+            "lsrs r2, r2, #23\n",
+            "6:\n",
+            "lsls r0, r0, #11\n",
+            "lsls r1, r1, #5\n",
+            "orrs r0, r1\n",
+            "orrs r0, r2\n",
+        )
+    };
+}
+
+/// The part of [`v6m_colour`] for full light and above (i ≥ 2¹⁵, rare): the
+/// intensity clamped to 65535, each channel clamped to its maximum, back to the
+/// packing. Placed after the loop, within a conditional branch's reach.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_colour_cold {
+    () => {
+        concat!(
+            "7:\n",
+            "lsrs r7, r3, #16\n",
+            "beq 1f\n",
             "movs r3, #0\n",
             "subs r3, #1\n",
             "lsrs r3, r3, #16\n",
-            "6:\n",
-            "ldm r7!, {{r0, r1, r2}}\n",
-            "ldm r7!, {{r5, r6}}\n",
+            "1:\n",
             "muls r0, r3, r0\n",
             "adds r0, r0, r5\n",
             "lsrs r0, r0, #15\n",
@@ -157,10 +193,7 @@ macro_rules! v6m_colour {
             "bls 1f\n",
             "movs r2, #31\n",
             "1:\n",
-            "lsls r0, r0, #11\n",
-            "lsls r1, r1, #5\n",
-            "orrs r0, r1\n",
-            "orrs r0, r2\n",
+            "b 6b\n",
         )
     };
 }
@@ -218,6 +251,7 @@ core::arch::global_asm!(
     "mov r10, r1",
     "ldr r1, [r0, #72]",
     "mov r11, r1",
+    "mov r7, r0",
     "ldr r1, [r0, #56]",
     "ldr r0, [r0, #52]",
     "cmp r0, r9",
@@ -266,15 +300,14 @@ core::arch::global_asm!(
     "adds r0, #6",
     "cmp r0, r9",
     "bne 2b",
-    // Stopped at r0 (a bad index, an unplaced corner, or the end).
+    // Stopped at r0 (a bad index, an unplaced corner, or the end); the block in r7
+    // (the scan leaves it).
     "3:",
-    "ldr r7, [sp]",
     "str r0, [r7, #52]",
     "movs r0, #0",
     "b 9f",
     // Drawn (the face in r4): its colour, else the flat colour or the caller's.
     "4:",
-    "ldr r7, [sp]",
     "mov r4, r0",
     v6m_colour!("5f"),
     // The colour (r0) into the set-up's block, the corners' entries, the call.
@@ -339,6 +372,7 @@ core::arch::global_asm!(
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
+    v6m_colour_cold!(),
     ".balign 4",
     "11:",
     ".word zraster_small_walk_v6m",
@@ -346,6 +380,82 @@ core::arch::global_asm!(
     ".popsection",
     color = const WALK_COLOR,
 );
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+extern "C" {
+    /// The loops' colour code on its own: the colour of the face at `face` by block
+    /// `b`'s constants, 65536 without a normal.
+    ///
+    /// # Safety
+    ///
+    /// `b`'s `nend` and `ndelta` bound normals it may read (as the loops' blocks).
+    fn zraster_colour_v6m(b: *const FacesV6m, face: u32) -> u32;
+}
+
+// SAFETY (for `lit_565_v6m`): reads the block's constants and, below `nend`, the
+// normal at face + `ndelta`; r4–r7 saved and restored.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+core::arch::global_asm!(
+    ".pushsection .text.zraster_colour_v6m,\"ax\",%progbits",
+    ".balign 4",
+    ".global zraster_colour_v6m",
+    ".hidden zraster_colour_v6m",
+    ".type zraster_colour_v6m, %function",
+    ".thumb_func",
+    "zraster_colour_v6m:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r7, r0",
+    "mov r4, r1",
+    v6m_colour!("5f"),
+    "pop {{r4, r5, r6, r7, pc}}",
+    "5:",
+    "movs r0, #1",
+    "lsls r0, r0, #16",
+    "pop {{r4, r5, r6, r7, pc}}",
+    v6m_colour_cold!(),
+    ".size zraster_colour_v6m, . - zraster_colour_v6m",
+    ".popsection",
+);
+
+/// The ARMv6-M loops' colour code (`v6m_colour`) for face `f` lit by `l`, as
+/// [`lit_565`](super::lit_565) gives it (for the checks); elsewhere
+/// `lit_565_portable`.
+pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    {
+        let normals = l.normals();
+        let at = normals.as_ptr() as u32;
+        let block = FacesV6m {
+            light: l.light,
+            ambient: l.ambient,
+            diffuse: l.diffuse,
+            round: 1 << 12,
+            channels: l.channels,
+            half: l.half,
+            k: 32_897,
+            nend: at.wrapping_add(6 * normals.len() as u32),
+            ndelta: 0,
+            face: 0,
+            xy: 0,
+            len: 0,
+            end: 0,
+            neg_lo: 0,
+            span: 0,
+            walk: 0,
+            entries: 0,
+            flat: 0,
+            tested: 0,
+            drawn: 0,
+        };
+        // Faces past the normals as the first of them (not below `nend`).
+        let face = at.wrapping_add(6 * f.min(normals.len()) as u32);
+        // SAFETY: the normals' slice bounds what it reads (`nend`, `ndelta` 0).
+        let c = unsafe { zraster_colour_v6m(&block, face) };
+        return u16::try_from(c).ok();
+    }
+    #[allow(unreachable_code)]
+    super::light::lit_565_portable(f, l)
+}
 
 /// Draw the faces of `scan` from `*pos` on into `b`, those the common case covers: the
 /// scan past the dropped faces, each drawn face coloured by `color` (one colour, or
@@ -500,8 +610,9 @@ struct BandV6m {
     walk: u32,          // 76
     entries: u32,       // 80
     flat: u32,          // 84
-    tested: u32,        // 88
-    drawn: u32,         // 92
+    /// Pixels tested (the loop returns once the sum reaches 2³¹).
+    tested: u32, // 88
+    unused: u32,        // 92
     /// Taken below `filled`, kept below `room`.
     filled: u32, // 96
     taken: u32,         // 100
@@ -522,7 +633,7 @@ const _: () = {
     assert!(offset_of!(B, len) == 64 && offset_of!(B, read) == 68);
     assert!(offset_of!(B, keep) == 72 && offset_of!(B, walk) == 76);
     assert!(offset_of!(B, entries) == 80 && offset_of!(B, flat) == 84);
-    assert!(offset_of!(B, tested) == 88 && offset_of!(B, drawn) == 92);
+    assert!(offset_of!(B, tested) == 88);
     assert!(offset_of!(B, filled) == 96 && offset_of!(B, taken) == 100);
     assert!(offset_of!(B, kept) == 104 && offset_of!(B, room) == 108);
     assert!(offset_of!(B, least) == 112 && offset_of!(B, heads) == 116);
@@ -533,7 +644,7 @@ extern "C" {
     /// The band loop over block `b`: returns 0 at the end of the band's faces, 1 at a
     /// face it leaves whole to the caller (tall, or no colour), 2 at a face whose carry
     /// it did but which it does not draw (a corner past the cache, or refused by the
-    /// set-up), both with the face's head in `least`, 3 after `FLUSH` drawn faces; the
+    /// set-up), both with the face's head in `least`, 3 once the tested sum reaches 2³¹; the
     /// heads stored back, past the face it stopped at.
     ///
     /// # Safety
@@ -581,9 +692,9 @@ core::arch::global_asm!(
     "mov r9, r2",
     "mov r10, r3",
     "mov r11, r4",
-    // The least head (r5): its face f (r4) below n, else the end.
-    "60:",
     "ldr r7, [sp]",
+    // The least head (r5): its face f (r4) below n, else the end (the block in r7).
+    "60:",
     "mov r5, r8",
     "str r5, [sp, #4]",
     "lsrs r4, r5, #2",
@@ -595,36 +706,18 @@ core::arch::global_asm!(
     "ldr r1, [r7, #56]",
     "lsls r2, r4, #1",
     "ldrh r2, [r1, r2]",
+    "subs r2, r2, r4",
     "lsls r2, r2, #2",
-    "lsls r3, r5, #30",
-    "lsrs r3, r3, #30",
-    "orrs r2, r3",
+    "adds r2, r2, r5",
     "cmp r2, r9",
     "bhs 61f",
     "mov r8, r2",
-    "b 64f",
-    "61:",
-    "mov r8, r9",
-    "cmp r2, r10",
-    "bhs 62f",
-    "mov r9, r2",
-    "b 64f",
-    "62:",
-    "mov r9, r10",
-    "cmp r2, r11",
-    "bhs 63f",
-    "mov r10, r2",
-    "b 64f",
-    "63:",
-    "mov r10, r11",
-    "mov r11, r2",
     // The face's address (r4), then by the chain (bit 0 to N, bit 1 to C): tall (3)
     // the caller's; its own (2) worked out; kept (1) worked out and kept; taken (0)
     // the next carried colour while there is one, else worked out, and counted.
     "64:",
-    "lsls r0, r4, #1",
-    "adds r0, r0, r4",
-    "lsls r0, r0, #1",
+    "movs r0, #6",
+    "muls r0, r4, r0",
     "ldr r1, [r7, #52]",
     "adds r4, r1, r0",
     "lsls r1, r5, #31",
@@ -689,23 +782,37 @@ core::arch::global_asm!(
     "mov r0, r6",
     "ldr r6, 11f",
     "blx r6",
-    // Refused: the caller's (its carry done). Else the counts, as the face loop's.
+    // Refused: the caller's (its carry done). Else tested into the sum, back to the
+    // caller once it reaches 2³¹ (a face tests < 2^18.01 pixels: no wrap, of it nor of
+    // the failures, fewer).
     "adds r1, r0, #1",
     "beq 67f",
     "ldr r7, [sp]",
     "ldr r1, [r7, #88]",
     "adds r1, r1, r0",
     "str r1, [r7, #88]",
-    "ldr r2, [r7, #92]",
-    "subs r2, #1",
-    "str r2, [r7, #92]",
-    "beq 10f",
-    "b 60b",
+    "bpl 60b",
+    "movs r0, #3",
+    "b 9f",
+    // The merge's other cases: the next head moved down past the second head.
+    "61:",
+    "mov r8, r9",
+    "cmp r2, r10",
+    "bhs 62f",
+    "mov r9, r2",
+    "b 64b",
+    "62:",
+    "mov r9, r10",
+    "cmp r2, r11",
+    "bhs 63f",
+    "mov r10, r2",
+    "b 64b",
+    "63:",
+    "mov r10, r11",
+    "mov r11, r2",
+    "b 64b",
     "66:",
     "movs r0, #0",
-    "b 9f",
-    "10:",
-    "movs r0, #3",
     "b 9f",
     "67:",
     "movs r0, #2",
@@ -738,6 +845,7 @@ core::arch::global_asm!(
     "ldr r7, [sp]",
     v6m_colour!("31f"),
     "bx lr",
+    v6m_colour_cold!(),
     "31:",
     "ldr r0, [r7, #84]",
     "cmp r0, #0",
@@ -760,7 +868,8 @@ core::arch::global_asm!(
 /// `carry` has one, else coloured by `color` (one colour, or lit into 5-6-5 written as
 /// it is: `Raw565`), and kept for the band below (chain 1) while there is room; drawn
 /// by the small triangles' set-up and rows (`Less` with depth writes, a two-byte
-/// colour); its counts into `counts`. The heads move past each face it takes. Returns
+/// colour); its pixel counts into `counts` (not the drawn faces, which the band loop
+/// does not use). The heads move past each face it takes. Returns
 /// where it stopped ([`BandStop`], as `band_faces_less`). On ARMv6-M one assembly
 /// loop; elsewhere it leaves every face to the caller ([`BandStop::Refused`]).
 #[inline(always)]
@@ -822,7 +931,7 @@ fn band_faces_v6m<C: Copy>(
         entries: cache.as_ptr() as u32,
         flat: 0,
         tested: 0,
-        drawn: FLUSH,
+        unused: 0,
         heads: *heads,
         read: carry.read.as_ptr() as u32,
         keep: carry.keep.as_mut_ptr() as u32,
@@ -861,11 +970,10 @@ fn band_faces_v6m<C: Copy>(
         };
         counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
         counts.failed = counts.failed.wrapping_add(u64::from(failed));
-        counts.drawn = counts.drawn.wrapping_add(FLUSH - block.drawn);
         if status != 3 {
             break status;
         }
-        (block.tested, block.drawn) = (0, FLUSH);
+        block.tested = 0;
     };
     *heads = block.heads;
     *carry.taken = carry
@@ -1358,7 +1466,9 @@ pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         }
         // After a stop (an error: the frame is not drawn on) the carry is not compared.
         let same_carry = stopped || carry == carry2;
-        let same_draw = mine == theirs && z1 == z2 && c1 == c2 && heads1 == heads2;
+        // The loop does not count drawn faces (the band loop does not use them).
+        let same_counts = (mine.tested, mine.failed) == (theirs.tested, theirs.failed);
+        let same_draw = same_counts && z1 == z2 && c1 == c2 && heads1 == heads2;
         if !same_draw || stopped != stopped2 || !same_carry || (FACES_V6M_KERNEL && refused) {
             bad += 1;
         }

@@ -180,10 +180,11 @@ pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
     Some((channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16)
 }
 
-/// `lit_565` against its portable twin on this target: in each of `n` cases up to
-/// three random normals, asked for faces 0 to 3 and one far past them; every material's
-/// extremes and random ones; lights of every strength within the renderer's ranges.
-/// Returns the number of cases that differ.
+/// `lit_565` and the ARMv6-M loops' colour code against their portable twin on this
+/// target: in each of `n` cases up to three random normals, asked for faces 0 to 3 and
+/// one far past them; every material's extremes and random ones; lights of every
+/// strength within the renderer's ranges; then every intensity (and past both ends)
+/// for four materials. Returns the number of cases that differ.
 pub fn check_light_kernel(n: usize) -> usize {
     let mut rnd = super::xorshift32(0x1d87_2b41_u32);
     let mut bad = 0;
@@ -209,7 +210,25 @@ pub fn check_light_kernel(n: usize) -> usize {
             normals.get(..count).unwrap_or(&[]),
         );
         for f in [0, 1, 2, 3, usize::MAX] {
-            if lit_565(f, &b) != lit_565_portable(f, &b) {
+            let want = lit_565_portable(f, &b);
+            if lit_565(f, &b) != want || super::faces_v6m::lit_565_v6m(f, &b) != want {
+                bad += 1;
+            }
+        }
+    }
+    // Every intensity (a zero normal: the ambient alone) and beyond both ends, for
+    // materials of extreme channels and a spread one.
+    let normals = [[0i16; 3]];
+    for channels in [
+        [255, 255, 255],
+        [0, 1, 128],
+        [254, 127, 255],
+        [200, 100, 50],
+    ] {
+        for ambient in -2..=65538 {
+            let b = LightBlock::new([0; 3], ambient, 0, channels, &normals);
+            let want = lit_565_portable(0, &b);
+            if lit_565(0, &b) != want || super::faces_v6m::lit_565_v6m(0, &b) != want {
                 bad += 1;
             }
         }
