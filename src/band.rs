@@ -19,13 +19,9 @@ use crate::num::kernel::{
     band_faces_less, BandCarry, BandStop, BinChains, CachedVertex, FaceColor, FacesCounts,
     SmallTarget, FACES_KERNEL,
 };
-use crate::num::kernel::{band_faces_less_v6m, Buffers, FACES_V6M_KERNEL};
+use crate::num::kernel::{band_faces_less_v6m, FACES_V6M_KERNEL};
 #[cfg(zraster_x86_64)]
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
-
-/// Whether the bands have a fused loop: ARMv7E-M's `band_faces_less`, ARMv6-M's
-/// `band_faces_less_v6m`.
-const FUSED_BANDS: bool = FACES_KERNEL || FACES_V6M_KERNEL;
 use crate::raster::Clip;
 use crate::render::{
     cached_outside_rows, cached_triangle, per_colouring, Binning, CachedWalk, RenderState, Unbinned,
@@ -335,7 +331,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let lit;
         let fused = match materials {
             crate::mesh::Materials::Uniform(m)
-                if FUSED_BANDS && !(M::TRANSLUCENT && m.alpha() < u8::MAX) =>
+                if FACES_KERNEL && !(M::TRANSLUCENT && m.alpha() < u8::MAX) =>
             {
                 match self.flat_color(materials, lambert) {
                     Some(c) => Some(FaceColor::Flat(c)),
@@ -347,12 +343,76 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             }
             _ => None,
         };
+        // ARMv6-M: the band's faces through the fused loop first, out of line; from a
+        // face it leaves on (the heads and the carry as before that face), the loop
+        // below.
+        let mut faces = faces;
+        if FACES_V6M_KERNEL && self.band_fused_v6m(frame, zbuf, &mut faces, indices, carry) {
+            return Ok(());
+        }
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
         let px = per_colouring!(self, materials, lambert, |shade| {
             self.band_loop(frame, zbuf, faces.with(indices), carry, shade, fused)?
         });
         self.stats.add_pixel_counts(&px);
         Ok(())
+    }
+
+    /// ARMv6-M: a band's faces from `faces` on drawn by the fused band loop
+    /// ([`band_faces_less_v6m`]) for one opaque material, unlit or lit in 5-6-5 (as
+    /// ARMv7E-M's), its pixel counts into the renderer's; whether it drew them all
+    /// (else the heads and the carry stand before the face it left, for the Rust
+    /// loop). Out of line: one copy, not one for each colouring.
+    #[inline(never)]
+    fn band_fused_v6m<C>(
+        &mut self,
+        frame: &mut ColorBuffer<'_, C>,
+        zbuf: &mut ZBuffer<'_>,
+        faces: &mut BandFaces<'_>,
+        indices: &[[u16; 3]],
+        carry: &mut ColorCarry<C>,
+    ) -> bool
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let (crate::mesh::Faces::Triangles { materials, .. }, Some(cache)) =
+            (self.mesh.faces, self.cache.as_deref())
+        else {
+            return false;
+        };
+        let crate::mesh::Materials::Uniform(m) = materials else {
+            return false;
+        };
+        if M::TRANSLUCENT && m.alpha() < u8::MAX {
+            return false;
+        }
+        let lit;
+        let color = match self.flat_color(materials, self.shading() == Shading::Lambert) {
+            Some(c) => FaceColor::Flat(c),
+            None => {
+                lit = self.light_block(&m);
+                match lit.as_ref() {
+                    Some((b, f, raw)) => FaceColor::Lit(b, *f, *raw),
+                    None => return false,
+                }
+            }
+        };
+        let clip = clip_of(frame, zbuf);
+        let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
+        target.start();
+        let FlatTarget::Fused { b, less: true, .. } = &mut target else {
+            return false;
+        };
+        let mut counts = FacesCounts::default();
+        let tables = (faces.links, indices, cache);
+        let carry = &mut carry.parts();
+        let stop = band_faces_less_v6m(&mut faces.heads, tables, carry, &color, b, &mut counts);
+        let mut px = FrameStats::default();
+        px.pixels_tested += counts.tested;
+        px.pixels_written += counts.tested - counts.failed;
+        self.stats.add_pixel_counts(&px);
+        stop == BandStop::Done
     }
 
     /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
@@ -382,7 +442,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut counts = FrameStats::fill_counts();
         // The common case's faces in one assembly loop (`num::kernel::faces`), where
         // there is one, up to a face it leaves to this loop.
-        let mut fused = fused.filter(|_| FUSED_BANDS);
+        // (ARMv6-M's runs before this loop, in `band_fused_v6m`.)
+        let mut fused = fused.filter(|_| FACES_KERNEL);
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
@@ -479,14 +540,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     if let (Some(color), FlatTarget::Fused { b, less: true, .. }) =
                         (&fused, &mut target)
                     {
-                        let carried = &mut carry.parts();
-                        let stop = if FACES_V6M_KERNEL {
-                            faces.fused_v6m(cache, carried, color, b, &mut fused_counts)
-                        } else {
-                            let mut t = b.target();
-                            faces.fused(cache, carried, color, &mut t, &mut fused_counts)
-                        };
-                        match stop {
+                        let mut t = b.target();
+                        match faces.fused(
+                            cache,
+                            &mut carry.parts(),
+                            color,
+                            &mut t,
+                            &mut fused_counts,
+                        ) {
                             BandStop::Done => break,
                             BandStop::Whole(head) => left = faces.face_of(head).map(|x| (x, false)),
                             BandStop::Fill(head) => left = faces.face_of(head).map(|x| (x, true)),
@@ -600,21 +661,6 @@ impl<'m> BandTriangles<'_, 'm> {
     ) -> BandStop {
         let BandFaces { links, heads } = &mut self.faces;
         band_faces_less(heads, (links, self.indices, cache), carry, color, t, counts)
-    }
-
-    /// [`fused`](BandTriangles::fused) into `b` by ARMv6-M's loop
-    /// ([`band_faces_less_v6m`]).
-    #[inline(always)]
-    fn fused_v6m<C: Copy>(
-        &mut self,
-        cache: &[CachedVertex],
-        carry: &mut BandCarry<'_, C>,
-        color: &FaceColor<'_, C>,
-        b: &mut Buffers<'_, '_, C>,
-        counts: &mut FacesCounts,
-    ) -> BandStop {
-        let BandFaces { links, heads } = &mut self.faces;
-        band_faces_less_v6m(heads, (links, self.indices, cache), carry, color, b, counts)
     }
 
     /// The face the fused loop stopped at, by its chain's head (as [`next`] gives

@@ -653,6 +653,39 @@ extern "C" {
     fn zraster_band_faces_v6m(b: *mut BandV6m) -> u32;
 }
 
+/// The band loop's set-up call (the colour in r0, the face's address in r4): the
+/// colour into the set-up's block, the corners' entries, the call; refused to `67f`,
+/// else the tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! band_call {
+    () => {
+        concat!(
+            "ldr r7, [sp]\n",
+            "ldrh r1, [r4, #0]\n",
+            "ldrh r2, [r4, #2]\n",
+            "ldrh r3, [r4, #4]\n",
+            "ldr r5, [r7, #80]\n",
+            "lsls r1, r1, #3\n",
+            "adds r1, r1, r5\n",
+            "lsls r2, r2, #3\n",
+            "adds r2, r2, r5\n",
+            "lsls r3, r3, #3\n",
+            "adds r3, r3, r5\n",
+            "ldr r5, [r7, #76]\n",
+            "str r0, [r5, #{color}]\n",
+            "mov r0, r5\n",
+            "ldr r5, 11f\n",
+            "blx r5\n",
+            "adds r1, r0, #1\n",
+            "beq 67f\n",
+            "ldr r7, [sp]\n",
+            "ldr r1, [r7, #88]\n",
+            "adds r1, r1, r0\n",
+            "str r1, [r7, #88]\n",
+        )
+    };
+}
+
 // SAFETY (for `band_faces_less_v6m`): the merge reads `links[f]` and forms face f's
 // address only for the least head's f (head >> 2) below n, the smaller of the links'
 // and faces' lengths, whatever the heads and links hold (END or any number past the
@@ -693,7 +726,8 @@ core::arch::global_asm!(
     "mov r10, r3",
     "mov r11, r4",
     "ldr r7, [sp]",
-    // The least head (r5): its face f (r4) below n, else the end (the block in r7).
+    // The least head (r5, also at [sp, #4]): its face f (r4) below n, else the end
+    // (the block in r7).
     "60:",
     "mov r5, r8",
     "str r5, [sp, #4]",
@@ -701,8 +735,7 @@ core::arch::global_asm!(
     "ldr r1, [r7, #60]",
     "cmp r4, r1",
     "bhs 66f",
-    // Its chain's next face (the link above the chain's number) moved down past the
-    // heads below it.
+    // Its chain's next face (least + 4 (link − f)) moved down past the heads below it.
     "ldr r1, [r7, #56]",
     "lsls r2, r4, #1",
     "ldrh r2, [r1, r2]",
@@ -712,14 +745,26 @@ core::arch::global_asm!(
     "cmp r2, r9",
     "bhs 61f",
     "mov r8, r2",
-    // The face's address (r4), then by the chain (bit 0 to N, bit 1 to C): tall (3)
-    // the caller's; its own (2) worked out; kept (1) worked out and kept; taken (0)
-    // the next carried colour while there is one, else worked out, and counted.
+    // The face's address (r4); its corners' indices below the cache's length, else
+    // the caller's.
     "64:",
     "movs r0, #6",
     "muls r0, r4, r0",
     "ldr r1, [r7, #52]",
     "adds r4, r1, r0",
+    "ldr r6, [r7, #64]",
+    "ldrh r1, [r4, #0]",
+    "ldrh r2, [r4, #2]",
+    "ldrh r3, [r4, #4]",
+    "cmp r1, r6",
+    "bhs 68f",
+    "cmp r2, r6",
+    "bhs 68f",
+    "cmp r3, r6",
+    "bhs 68f",
+    // By the chain (bit 0 to N, bit 1 to C): tall (3) the caller's; its own (2)
+    // worked out; kept (1) worked out, kept once drawn; taken (0) the next carried
+    // colour while there is one, else worked out, and counted.
     "lsls r1, r5, #31",
     "bcs 20f",
     "bmi 25f",
@@ -740,58 +785,36 @@ core::arch::global_asm!(
     "adds r1, #1",
     "str r1, [r7, #100]",
     "b 22f",
-    "25:",
-    "bl 30f",
-    "ldr r7, [sp]",
-    "ldr r1, [r7, #104]",
-    "ldr r2, [r7, #108]",
-    "cmp r1, r2",
-    "bhs 22f",
-    "ldr r2, [r7, #72]",
-    "lsls r3, r1, #1",
-    "strh r0, [r2, r3]",
-    "adds r1, #1",
-    "str r1, [r7, #104]",
-    "b 22f",
     "20:",
     "bmi 68f",
     "bl 30f",
-    // The colour in r0: the corners' indices below the cache's length, else the
-    // caller's (its carry done); the colour into the set-up's block, the call.
+    // The colour in r0: the set-up and rows, the counts; back to the caller once the
+    // tested sum reaches 2³¹ (a face tests < 2^18.01 pixels: no wrap, of it nor of the
+    // failures, fewer).
     "22:",
-    "ldr r7, [sp]",
-    "ldr r6, [r7, #64]",
-    "ldrh r1, [r4, #0]",
-    "ldrh r2, [r4, #2]",
-    "ldrh r3, [r4, #4]",
-    "cmp r1, r6",
-    "bhs 67f",
-    "cmp r2, r6",
-    "bhs 67f",
-    "cmp r3, r6",
-    "bhs 67f",
-    "ldr r6, [r7, #80]",
-    "lsls r1, r1, #3",
-    "adds r1, r1, r6",
-    "lsls r2, r2, #3",
-    "adds r2, r2, r6",
-    "lsls r3, r3, #3",
-    "adds r3, r3, r6",
-    "ldr r6, [r7, #76]",
-    "str r0, [r6, #{color}]",
-    "mov r0, r6",
-    "ldr r6, 11f",
-    "blx r6",
-    // Refused: the caller's (its carry done). Else tested into the sum, back to the
-    // caller once it reaches 2³¹ (a face tests < 2^18.01 pixels: no wrap, of it nor of
-    // the failures, fewer).
-    "adds r1, r0, #1",
-    "beq 67f",
-    "ldr r7, [sp]",
-    "ldr r1, [r7, #88]",
-    "adds r1, r1, r0",
-    "str r1, [r7, #88]",
+    band_call!(),
     "bpl 60b",
+    "b 10f",
+    // Kept: the colour (r6) into the half for the band below once drawn, while there
+    // is room.
+    "25:",
+    "bl 30f",
+    "mov r6, r0",
+    band_call!(),
+    "ldr r1, [r7, #104]",
+    "ldr r2, [r7, #108]",
+    "cmp r1, r2",
+    "bhs 1f",
+    "ldr r2, [r7, #72]",
+    "lsls r3, r1, #1",
+    "strh r6, [r2, r3]",
+    "adds r1, #1",
+    "str r1, [r7, #104]",
+    "1:",
+    "ldr r1, [r7, #88]",
+    "cmp r1, #0",
+    "bge 60b",
+    "10:",
     "movs r0, #3",
     "b 9f",
     // The merge's other cases: the next head moved down past the second head.
@@ -814,6 +837,8 @@ core::arch::global_asm!(
     "66:",
     "movs r0, #0",
     "b 9f",
+    // Refused by the set-up (a taken colour counted); left to the caller (tall, no
+    // colour, a corner past the cache: nothing of its carry done). Its head at 112.
     "67:",
     "movs r0, #2",
     "b 65f",
@@ -839,8 +864,8 @@ core::arch::global_asm!(
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    // The colour of the face at r4 into r0; without a normal the flat colour, else
-    // the face is the caller's whole (nothing of its carry done yet).
+    // The colour of the face at r4 into r0 (r6 kept); without a normal the flat
+    // colour, else the face is the caller's (nothing of its carry done yet).
     "30:",
     "ldr r7, [sp]",
     v6m_colour!("31f"),
@@ -975,6 +1000,30 @@ fn band_faces_v6m<C: Copy>(
         }
         block.tested = 0;
     };
+    // The face it left (1, 2): the heads and the carry as before it, for the caller's
+    // loop (its next head taken out again, the face's put back in front; a taken
+    // colour of a refused face given back).
+    if status == 1 || status == 2 {
+        let least = block.least;
+        let f = (least >> 2) as usize;
+        let link = links.get(f).map_or(0, |&l| u32::from(l));
+        let next = least.wrapping_add(link.wrapping_sub(f as u32).wrapping_mul(4));
+        let (mut back, mut i, mut out) = ([least; 4], 1, false);
+        for h in block.heads {
+            if h == next && !out {
+                out = true; // once: heads may repeat (hostile bins)
+                continue;
+            }
+            if let Some(slot) = back.get_mut(i) {
+                *slot = h;
+            }
+            i += 1;
+        }
+        block.heads = back;
+        if status == 2 && least & 3 == 0 {
+            block.taken = block.taken.wrapping_sub(1);
+        }
+    }
     *heads = block.heads;
     *carry.taken = carry
         .taken
@@ -982,8 +1031,7 @@ fn band_faces_v6m<C: Copy>(
     *carry.kept = block.kept as usize;
     match status {
         0 => BandStop::Done,
-        1 => BandStop::Whole(block.least),
-        _ => BandStop::Fill(block.least),
+        _ => BandStop::Whole(block.least),
     }
 }
 
@@ -1437,8 +1485,11 @@ pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
                 &mut mine,
             ) {
                 BandStop::Done => break,
-                BandStop::Whole(h) => (h, false),
-                BandStop::Fill(h) => (h, true),
+                // The heads and the carry as before the face it left: the twin's.
+                BandStop::Whole(_) | BandStop::Fill(_) => match next(&mut heads1) {
+                    Some(h) => (h, false),
+                    None => break,
+                },
                 BandStop::Refused => {
                     // Only where there is no assembly: the twin's face by face.
                     refused = true;
