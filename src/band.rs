@@ -19,7 +19,7 @@ use crate::num::kernel::{
     band_faces_less, BandCarry, BandStop, BinChains, CachedVertex, FaceColor, FacesCounts,
     SmallTarget, FACES_KERNEL,
 };
-use crate::num::kernel::{band_faces_less_v6m, FACES_V6M_KERNEL};
+use crate::num::kernel::{band_faces_less_v6m, Buffers, FACES_V6M_KERNEL};
 #[cfg(zraster_x86_64)]
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 use crate::raster::Clip;
@@ -343,13 +343,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             }
             _ => None,
         };
-        // ARMv6-M: the band's faces through the fused loop first, out of line; from a
-        // face it leaves on (the heads and the carry as before that face), the loop
-        // below.
-        let mut faces = faces;
-        if FACES_V6M_KERNEL && self.band_fused_v6m(frame, zbuf, &mut faces, indices, carry) {
-            return Ok(());
-        }
         // One loop for each way of colouring a face, as in `draw_buffer_triangles`.
         let px = per_colouring!(self, materials, lambert, |shade| {
             self.band_loop(frame, zbuf, faces.with(indices), carry, shade, fused)?
@@ -358,34 +351,31 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         Ok(())
     }
 
-    /// ARMv6-M: a band's faces from `faces` on drawn by the fused band loop
+    /// ARMv6-M: a band's faces from `faces` on drawn into `b` by the fused band loop
     /// ([`band_faces_less_v6m`]) for one opaque material, unlit or lit in 5-6-5 (as
-    /// ARMv7E-M's), its pixel counts into the renderer's; whether it drew them all
-    /// (else the heads and the carry stand before the face it left, for the Rust
-    /// loop). Out of line: one copy, not one for each colouring.
+    /// ARMv7E-M's), its pixel counts into `px`; up to a face it leaves, the heads and
+    /// the carry as before that face for the Rust walk. Out of line: one copy, not one
+    /// for each colouring's loop.
     #[inline(never)]
     fn band_fused_v6m<C>(
-        &mut self,
-        frame: &mut ColorBuffer<'_, C>,
-        zbuf: &mut ZBuffer<'_>,
-        faces: &mut BandFaces<'_>,
-        indices: &[[u16; 3]],
+        &self,
+        b: &mut Buffers<'_, '_, C>,
+        faces: &mut BandTriangles<'_, 'm>,
+        cache: &[CachedVertex],
         carry: &mut ColorCarry<C>,
-    ) -> bool
-    where
+        px: &mut FrameStats,
+    ) where
         C: PixelColor,
         M: Material<C>,
     {
-        let (crate::mesh::Faces::Triangles { materials, .. }, Some(cache)) =
-            (self.mesh.faces, self.cache.as_deref())
-        else {
-            return false;
+        let Faces::Triangles { materials, .. } = self.mesh.faces else {
+            return;
         };
         let crate::mesh::Materials::Uniform(m) = materials else {
-            return false;
+            return;
         };
         if M::TRANSLUCENT && m.alpha() < u8::MAX {
-            return false;
+            return;
         }
         let lit;
         let color = match self.flat_color(materials, self.shading() == Shading::Lambert) {
@@ -394,25 +384,17 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 lit = self.light_block(&m);
                 match lit.as_ref() {
                     Some((b, f, raw)) => FaceColor::Lit(b, *f, *raw),
-                    None => return false,
+                    None => return,
                 }
             }
         };
-        let clip = clip_of(frame, zbuf);
-        let mut target = FlatTarget::<C, S, false>::new(frame, zbuf, &clip);
-        target.start();
-        let FlatTarget::Fused { b, less: true, .. } = &mut target else {
-            return false;
-        };
         let mut counts = FacesCounts::default();
-        let tables = (faces.links, indices, cache);
+        let BandFaces { links, heads } = &mut faces.faces;
+        let tables = (*links, faces.indices, cache);
         let carry = &mut carry.parts();
-        let stop = band_faces_less_v6m(&mut faces.heads, tables, carry, &color, b, &mut counts);
-        let mut px = FrameStats::default();
+        band_faces_less_v6m(heads, tables, carry, &color, b, &mut counts);
         px.pixels_tested += counts.tested;
         px.pixels_written += counts.tested - counts.failed;
-        self.stats.add_pixel_counts(&px);
-        stop == BandStop::Done
     }
 
     /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
@@ -442,7 +424,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let mut counts = FrameStats::fill_counts();
         // The common case's faces in one assembly loop (`num::kernel::faces`), where
         // there is one, up to a face it leaves to this loop.
-        // (ARMv6-M's runs before this loop, in `band_fused_v6m`.)
         let mut fused = fused.filter(|_| FACES_KERNEL);
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
@@ -528,6 +509,13 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 };
             }
             if fused.is_none() {
+                // ARMv6-M: the fused band loop first (out of line), from a face it
+                // leaves on the walk below.
+                if let (true, FlatTarget::Fused { b, less: true, .. }) =
+                    (FACES_V6M_KERNEL, &mut target)
+                {
+                    self.band_fused_v6m(b, &mut faces, cache, carry, &mut px);
+                }
                 // Without the fused loop (on every run where there is none) a plain
                 // walk: asking for it costs the ARMv6-M band loop 1 k.
                 for (f, t, how) in faces.by_ref() {

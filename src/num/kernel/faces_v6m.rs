@@ -915,10 +915,10 @@ pub(crate) fn band_faces_less_v6m<C: Copy>(
     }
 }
 
-/// [`band_faces_less_v6m`] on ARMv6-M. Out of line (it runs once for a band's run of
-/// faces): its block is not stacked on the caller's frame.
+/// [`band_faces_less_v6m`] on ARMv6-M (inlined into its one caller, which runs once a
+/// band out of line).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-#[inline(never)]
+#[inline(always)]
 fn band_faces_v6m<C: Copy>(
     heads: &mut [u32; 4],
     (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
