@@ -642,10 +642,11 @@ const _: () = {
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
     /// The band loop over block `b`: returns 0 at the end of the band's faces, 1 at a
-    /// face it leaves whole to the caller (tall, or no colour), 2 at a face whose carry
-    /// it did but which it does not draw (a corner past the cache, or refused by the
-    /// set-up), both with the face's head in `least`, 3 once the tested sum reaches 2³¹; the
-    /// heads stored back, past the face it stopped at.
+    /// face it leaves to the caller with nothing of its carry done (tall, or no
+    /// colour), 2 at one it does not draw (a corner past the cache, or refused by the
+    /// set-up) with a taken colour counted, both with the face's head in `least` and
+    /// the heads past it (the wrapper takes both back), 3 once the tested sum reaches
+    /// 2³¹; the heads stored back.
     ///
     /// # Safety
     ///
@@ -654,8 +655,9 @@ extern "C" {
 }
 
 /// The band loop's set-up call (the colour in r0, the face's address in r4): the
-/// colour into the set-up's block, the corners' entries, the call; refused to `67f`,
-/// else the tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
+/// corners' indices below the cache's length, the colour into the set-up's block,
+/// their entries, the call; a corner past the cache or refused to `67f`, else the
+/// tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! band_call {
     () => {
@@ -664,6 +666,13 @@ macro_rules! band_call {
             "ldrh r1, [r4, #0]\n",
             "ldrh r2, [r4, #2]\n",
             "ldrh r3, [r4, #4]\n",
+            "ldr r5, [r7, #64]\n",
+            "cmp r1, r5\n",
+            "bhs 67f\n",
+            "cmp r2, r5\n",
+            "bhs 67f\n",
+            "cmp r3, r5\n",
+            "bhs 67f\n",
             "ldr r5, [r7, #80]\n",
             "lsls r1, r1, #3\n",
             "adds r1, r1, r5\n",
@@ -745,23 +754,12 @@ core::arch::global_asm!(
     "cmp r2, r9",
     "bhs 61f",
     "mov r8, r2",
-    // The face's address (r4); its corners' indices below the cache's length, else
-    // the caller's.
+    // The face's address (r4).
     "64:",
     "movs r0, #6",
     "muls r0, r4, r0",
     "ldr r1, [r7, #52]",
     "adds r4, r1, r0",
-    "ldr r6, [r7, #64]",
-    "ldrh r1, [r4, #0]",
-    "ldrh r2, [r4, #2]",
-    "ldrh r3, [r4, #4]",
-    "cmp r1, r6",
-    "bhs 68f",
-    "cmp r2, r6",
-    "bhs 68f",
-    "cmp r3, r6",
-    "bhs 68f",
     // By the chain (bit 0 to N, bit 1 to C): tall (3) the caller's; its own (2)
     // worked out; kept (1) worked out, kept once drawn; taken (0) the next carried
     // colour while there is one, else worked out, and counted.
@@ -837,8 +835,8 @@ core::arch::global_asm!(
     "66:",
     "movs r0, #0",
     "b 9f",
-    // Refused by the set-up (a taken colour counted); left to the caller (tall, no
-    // colour, a corner past the cache: nothing of its carry done). Its head at 112.
+    // A corner past the cache or refused by the set-up (a taken colour counted); left
+    // to the caller (tall, no colour: nothing of its carry done). Its head at 112.
     "67:",
     "movs r0, #2",
     "b 65f",
