@@ -1006,18 +1006,12 @@ fn band_faces_v6m<C: Copy>(
         let f = (least >> 2) as usize;
         let link = links.get(f).map_or(0, |&l| u32::from(l));
         let next = least.wrapping_add(link.wrapping_sub(f as u32).wrapping_mul(4));
-        let (mut back, mut i, mut out) = ([least; 4], 1, false);
-        for h in block.heads {
-            if h == next && !out {
-                out = true; // once: heads may repeat (hostile bins)
-                continue;
-            }
-            if let Some(slot) = back.get_mut(i) {
-                *slot = h;
-            }
-            i += 1;
+        // The heads before it: those below `next` (the first equal one: hostile bins
+        // may repeat heads) one place up, the face's in front.
+        if let Some(p) = block.heads.iter().position(|&h| h == next) {
+            block.heads.copy_within(0..p, 1);
+            block.heads[0] = least;
         }
-        block.heads = back;
         if status == 2 && least & 3 == 0 {
             block.taken = block.taken.wrapping_sub(1);
         }
