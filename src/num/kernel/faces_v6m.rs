@@ -223,8 +223,10 @@ extern "C" {
 // three indices found below `len`; `zraster_small_walk_v6m`'s contract: a block
 // started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
 // r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
-// r1 is reloaded. The block is read and written through its address at [sp]; the
-// frame is 40 bytes (8-aligned at the call); r4–r11 and lr saved and restored.
+// r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
+// set-up lies out of reach (in RAM under `ram-code`). The block is read and written
+// through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
+// and lr saved and restored.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     ".pushsection .text.zraster_faces_v6m,\"ax\",%progbits",
@@ -326,8 +328,7 @@ core::arch::global_asm!(
     "lsls r3, r3, #3",
     "adds r3, r3, r6",
     "mov r0, r5",
-    "ldr r5, 11f",
-    "blx r5",
+    "bl zraster_small_walk_v6m",
     // Refused (u32::MAX): the caller's. Else tested into the sum, one face fewer to
     // the next return, and on from the next face.
     "adds r1, r0, #1",
@@ -373,9 +374,6 @@ core::arch::global_asm!(
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
     v6m_colour_cold!(),
-    ".balign 4",
-    "11:",
-    ".word zraster_small_walk_v6m",
     ".size zraster_faces_v6m, . - zraster_faces_v6m",
     ".popsection",
     color = const WALK_COLOR,
@@ -683,8 +681,7 @@ macro_rules! band_call {
             "ldr r5, [r7, #76]\n",
             "str r0, [r5, #{color}]\n",
             "mov r0, r5\n",
-            "ldr r5, 11f\n",
-            "blx r5\n",
+            "bl zraster_small_walk_v6m\n",
             "adds r1, r0, #1\n",
             "beq 67f\n",
             "ldr r7, [sp]\n",
@@ -862,10 +859,10 @@ core::arch::global_asm!(
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    // The colour of the face at r4 into r0 (r6 kept); without a normal the flat
-    // colour, else the face is the caller's (nothing of its carry done yet).
+    // The colour of the face at r4 into r0 (the block in r7 at every call); without a
+    // normal the flat colour, else the face is the caller's (nothing of its carry done
+    // yet).
     "30:",
-    "ldr r7, [sp]",
     v6m_colour!("31f"),
     "bx lr",
     v6m_colour_cold!(),
@@ -877,9 +874,6 @@ core::arch::global_asm!(
     "32:",
     "uxth r0, r0",
     "bx lr",
-    ".balign 4",
-    "11:",
-    ".word zraster_small_walk_v6m",
     ".size zraster_band_faces_v6m, . - zraster_band_faces_v6m",
     ".popsection",
     color = const WALK_COLOR,
