@@ -329,11 +329,11 @@ core::arch::global_asm!(
     "adds r3, r3, r6",
     "mov r0, r5",
     "bl zraster_small_walk_v6m",
-    // Refused (u32::MAX): the caller's. Else tested into the sum, one face fewer to
-    // the next return, and on from the next face.
+    // Refused (u32::MAX): the caller's. Else (the block still in r7, which the set-up
+    // keeps) tested into the sum, one face fewer to the next return, and on from the
+    // next face.
     "adds r1, r0, #1",
     "beq 67f",
-    "ldr r7, [sp]",
     "ldr r1, [r7, #88]",
     "adds r1, r1, r0",
     "str r1, [r7, #88]",
@@ -684,7 +684,6 @@ macro_rules! band_call {
             "bl zraster_small_walk_v6m\n",
             "adds r1, r0, #1\n",
             "beq 67f\n",
-            "ldr r7, [sp]\n",
             "ldr r1, [r7, #88]\n",
             "adds r1, r1, r0\n",
             "str r1, [r7, #88]\n",
