@@ -69,12 +69,53 @@ const _: () = {
     assert!(offset_of!(B, drawn) == 92);
 };
 
+/// Whether a diffuse weight takes `v6m_term`'s `narrow` form (|w| < 2¹⁵).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+fn narrow(w: i32) -> bool {
+    w.unsigned_abs() < 1 << 15
+}
+
 /// The set-up block's fields the loop writes and reads (`RowsWalk`'s `color` and
 /// `failed`, pinned in `rows_v6m`).
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 const WALK_COLOR: usize = 12;
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 const WALK_FAILED: usize = 28;
+
+/// The diffuse term's numerator before its rounding, from dot (r3, at least 0) and the
+/// weight w (r1) into r3 (r5, r6 written): `general` as `lambert_term_narrow` (dot =
+/// h·2¹⁶ + m·2⁸ + n: h·w + ⌊(m·w + ⌊n·w/2⁸⌋)/2⁸⌋, every product below 2³¹ in
+/// magnitude for w within ±2¹⁶ and dot up to 3·2²⁹); `narrow`, for |w| < 2¹⁵, h·w +
+/// ⌊l·w/2¹⁶⌋ with dot = h·2¹⁶ + l (|l·w| < 2³¹): both ⌊(dot·w + 2²⁸)/2²⁹⌋ once
+/// rounded (nested floors), so the same term.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_term {
+    (general) => {
+        concat!(
+            "lsrs r5, r3, #16\n",
+            "muls r5, r1, r5\n",
+            "uxtb r6, r3\n",
+            "muls r6, r1, r6\n",
+            "asrs r6, r6, #8\n",
+            "lsrs r3, r3, #8\n",
+            "uxtb r3, r3\n",
+            "muls r3, r1, r3\n",
+            "adds r3, r3, r6\n",
+            "asrs r3, r3, #8\n",
+            "adds r3, r3, r5\n",
+        )
+    };
+    (narrow) => {
+        concat!(
+            "lsrs r5, r3, #16\n",
+            "muls r5, r1, r5\n",
+            "uxth r6, r3\n",
+            "muls r6, r1, r6\n",
+            "asrs r6, r6, #16\n",
+            "adds r3, r5, r6\n",
+        )
+    };
+}
 
 /// The Lambert colour of the face at r4 (its address; the block in r7) into r0, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
@@ -85,7 +126,7 @@ const WALK_FAILED: usize = 28;
 /// the loop). Writes r0–r3, r5–r7 and the flags.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_colour {
-    ($none:literal) => {
+    ($none:literal, $term:ident) => {
         concat!(
             "ldr r2, [r7, #44]\n",
             "cmp r4, r2\n",
@@ -107,17 +148,7 @@ macro_rules! v6m_colour {
             "asrs r0, r3, #31\n",
             "bics r3, r0\n",
             "ldm r7!, {{r0, r1, r2}}\n",
-            "lsrs r5, r3, #16\n",
-            "muls r5, r1, r5\n",
-            "uxtb r6, r3\n",
-            "muls r6, r1, r6\n",
-            "asrs r6, r6, #8\n",
-            "lsrs r3, r3, #8\n",
-            "uxtb r3, r3\n",
-            "muls r3, r1, r3\n",
-            "adds r3, r3, r6\n",
-            "asrs r3, r3, #8\n",
-            "adds r3, r3, r5\n",
+            v6m_term!($term),
             "adds r3, r3, r2\n",
             "asrs r3, r3, #13\n",
             "adds r3, r3, r0\n",
@@ -211,6 +242,13 @@ extern "C" {
     /// and cache, the normals inside their slice, `walk` a started set-up block whose
     /// clip lies inside both buffers.
     fn zraster_faces_v6m(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m`] for a diffuse weight within ±(2¹⁵ − 1) (`v6m_term`'s
+    /// `narrow`).
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_narrow(b: *mut FacesV6m) -> u32;
 }
 
 // SAFETY (for `faces_less_v6m`): the scan is `skip_culled_v6m`'s turn for turn
@@ -227,15 +265,18 @@ extern "C" {
 // set-up lies out of reach (in RAM under `ram-code`). The block is read and written
 // through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
 // and lr saved and restored.
+/// The whole frame's loop as the function `$name`, its colour's term `$term`.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! faces_v6m_fn {
+    ($name:literal, $term:ident) => {
 core::arch::global_asm!(
-    ".pushsection .text.zraster_faces_v6m,\"ax\",%progbits",
+    concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
     ".balign 4",
-    ".global zraster_faces_v6m",
-    ".hidden zraster_faces_v6m",
-    ".type zraster_faces_v6m, %function",
+    concat!(".global ", $name),
+    concat!(".hidden ", $name),
+    concat!(".type ", $name, ", %function"),
     ".thumb_func",
-    "zraster_faces_v6m:",
+    concat!($name, ":"),
     "push {{r4, r5, r6, r7, lr}}",
     "mov r4, r8",
     "mov r5, r9",
@@ -311,7 +352,7 @@ core::arch::global_asm!(
     // Drawn (the face in r4): its colour, else the flat colour or the caller's.
     "4:",
     "mov r4, r0",
-    v6m_colour!("5f"),
+    v6m_colour!("5f", $term),
     // The colour (r0) into the set-up's block, the corners' entries, the call.
     "8:",
     "ldr r7, [sp]",
@@ -374,10 +415,17 @@ core::arch::global_asm!(
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
     v6m_colour_cold!(),
-    ".size zraster_faces_v6m, . - zraster_faces_v6m",
+    concat!(".size ", $name, ", . - ", $name),
     ".popsection",
     color = const WALK_COLOR,
 );
+    };
+}
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m", general);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_narrow", narrow);
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
@@ -388,32 +436,49 @@ extern "C" {
     ///
     /// `b`'s `nend` and `ndelta` bound normals it may read (as the loops' blocks).
     fn zraster_colour_v6m(b: *const FacesV6m, face: u32) -> u32;
+    /// [`zraster_colour_v6m`] with `v6m_term`'s `narrow` (|diffuse| < 2¹⁵).
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_colour_v6m`].
+    fn zraster_colour_v6m_narrow(b: *const FacesV6m, face: u32) -> u32;
 }
 
-// SAFETY (for `lit_565_v6m`): reads the block's constants and, below `nend`, the
-// normal at face + `ndelta`; r4–r7 saved and restored.
+/// The loops' colour code on its own as the function `$name` (term `$term`), for the
+/// checks.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-core::arch::global_asm!(
-    ".pushsection .text.zraster_colour_v6m,\"ax\",%progbits",
-    ".balign 4",
-    ".global zraster_colour_v6m",
-    ".hidden zraster_colour_v6m",
-    ".type zraster_colour_v6m, %function",
-    ".thumb_func",
-    "zraster_colour_v6m:",
-    "push {{r4, r5, r6, r7, lr}}",
-    "mov r7, r0",
-    "mov r4, r1",
-    v6m_colour!("5f"),
-    "pop {{r4, r5, r6, r7, pc}}",
-    "5:",
-    "movs r0, #1",
-    "lsls r0, r0, #16",
-    "pop {{r4, r5, r6, r7, pc}}",
-    v6m_colour_cold!(),
-    ".size zraster_colour_v6m, . - zraster_colour_v6m",
-    ".popsection",
-);
+macro_rules! colour_v6m_fn {
+    ($name:literal, $term:ident) => {
+        // SAFETY (for `lit_565_v6m`): reads the block's constants and, below `nend`,
+        // the normal at face + `ndelta`; r4–r7 saved and restored.
+        core::arch::global_asm!(
+            concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
+            ".balign 4",
+            concat!(".global ", $name),
+            concat!(".hidden ", $name),
+            concat!(".type ", $name, ", %function"),
+            ".thumb_func",
+            concat!($name, ":"),
+            "push {{r4, r5, r6, r7, lr}}",
+            "mov r7, r0",
+            "mov r4, r1",
+            v6m_colour!("5f", $term),
+            "pop {{r4, r5, r6, r7, pc}}",
+            "5:",
+            "movs r0, #1",
+            "lsls r0, r0, #16",
+            "pop {{r4, r5, r6, r7, pc}}",
+            v6m_colour_cold!(),
+            concat!(".size ", $name, ", . - ", $name),
+            ".popsection",
+        );
+    };
+}
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+colour_v6m_fn!("zraster_colour_v6m", general);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+colour_v6m_fn!("zraster_colour_v6m_narrow", narrow);
 
 /// The ARMv6-M loops' colour code (`v6m_colour`) for face `f` lit by `l`, as
 /// [`lit_565`](super::lit_565) gives it (for the checks); elsewhere
@@ -448,7 +513,13 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
         // Faces past the normals as the first of them (not below `nend`).
         let face = at.wrapping_add(6 * f.min(normals.len()) as u32);
         // SAFETY: the normals' slice bounds what it reads (`nend`, `ndelta` 0).
-        let c = unsafe { zraster_colour_v6m(&block, face) };
+        let c = unsafe {
+            if narrow(l.diffuse) {
+                zraster_colour_v6m_narrow(&block, face)
+            } else {
+                zraster_colour_v6m(&block, face)
+            }
+        };
         return u16::try_from(c).ok();
     }
     #[allow(unreachable_code)]
@@ -552,7 +623,11 @@ fn faces_v6m<'a, C: Copy>(
         // the block as built above (see the assembly's SAFETY comment).
         let (status, failed) = unsafe {
             failed.write(0);
-            let status = zraster_faces_v6m(&mut block);
+            let status = if narrow(block.diffuse) {
+                zraster_faces_v6m_narrow(&mut block)
+            } else {
+                zraster_faces_v6m(&mut block)
+            };
             (status, failed.read())
         };
         counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
@@ -862,7 +937,7 @@ core::arch::global_asm!(
     // normal the flat colour, else the face is the caller's (nothing of its carry done
     // yet).
     "30:",
-    v6m_colour!("31f"),
+    v6m_colour!("31f", general),
     "bx lr",
     v6m_colour_cold!(),
     "31:",

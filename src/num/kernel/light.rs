@@ -184,7 +184,8 @@ pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
 /// target: in each of `n` cases up to three random normals, asked for faces 0 to 3 and
 /// one far past them; every material's extremes and random ones; lights of every
 /// strength within the renderer's ranges; then every intensity (and past both ends)
-/// for four materials. Returns the number of cases that differ.
+/// for four materials and both of the ARMv6-M colour code's forms. Returns the number
+/// of cases that differ.
 pub fn check_light_kernel(n: usize) -> usize {
     let mut rnd = super::xorshift32(0x1d87_2b41_u32);
     let mut bad = 0;
@@ -217,16 +218,18 @@ pub fn check_light_kernel(n: usize) -> usize {
         }
     }
     // Every intensity (a zero normal: the ambient alone) and beyond both ends, for
-    // materials of extreme channels and a spread one.
+    // materials of extreme channels and a spread one, with a diffuse weight of each
+    // of the ARMv6-M loops' two forms.
     let normals = [[0i16; 3]];
-    for channels in [
+    let materials = [
         [255, 255, 255],
         [0, 1, 128],
         [254, 127, 255],
         [200, 100, 50],
-    ] {
+    ];
+    for (channels, diffuse) in materials.into_iter().flat_map(|m| [(m, 0), (m, 1 << 15)]) {
         for ambient in -2..=65538 {
-            let b = LightBlock::new([0; 3], ambient, 0, channels, &normals);
+            let b = LightBlock::new([0; 3], ambient, diffuse, channels, &normals);
             let want = lit_565_portable(0, &b);
             if lit_565(0, &b) != want || super::faces_v6m::lit_565_v6m(0, &b) != want {
                 bad += 1;
