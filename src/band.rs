@@ -354,8 +354,9 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// ARMv6-M: a band's faces from `faces` on drawn into `b` by the fused band loop
     /// ([`band_faces_less_v6m`]) for one opaque material, unlit or lit in 5-6-5 (as
     /// ARMv7E-M's), its pixel counts into `px`; up to a face it leaves, the heads and
-    /// the carry as before that face for the Rust walk. Out of line: one copy, not one
-    /// for each colouring's loop.
+    /// the carry as before that face for the Rust walk. Whether it ran (`false`: it
+    /// will not for these buffers and faces). Out of line: one copy, not one for each
+    /// colouring's loop.
     #[inline(never)]
     fn band_fused_v6m<C>(
         &self,
@@ -364,18 +365,19 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         cache: &[CachedVertex],
         carry: &mut ColorCarry<C>,
         px: &mut FrameStats,
-    ) where
+    ) -> bool
+    where
         C: PixelColor,
         M: Material<C>,
     {
         let Faces::Triangles { materials, .. } = self.mesh.faces else {
-            return;
+            return false;
         };
         let crate::mesh::Materials::Uniform(m) = materials else {
-            return;
+            return false;
         };
         if M::TRANSLUCENT && m.alpha() < u8::MAX {
-            return;
+            return false;
         }
         let lit;
         let color = match self.flat_color(materials, self.shading() == Shading::Lambert) {
@@ -384,7 +386,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                 lit = self.light_block(&m);
                 match lit.as_ref() {
                     Some((b, f, raw)) => FaceColor::Lit(b, *f, *raw),
-                    None => return,
+                    None => return false,
                 }
             }
         };
@@ -392,9 +394,10 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let BandFaces { links, heads } = &mut faces.faces;
         let tables = (*links, faces.indices, cache);
         let carry = &mut carry.parts();
-        band_faces_less_v6m(heads, tables, carry, &color, b, &mut counts);
+        let stop = band_faces_less_v6m(heads, tables, carry, &color, b, &mut counts);
         px.pixels_tested += counts.tested;
         px.pixels_written += counts.tested - counts.failed;
+        stop != BandStop::Refused
     }
 
     /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
@@ -508,14 +511,21 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     counts.add(filled, &mut px);
                 };
             }
-            if fused.is_none() {
-                // ARMv6-M: the fused band loop first (out of line), from a face it
-                // leaves on the walk below.
-                if let (true, FlatTarget::Fused { b, less: true, .. }) =
-                    (FACES_V6M_KERNEL, &mut target)
-                {
-                    self.band_fused_v6m(b, &mut faces, cache, carry, &mut px);
+            if FACES_V6M_KERNEL {
+                // ARMv6-M: the fused band loop (out of line), each face it leaves
+                // (the heads and the carry as before it) by the plain walk's turn.
+                let mut engaged = true;
+                loop {
+                    if let (true, FlatTarget::Fused { b, less: true, .. }) = (engaged, &mut target)
+                    {
+                        engaged = self.band_fused_v6m(b, &mut faces, cache, carry, &mut px);
+                    }
+                    let Some((f, t, how)) = faces.next() else {
+                        break;
+                    };
+                    face!(f, t, how, false);
                 }
+            } else if fused.is_none() {
                 // Without the fused loop (on every run where there is none) a plain
                 // walk: asking for it costs the ARMv6-M band loop 1 k.
                 for (f, t, how) in faces.by_ref() {
