@@ -119,11 +119,11 @@ macro_rules! v6m_term {
 
 /// The Lambert colour of the face at r4 (its address; the block in r7) into r0, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
-/// on to `$none`; n·L (wrapping), at least 0; the term as `lambert_term_narrow` (dot =
-/// h·2¹⁶ + m·2⁸ + n: (h·w + ⌊(m·w + ⌊n·w/2⁸⌋)/2⁸⌋ + 2¹²) >> 13) plus ambient, clamped
-/// to 0..=65535; each channel min(((i·v + half) >> 15) · 32897 >> 23, max), packed
-/// 5-6-5 (from full light on by [`v6m_colour_cold`], which the caller places after
-/// the loop). Writes r0–r3, r5–r7 and the flags.
+/// on to `$none`; n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
+/// rounded: + 2¹², >> 13) plus ambient; for an intensity in 0..2¹⁵ each channel
+/// ((i·v + half) >> 15) · 32897 >> 23, packed 5-6-5 (any other intensity by
+/// `v6m_colour_cold`, which the caller places after its loop: the intensity clamped to
+/// 0..=65535, each channel to its maximum). Writes r0–r3, r5–r7 and the flags.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_colour {
     ($none:literal, $term:ident) => {

@@ -17,7 +17,11 @@
 //! a face's flat Lambert colour in 5-6-5 ([`lit_565`](light::lit_565), ARMv7E-M,
 //! checked by `check_light_kernel`); the whole frame's face loop, scan, colour, set-up
 //! and rows composed from those ([`faces_less`](faces::faces_less), ARMv7E-M, checked
-//! by `check_faces_kernel`);
+//! by `check_faces_kernel`); on ARMv6-M the whole frame's face loop and the bands'
+//! ([`faces_less_v6m`](faces_v6m::faces_less_v6m),
+//! [`band_faces_less_v6m`](faces_v6m::band_faces_less_v6m): scan or merge and carry,
+//! the colour, a call of the small triangle's set-up), checked by
+//! `check_faces_v6m_kernel` and `check_band_faces_v6m_kernel`;
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //! On x86-64, checked against their twins by host tests: the vertex cache's usual
@@ -27,7 +31,7 @@
 //!
 //! The only `unsafe` code of the crate lives here
 //! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `place_v6m`, `light`,
-//! `faces`, `mac`, `texel`, `place4`, `rows_x86` and `small_x86`, each with
+//! `faces`, `faces_v6m`, `mac`, `texel`, `place4`, `rows_x86` and `small_x86`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
