@@ -117,7 +117,7 @@ macro_rules! v6m_term {
     };
 }
 
-/// The Lambert colour of the face at r4 (its address; the block in r7) into r0, as
+/// The Lambert colour of the face at r4 (its address; the block in r7) into r2, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
 /// on to `$none`; n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
 /// rounded: + 2¹², >> 13) plus ambient; for an intensity in 0..2¹⁵ each channel
@@ -176,8 +176,8 @@ macro_rules! v6m_colour {
             "6:\n",
             "lsls r0, r0, #11\n",
             "lsls r1, r1, #5\n",
-            "orrs r0, r1\n",
-            "orrs r0, r2\n",
+            "orrs r2, r0\n",
+            "orrs r2, r1\n",
         )
     };
 }
@@ -353,11 +353,11 @@ core::arch::global_asm!(
     // Drawn (the face in r4): its colour, else the flat colour or the caller's.
     "4:",
     v6m_colour!("5f", $term),
-    // The colour (r0) into the set-up's block, the corners' entries, the call.
+    // The colour (r2) into the set-up's block, the corners' entries, the call.
     "8:",
     "ldr r7, [sp]",
-    "ldr r5, [r7, #76]",
-    "str r0, [r5, #{color}]",
+    "ldr r0, [r7, #76]",
+    "str r2, [r0, #{color}]",
     "ldrh r1, [r4, #0]",
     "ldrh r2, [r4, #2]",
     "ldrh r3, [r4, #4]",
@@ -368,7 +368,6 @@ core::arch::global_asm!(
     "adds r2, r2, r6",
     "lsls r3, r3, #3",
     "adds r3, r3, r6",
-    "mov r0, r5",
     "bl zraster_small_walk_v6m",
     // Refused (u32::MAX): the caller's. Else (the block still in r7, which the set-up
     // keeps) tested into the sum, one face fewer to the next return, and on from the
@@ -391,10 +390,10 @@ core::arch::global_asm!(
     "b 3b",
     // No normal: the flat colour (one for all), else the caller's.
     "5:",
-    "ldr r0, [r7, #84]",
-    "cmp r0, #0",
+    "ldr r2, [r7, #84]",
+    "cmp r2, #0",
     "beq 67f",
-    "uxth r0, r0",
+    "uxth r2, r2",
     "b 8b",
     // The face in r4 left to the caller.
     "67:",
@@ -463,6 +462,7 @@ macro_rules! colour_v6m_fn {
             "mov r7, r0",
             "mov r4, r1",
             v6m_colour!("5f", $term),
+            "movs r0, r2",
             "pop {{r4, r5, r6, r7, pc}}",
             "5:",
             "movs r0, #1",
@@ -727,7 +727,7 @@ extern "C" {
     fn zraster_band_faces_v6m(b: *mut BandV6m) -> u32;
 }
 
-/// The band loop's set-up call (the colour in r0, the face's address in r4): the
+/// The band loop's set-up call (the colour in r2, the face's address in r4): the
 /// corners' indices below the cache's length, the colour into the set-up's block,
 /// their entries, the call; a corner past the cache or refused to `67f`, else the
 /// tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
@@ -736,6 +736,8 @@ macro_rules! band_call {
     () => {
         concat!(
             "ldr r7, [sp]\n",
+            "ldr r0, [r7, #76]\n",
+            "str r2, [r0, #{color}]\n",
             "ldrh r1, [r4, #0]\n",
             "ldrh r2, [r4, #2]\n",
             "ldrh r3, [r4, #4]\n",
@@ -753,9 +755,6 @@ macro_rules! band_call {
             "adds r2, r2, r5\n",
             "lsls r3, r3, #3\n",
             "adds r3, r3, r5\n",
-            "ldr r5, [r7, #76]\n",
-            "str r0, [r5, #{color}]\n",
-            "mov r0, r5\n",
             "bl zraster_small_walk_v6m\n",
             "adds r1, r0, #1\n",
             "beq 67f\n",
@@ -845,7 +844,7 @@ core::arch::global_asm!(
     "str r1, [r7, #100]",
     "ldr r1, [r7, #68]",
     "lsls r0, r0, #1",
-    "ldrh r0, [r1, r0]",
+    "ldrh r2, [r1, r0]",
     "b 22f",
     "26:",
     "bl 30f",
@@ -857,7 +856,7 @@ core::arch::global_asm!(
     "20:",
     "bmi 68f",
     "bl 30f",
-    // The colour in r0: the set-up and rows, the counts; back to the caller once the
+    // The colour in r2: the set-up and rows, the counts; back to the caller once the
     // tested sum reaches 2³¹ (a face tests < 2^18.01 pixels: no wrap, of it nor of the
     // failures, fewer).
     "22:",
@@ -868,7 +867,7 @@ core::arch::global_asm!(
     // is room.
     "25:",
     "bl 30f",
-    "mov r6, r0",
+    "mov r6, r2",
     band_call!(),
     "ldr r1, [r7, #104]",
     "ldr r2, [r7, #108]",
@@ -933,7 +932,7 @@ core::arch::global_asm!(
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    // The colour of the face at r4 into r0 (the block in r7 at every call); without a
+    // The colour of the face at r4 into r2 (the block in r7 at every call); without a
     // normal the flat colour, else the face is the caller's (nothing of its carry done
     // yet).
     "30:",
@@ -941,12 +940,12 @@ core::arch::global_asm!(
     "bx lr",
     v6m_colour_cold!(),
     "31:",
-    "ldr r0, [r7, #84]",
-    "cmp r0, #0",
+    "ldr r2, [r7, #84]",
+    "cmp r2, #0",
     "bne 32f",
     "b 68b",
     "32:",
-    "uxth r0, r0",
+    "uxth r2, r2",
     "bx lr",
     ".size zraster_band_faces_v6m, . - zraster_band_faces_v6m",
     ".popsection",
