@@ -104,6 +104,8 @@ for target in thumbv7em-none-eabihf thumbv6m-none-eabi; do
   grep -q "faces kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly face loop differs from its portable twin on $target"; status=1; }
   grep -q "band faces kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly band loop differs from its portable twin on $target"; status=1; }
   grep -q "band carry kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly band loop keeping set-ups differs from its portable twin on $target"; status=1; }
+  grep -q "band faces v6m kernel cases differing from the portable twin: 0$" "$out" || { echo "the ARMv6-M assembly band loop differs from its portable twins on $target"; status=1; }
+  grep -q "^faces v6m kernel cases differing from the portable twin: 0$" "$out" || { echo "the ARMv6-M assembly face loop differs from its portable twins on $target"; status=1; }
   grep -q "light kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly face light differs from its portable twin on $target"; status=1; }
   grep -q "place kernel cases differing from the portable twin: 0$" "$out" || { echo "the assembly vertex loop differs from its portable twin on $target"; status=1; }
   grep -q "place v6m kernel cases differing from the portable twin: 0$" "$out" || { echo "the ARMv6-M assembly vertex loop differs from its portable twin on $target"; status=1; }

@@ -19,6 +19,7 @@ use crate::num::kernel::{
     band_faces_less, BandCarry, BandStop, BinChains, CachedVertex, FaceColor, FacesCounts,
     SmallTarget, FACES_KERNEL,
 };
+use crate::num::kernel::{band_faces_less_v6m, Buffers, FACES_V6M_KERNEL};
 #[cfg(zraster_x86_64)]
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 use crate::raster::Clip;
@@ -352,6 +353,55 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         Ok(())
     }
 
+    /// ARMv6-M: a band's faces from `faces` on drawn into `b` by the fused band loop
+    /// ([`band_faces_less_v6m`]) for one opaque material, unlit or lit in 5-6-5 (as
+    /// ARMv7E-M's), its pixel counts into `px`; up to a face it leaves, the heads and
+    /// the carry as before that face for the Rust walk. Whether it ran (`false`: it
+    /// will not for these buffers and faces). Out of line: one copy, not one for each
+    /// colouring's loop.
+    #[inline(never)]
+    fn band_fused_v6m<C>(
+        &self,
+        b: &mut Buffers<'_, '_, C>,
+        faces: &mut BandTriangles<'_, 'm>,
+        cache: &[CachedVertex],
+        carry: &mut ColorCarry<C>,
+        px: &mut FrameStats,
+    ) -> bool
+    where
+        C: PixelColor,
+        M: Material<C>,
+    {
+        let Faces::Triangles { materials, .. } = self.mesh.faces else {
+            return false;
+        };
+        let crate::mesh::Materials::Uniform(m) = materials else {
+            return false;
+        };
+        if M::TRANSLUCENT && m.alpha() < u8::MAX {
+            return false;
+        }
+        let lit;
+        let color = match self.flat_color(materials, self.shading() == Shading::Lambert) {
+            Some(c) => FaceColor::Flat(c),
+            None => {
+                lit = self.light_block(&m);
+                match lit.as_ref() {
+                    Some((b, f, raw)) => FaceColor::Lit(b, *f, *raw),
+                    None => return false,
+                }
+            }
+        };
+        let mut counts = FacesCounts::default();
+        let BandFaces { links, heads } = &mut faces.faces;
+        let tables = (*links, faces.indices, cache);
+        let carry = &mut carry.parts();
+        let stop = band_faces_less_v6m(heads, tables, carry, &color, b, &mut counts);
+        px.pixels_tested += counts.tested;
+        px.pixels_written += counts.tested - counts.failed;
+        stop != BandStop::Refused
+    }
+
     /// The loop of [`draw_band_faces`](Renderer::draw_band_faces), with the faces'
     /// colours from `shade` unless carried (and, where there is a fused band loop,
     /// `fused`: the same colours for it); returns the pixel counts.
@@ -463,7 +513,21 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     counts.add(filled, &mut px);
                 };
             }
-            if fused.is_none() {
+            if FACES_V6M_KERNEL {
+                // ARMv6-M: the fused band loop (out of line), each face it leaves
+                // (the heads and the carry as before it) by the plain walk's turn.
+                let mut engaged = true;
+                loop {
+                    if let (true, FlatTarget::Fused { b, less: true, .. }) = (engaged, &mut target)
+                    {
+                        engaged = self.band_fused_v6m(b, &mut faces, cache, carry, &mut px);
+                    }
+                    let Some((f, t, how)) = faces.next() else {
+                        break;
+                    };
+                    face!(f, t, how, false);
+                }
+            } else if fused.is_none() {
                 // Without the fused loop (on every run where there is none) a plain
                 // walk: asking for it costs the ARMv6-M band loop 1 k.
                 for (f, t, how) in faces.by_ref() {

@@ -401,11 +401,15 @@ pub use num::kernel::check_band_carry_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_band_faces_kernel;
 #[doc(hidden)]
+pub use num::kernel::check_band_faces_v6m_kernel;
+#[doc(hidden)]
 pub use num::kernel::check_bin_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_cull_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_faces_kernel;
+#[doc(hidden)]
+pub use num::kernel::check_faces_v6m_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_light_kernel;
 #[doc(hidden)]

@@ -8,6 +8,7 @@ use crate::fill::blend::{blend_triangle, screen_door_triangle};
 #[cfg(zraster_x86_64)]
 use crate::num::kernel::FacesX86;
 use crate::num::kernel::{faces_less, FaceColor, FacesCounts, FacesStop};
+use crate::num::kernel::{faces_less_v6m, FACES_V6M_KERNEL};
 use crate::num::kernel::{SmallRun, SmallX86, SMALL_X86_KERNEL};
 use crate::num::kernel::{FACES_KERNEL, FACES_X86_KERNEL};
 
@@ -47,6 +48,10 @@ macro_rules! per_colouring {
     };
 }
 pub(crate) use per_colouring;
+
+/// Whether the whole frame has a fused face loop: ARMv7E-M's `faces_less`, ARMv6-M's
+/// `faces_less_v6m`.
+const FUSED_FACES: bool = FACES_KERNEL || FACES_V6M_KERNEL;
 
 impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
     /// The one colour of every face when it does not depend on the face (a uniform
@@ -274,7 +279,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let lit;
         let fused = match materials {
             crate::mesh::Materials::Uniform(m)
-                if (FACES_KERNEL || FACES_X86_KERNEL) && !see_through::<C, M>(&m) =>
+                if (FUSED_FACES || FACES_X86_KERNEL) && !see_through::<C, M>(&m) =>
             {
                 match self.flat_color(materials, lambert) {
                     Some(c) => Some(FaceColor::Flat(c)),
@@ -338,7 +343,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             }
             _ => None,
         };
-        let mut fused = fused.filter(|_| FACES_KERNEL && rows.is_none());
+        let mut fused = fused.filter(|_| FUSED_FACES && rows.is_none());
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
@@ -364,9 +369,14 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     (&fused, &mut target)
                 {
                     let (mut pos, faces, cache) = walk.fused();
-                    let mut t = b.target();
                     let scan = (&operands, faces, cache);
-                    match faces_less(&mut pos, scan, color, &mut t, &mut fused_counts) {
+                    let stop = if FACES_V6M_KERNEL {
+                        faces_less_v6m(&mut pos, scan, color, b, &mut fused_counts)
+                    } else {
+                        let mut t = b.target();
+                        faces_less(&mut pos, scan, color, &mut t, &mut fused_counts)
+                    };
+                    match stop {
                         FacesStop::Face(k, tri) => {
                             walk.fused_to(pos, 1);
                             left = Some((walk.first() + k, Some(tri)));

@@ -169,6 +169,7 @@ fn main() -> ! {
     // And with the set-ups of faces reaching the band below kept and resumed there.
     let bad = zraster::check_band_carry_kernel(&mut depth[..4096], carry_band(), 4_000);
     hprintln!("band carry kernel cases differing from the portable twin: {}", bad);
+    check_faces_v6m(&mut depth[..4096]);
     check_light();
     check_place();
     check_place_v6m();
@@ -262,6 +263,17 @@ fn carry_band() -> &'static mut [u32] {
 fn pixels_band() -> (&'static mut [Rgb565], ()) {
     // SAFETY: borrowed once.
     (unsafe { &mut *addr_of_mut!(BAND_PIXELS) }, ())
+}
+
+/// The ARMv6-M fused face and band loops (scan or merge and carry, colour, set-up and
+/// rows) against their twins (random meshes and bins; bench/mcu.sh fails unless none
+/// differ; 0 where there are no such loops). Out of line, as `check_place`.
+#[inline(never)]
+fn check_faces_v6m(buf: &mut [u16]) {
+    let bad = zraster::check_faces_v6m_kernel(buf, 4_000);
+    hprintln!("faces v6m kernel cases differing from the portable twin: {}", bad);
+    let bad = zraster::check_band_faces_v6m_kernel(buf, 4_000);
+    hprintln!("band faces v6m kernel cases differing from the portable twin: {}", bad);
 }
 
 /// The lit face colour against its portable twin (random normals, lights and

@@ -52,8 +52,8 @@ impl Raw565<Bgr565> {
 }
 
 impl Raw565<u16> {
-    /// The proof for `u16`, its function the identity (the check's).
-    const PROOF: Self = Self(PhantomData);
+    /// The proof for `u16`, its function the identity (the checks').
+    pub(super) const PROOF: Self = Self(PhantomData);
 }
 
 /// The fused loop's pixel and face counts: pixels tested and failed by its fills, and

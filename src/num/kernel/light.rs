@@ -18,12 +18,12 @@ const MUL: u32 = ((1u64 << 39) / 255 + 1) as u32;
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct LightBlock<'n> {
-    light: [i32; 3],
-    ambient: i32,
-    diffuse: i32,
-    half: u32,
+    pub(super) light: [i32; 3],
+    pub(super) ambient: i32,
+    pub(super) diffuse: i32,
+    pub(super) half: u32,
     mul: u32,
-    channels: [u32; 3],
+    pub(super) channels: [u32; 3],
     /// The normals, `count` of them (the slice's parts, at known offsets).
     normals: *const [i16; 3],
     count: usize,
@@ -198,10 +198,12 @@ pub(crate) fn lit_565_portable(f: usize, b: &LightBlock<'_>) -> Option<u16> {
     Some((channel(h, 31) << 11 | channel(m, 63) << 5 | channel(l, 31)) as u16)
 }
 
-/// `lit_565` against its portable twin on this target: in each of `n` cases up to
-/// three random normals, asked for faces 0 to 3 and one far past them; every material's
-/// extremes and random ones; lights of every strength within the renderer's ranges.
-/// Returns the number of cases that differ.
+/// `lit_565` and the ARMv6-M loops' colour code against their portable twin on this
+/// target: in each of `n` cases up to three random normals, asked for faces 0 to 3 and
+/// one far past them; every material's extremes and random ones; lights of every
+/// strength within the renderer's ranges; then every intensity (and past both ends)
+/// for four materials and both of the ARMv6-M colour code's forms. Returns the number
+/// of cases that differ.
 pub fn check_light_kernel(n: usize) -> usize {
     let mut rnd = super::xorshift32(0x1d87_2b41_u32);
     let mut bad = 0;
@@ -227,7 +229,27 @@ pub fn check_light_kernel(n: usize) -> usize {
             normals.get(..count).unwrap_or(&[]),
         );
         for f in [0, 1, 2, 3, usize::MAX] {
-            if lit_565(f, &b) != lit_565_portable(f, &b) {
+            let want = lit_565_portable(f, &b);
+            if lit_565(f, &b) != want || super::faces_v6m::lit_565_v6m(f, &b) != want {
+                bad += 1;
+            }
+        }
+    }
+    // Every intensity (a zero normal: the ambient alone) and beyond both ends, for
+    // materials of extreme channels and a spread one, with a diffuse weight of each
+    // of the ARMv6-M loops' two forms.
+    let normals = [[0i16; 3]];
+    let materials = [
+        [255, 255, 255],
+        [0, 1, 128],
+        [254, 127, 255],
+        [200, 100, 50],
+    ];
+    for (channels, diffuse) in materials.into_iter().flat_map(|m| [(m, 0), (m, 1 << 15)]) {
+        for ambient in -2..=65538 {
+            let b = LightBlock::new([0; 3], ambient, diffuse, channels, &normals);
+            let want = lit_565_portable(0, &b);
+            if lit_565(0, &b) != want || super::faces_v6m::lit_565_v6m(0, &b) != want {
                 bad += 1;
             }
         }

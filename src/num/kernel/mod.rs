@@ -17,7 +17,11 @@
 //! a face's flat Lambert colour in 5-6-5 ([`lit_565`](light::lit_565), ARMv7E-M,
 //! checked by `check_light_kernel`); the whole frame's face loop, scan, colour, set-up
 //! and rows composed from those ([`faces_less`](faces::faces_less), ARMv7E-M, checked
-//! by `check_faces_kernel`);
+//! by `check_faces_kernel`); on ARMv6-M the whole frame's face loop and the bands'
+//! ([`faces_less_v6m`](faces_v6m::faces_less_v6m),
+//! [`band_faces_less_v6m`](faces_v6m::band_faces_less_v6m): scan or merge and carry,
+//! the colour, a call of the small triangle's set-up), checked by
+//! `check_faces_v6m_kernel` and `check_band_faces_v6m_kernel`;
 //! and one instruction, the vertex transform's dual multiply-accumulate
 //! ([`smlad`](mac::smlad)), checked against its twin by `check_fill_kernel`.
 //! On x86-64, checked against their twins by host tests: the vertex cache's usual
@@ -28,7 +32,7 @@
 //!
 //! The only `unsafe` code of the crate lives here
 //! (`fill`, `span`, `rows`, `rows_v6m`, `cull`, `bin`, `place`, `place_v6m`, `light`,
-//! `faces`, `mac`, `texel`, `place4`, `rows_x86`, `small_x86` and `faces_x86`, each with
+//! `faces`, `faces_v6m`, `mac`, `texel`, `place4`, `rows_x86`, `small_x86` and `faces_x86`, each with
 //! `#![allow(unsafe_code)]`).
 
 /// Marsaglia's 32-bit xorshift (13, 17, 5): the state after `seed` (non-zero), which it
@@ -62,6 +66,7 @@ mod span;
 #[macro_use]
 mod rows;
 mod faces;
+mod faces_v6m;
 mod rows_v6m;
 mod rows_x86;
 // Before `faces_x86`, which uses the set-up's body.
@@ -80,6 +85,8 @@ pub(crate) use faces::{
     KeptStates, FACES_KERNEL, STATE_WORDS,
 };
 pub use faces::{check_band_carry_kernel, check_band_faces_kernel, check_faces_kernel};
+pub(crate) use faces_v6m::{band_faces_less_v6m, faces_less_v6m, FACES_V6M_KERNEL};
+pub use faces_v6m::{check_band_faces_v6m_kernel, check_faces_v6m_kernel};
 #[cfg(zraster_x86_64)]
 pub(crate) use faces_x86::FacesX86;
 pub(crate) use faces_x86::FACES_X86_KERNEL;

@@ -493,6 +493,16 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
         self.walk = true;
     }
 
+    /// The set-up block's address where the assembly takes these buffers (its
+    /// per-buffer fields written by [`Buffers::start`]), for the ARMv6-M face loop
+    /// (`faces_v6m`), which writes its `rows.color` and `rows.failed` and calls
+    /// `zraster_small_walk_v6m` with it as [`walk_cached`](Buffers::walk_cached) does.
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    #[inline(always)]
+    pub(crate) fn walk_block(&mut self) -> Option<*mut u8> {
+        self.walk.then(|| self.block.as_mut_ptr().cast::<u8>())
+    }
+
     /// [`small_walk_cached_as_u16`] into these buffers, the block's per-buffer fields
     /// as [`Buffers::start`] wrote them: per triangle only the colour, the failures'
     /// count and the call.

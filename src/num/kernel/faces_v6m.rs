@@ -1,0 +1,1607 @@
+//! The whole frame's face loop of a cached mesh in one Thumb-1 loop on ARMv6-M: the
+//! cull scan, the face's Lambert colour in 5-6-5 and a call of the small triangle's
+//! set-up and rows (`zraster_small_walk_v6m`), face after face with no Rust between
+//! them. Its portable twin is the renderer's own loop (the cull walk, `lit_565` and
+//! the set-up), which also takes every face this loop leaves to it.
+#![allow(unsafe_code)]
+
+use super::cull::ScanRegs;
+use super::faces::{BandCarry, BandStop, FaceColor, FacesCounts, FacesStop, KeptStates};
+use super::{Buffers, CachedVertex};
+
+/// Whether [`faces_less_v6m`] runs the assembly loop (ARMv6-M); elsewhere it leaves
+/// every face to the caller.
+pub(crate) const FACES_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m));
+
+/// Faces drawn between the loop's returns to Rust, which moves its 32-bit pixel sums
+/// into the 64-bit counts (a small triangle tests < 2^18.01 pixels: no wrap).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+const FLUSH: u32 = 8192;
+
+/// What the loop reads and writes, at the offsets in the comments: the colour's
+/// constants in the order of its LDMs, the normals' place, the scan's place and
+/// operands, the set-up's block and the cache, the counts.
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+#[repr(C)]
+struct FacesV6m {
+    /// The light direction, ambient and diffuse weight (Q15), 2¹² (the term's rounding).
+    light: [i32; 3], // 0
+    ambient: i32, // 12
+    diffuse: i32, // 16
+    round: i32,   // 20
+    /// Each channel times its depth (31, 63, 31), high field first; ½ · 255 · 2¹⁵; 32897.
+    channels: [u32; 3], // 24
+    half: u32,    // 36
+    k: u32,       // 40
+    /// One past the last face with a normal (as a face address), and the normals'
+    /// address less the faces' (both 6-byte records).
+    nend: u32, // 44
+    ndelta: u32,  // 48
+    /// The next face's address (in and out), then the scan's operands.
+    face: u32, // 52
+    xy: u32,      // 56
+    len: u32,     // 60
+    end: u32,     // 64
+    neg_lo: u32,  // 68
+    span: u32,    // 72
+    /// The set-up's block (its colour at 12, failures at 28), the cache's entries.
+    walk: u32, // 76
+    entries: u32, // 80
+    /// One colour for all: its bits + 2¹⁶, else 0 (lit).
+    flat: u32, // 84
+    /// Pixels tested; faces left to draw before the next return.
+    tested: u32, // 88
+    drawn: u32,   // 92
+}
+
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::offset_of;
+    type B = FacesV6m;
+    assert!(offset_of!(B, ambient) == 12 && offset_of!(B, round) == 20);
+    assert!(offset_of!(B, channels) == 24 && offset_of!(B, k) == 40);
+    assert!(offset_of!(B, nend) == 44 && offset_of!(B, ndelta) == 48);
+    assert!(offset_of!(B, face) == 52 && offset_of!(B, xy) == 56);
+    assert!(offset_of!(B, len) == 60 && offset_of!(B, end) == 64);
+    assert!(offset_of!(B, neg_lo) == 68 && offset_of!(B, span) == 72);
+    assert!(offset_of!(B, walk) == 76 && offset_of!(B, entries) == 80);
+    assert!(offset_of!(B, flat) == 84 && offset_of!(B, tested) == 88);
+    assert!(offset_of!(B, drawn) == 92);
+};
+
+/// Whether a diffuse weight takes `v6m_term`'s `narrow` form (|w| < 2¹⁵).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+fn narrow(w: i32) -> bool {
+    w.unsigned_abs() < 1 << 15
+}
+
+/// The set-up block's fields the loop writes and reads (`RowsWalk`'s `color` and
+/// `failed`, pinned in `rows_v6m`).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+const WALK_COLOR: usize = 12;
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+const WALK_FAILED: usize = 28;
+
+/// The diffuse term's numerator before its rounding, from dot (r3, at least 0) and the
+/// weight w (r1) into r3 (r5, r6 written): `general` as `lambert_term_narrow` (dot =
+/// h·2¹⁶ + m·2⁸ + n: h·w + ⌊(m·w + ⌊n·w/2⁸⌋)/2⁸⌋, every product below 2³¹ in
+/// magnitude for w within ±2¹⁶ and dot up to 3·2²⁹); `narrow`, for |w| < 2¹⁵, h·w +
+/// ⌊l·w/2¹⁶⌋ with dot = h·2¹⁶ + l (|l·w| < 2³¹): both ⌊(dot·w + 2²⁸)/2²⁹⌋ once
+/// rounded (nested floors), so the same term.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_term {
+    (general) => {
+        concat!(
+            "lsrs r5, r3, #16\n",
+            "muls r5, r1, r5\n",
+            "uxtb r6, r3\n",
+            "muls r6, r1, r6\n",
+            "asrs r6, r6, #8\n",
+            "lsrs r3, r3, #8\n",
+            "uxtb r3, r3\n",
+            "muls r3, r1, r3\n",
+            "adds r3, r3, r6\n",
+            "asrs r3, r3, #8\n",
+            "adds r3, r3, r5\n",
+        )
+    };
+    (narrow) => {
+        concat!(
+            "lsrs r5, r3, #16\n",
+            "muls r5, r1, r5\n",
+            "uxth r6, r3\n",
+            "muls r6, r1, r6\n",
+            "asrs r6, r6, #16\n",
+            "adds r3, r5, r6\n",
+        )
+    };
+}
+
+/// The Lambert colour of the face at r4 (its address; the block in r7) into r2, as
+/// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
+/// on to `$none`; n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
+/// rounded: + 2¹², >> 13) plus ambient; for an intensity in 0..2¹⁵ each channel
+/// ((i·v + half) >> 15) · 32897 >> 23, packed 5-6-5 (any other intensity by
+/// `v6m_colour_cold`, which the caller places after its loop: the intensity clamped to
+/// 0..=65535, each channel to its maximum). Writes r0–r3, r5–r7 and the flags.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_colour {
+    ($none:literal, $term:ident) => {
+        concat!(
+            "ldr r2, [r7, #44]\n",
+            "cmp r4, r2\n",
+            "bhs ",
+            $none,
+            "\n",
+            "ldr r2, [r7, #48]\n",
+            "ldrsh r3, [r4, r2]\n",
+            "adds r2, #2\n",
+            "ldrsh r5, [r4, r2]\n",
+            "adds r2, #2\n",
+            "ldrsh r6, [r4, r2]\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            "muls r3, r0, r3\n",
+            "muls r5, r1, r5\n",
+            "muls r6, r2, r6\n",
+            "adds r3, r3, r5\n",
+            "adds r3, r3, r6\n",
+            "asrs r0, r3, #31\n",
+            "bics r3, r0\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            v6m_term!($term),
+            "adds r3, r3, r2\n",
+            "asrs r3, r3, #13\n",
+            "adds r3, r3, r0\n",
+            "ldm r7!, {{r0, r1, r2}}\n",
+            "ldm r7!, {{r5, r6}}\n",
+            // From 0 to below full light (0 ≤ i < 2¹⁵) no channel passes its maximum:
+            // no clamps.
+            "lsrs r7, r3, #15\n",
+            "bne 7f\n",
+            "muls r0, r3, r0\n",
+            "adds r0, r0, r5\n",
+            "lsrs r0, r0, #15\n",
+            "muls r0, r6, r0\n",
+            "lsrs r0, r0, #23\n",
+            "muls r1, r3, r1\n",
+            "adds r1, r1, r5\n",
+            "lsrs r1, r1, #15\n",
+            "muls r1, r6, r1\n",
+            "lsrs r1, r1, #23\n",
+            "muls r2, r3, r2\n",
+            "adds r2, r2, r5\n",
+            "lsrs r2, r2, #15\n",
+            "muls r2, r6, r2\n",
+            "lsrs r2, r2, #23\n",
+            "6:\n",
+            "lsls r0, r0, #11\n",
+            "lsls r1, r1, #5\n",
+            "orrs r2, r0\n",
+            "orrs r2, r1\n",
+        )
+    };
+}
+
+/// The part of [`v6m_colour`] for full light and above or below 0 (i ∉ [0, 2¹⁵),
+/// rare): the intensity clamped to 0..=65535, each channel clamped to its maximum,
+/// back to the packing. Placed after the loop, within a conditional branch's reach.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_colour_cold {
+    () => {
+        concat!(
+            "7:\n",
+            "asrs r7, r3, #31\n",
+            "bics r3, r7\n",
+            "lsrs r7, r3, #16\n",
+            "beq 1f\n",
+            "movs r3, #0\n",
+            "subs r3, #1\n",
+            "lsrs r3, r3, #16\n",
+            "1:\n",
+            "muls r0, r3, r0\n",
+            "adds r0, r0, r5\n",
+            "lsrs r0, r0, #15\n",
+            "muls r0, r6, r0\n",
+            "lsrs r0, r0, #23\n",
+            "cmp r0, #31\n",
+            "bls 1f\n",
+            "movs r0, #31\n",
+            "1:\n",
+            "muls r1, r3, r1\n",
+            "adds r1, r1, r5\n",
+            "lsrs r1, r1, #15\n",
+            "muls r1, r6, r1\n",
+            "lsrs r1, r1, #23\n",
+            "cmp r1, #63\n",
+            "bls 1f\n",
+            "movs r1, #63\n",
+            "1:\n",
+            "muls r2, r3, r2\n",
+            "adds r2, r2, r5\n",
+            "lsrs r2, r2, #15\n",
+            "muls r2, r6, r2\n",
+            "lsrs r2, r2, #23\n",
+            "cmp r2, #31\n",
+            "bls 1f\n",
+            "movs r2, #31\n",
+            "1:\n",
+            "b 6b\n",
+        )
+    };
+}
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+extern "C" {
+    /// The loop over block `b` from its face on: returns 0 when the scan stops (a bad
+    /// index, an unplaced corner, or the end: `face` that face), 1 at a drawn face it
+    /// leaves to the caller (no normal and no flat colour, or refused by the set-up:
+    /// `face` that face), 2 after `FLUSH` drawn faces (`face` the next).
+    ///
+    /// # Safety
+    ///
+    /// As [`faces_less_v6m`] builds the block: the scan's operands those of its faces
+    /// and cache, the normals inside their slice, `walk` a started set-up block whose
+    /// clip lies inside both buffers.
+    fn zraster_faces_v6m(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m`] for a diffuse weight within ±(2¹⁵ − 1) (`v6m_term`'s
+    /// `narrow`).
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_narrow(b: *mut FacesV6m) -> u32;
+}
+
+// SAFETY (for `faces_less_v6m`): the scan is `skip_culled_v6m`'s turn for turn
+// (operands in r8–r11 instead of r7/r8/r12/lr): it reads faces from `face` < `end` one
+// a turn until `end`, and an entry's x/y word at `xy + 8 i` only for indices found
+// below `len`, the cache's length. A drawn face's normal is read at face + `ndelta`
+// (three halfwords) only when face < `nend`, the faces' address plus 6 · the normals
+// there are (at most the faces'), so only inside the normals' slice. The colour goes
+// to the set-up block's `color` (a word), the corners as entries + 8 · index for the
+// three indices found below `len`; `zraster_small_walk_v6m`'s contract: a block
+// started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
+// r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
+// r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
+// set-up lies out of reach (in RAM under `ram-code`). The block is read and written
+// through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
+// and lr saved and restored.
+/// The whole frame's loop as the function `$name`, its colour's term `$term`.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! faces_v6m_fn {
+    ($name:literal, $term:ident) => {
+core::arch::global_asm!(
+    concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
+    ".balign 4",
+    concat!(".global ", $name),
+    concat!(".hidden ", $name),
+    concat!(".type ", $name, ", %function"),
+    ".thumb_func",
+    concat!($name, ":"),
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4, r5, r6, r7}}",
+    "sub sp, #4",
+    "str r0, [sp]",
+    // The scan's operands: entries in r8, end in r9, −lo in r10, span in r11.
+    "ldr r1, [r0, #60]",
+    "mov r8, r1",
+    "ldr r1, [r0, #64]",
+    "mov r9, r1",
+    "ldr r1, [r0, #68]",
+    "mov r10, r1",
+    "ldr r1, [r0, #72]",
+    "mov r11, r1",
+    "mov r7, r0",
+    "ldr r1, [r0, #56]",
+    "ldr r4, [r0, #52]",
+    "cmp r4, r9",
+    "bhs 3f",
+    // The scan (`skip_culled_v6m`'s turn, the face in r4).
+    "2:",
+    "ldrh r2, [r4, #0]",
+    "ldrh r3, [r4, #2]",
+    "ldrh r0, [r4, #4]",
+    "cmp r2, r8",
+    "bhs 3f",
+    "cmp r3, r8",
+    "bhs 3f",
+    "cmp r0, r8",
+    "bhs 3f",
+    "lsls r2, r2, #3",
+    "lsls r3, r3, #3",
+    "lsls r0, r0, #3",
+    "ldr r2, [r1, r2]",
+    "ldr r3, [r1, r3]",
+    "ldr r0, [r1, r0]",
+    "lsls r5, r2, #16",
+    "adds r5, r5, r5",
+    "bvs 3f",
+    "lsls r5, r3, #16",
+    "adds r5, r5, r5",
+    "bvs 3f",
+    "lsls r5, r0, #16",
+    "adds r5, r5, r5",
+    "bvs 3f",
+    "subs r5, r3, r2",
+    "sxth r5, r5",
+    "subs r6, r0, r2",
+    "sxth r6, r6",
+    "asrs r2, r2, #16",
+    "asrs r3, r3, #16",
+    "subs r3, r3, r2",
+    "asrs r0, r0, #16",
+    "subs r0, r0, r2",
+    "muls r5, r0, r5",
+    "muls r6, r3, r6",
+    "subs r5, r5, r6",
+    "add r5, r10",
+    "cmp r5, r11",
+    "bhi 4f",
+    "adds r4, #6",
+    "cmp r4, r9",
+    "bne 2b",
+    // Stopped at r4 (a bad index, an unplaced corner, or the end); the block in r7
+    // (the scan leaves it).
+    "3:",
+    "str r4, [r7, #52]",
+    "movs r0, #0",
+    "b 9f",
+    // Drawn (the face in r4): its colour, else the flat colour or the caller's.
+    "4:",
+    v6m_colour!("5f", $term),
+    // The colour (r2) into the set-up's block, the corners' entries, the call.
+    "8:",
+    "ldr r7, [sp]",
+    "ldr r0, [r7, #76]",
+    "str r2, [r0, #{color}]",
+    "ldrh r1, [r4, #0]",
+    "ldrh r2, [r4, #2]",
+    "ldrh r3, [r4, #4]",
+    "ldr r6, [r7, #80]",
+    "lsls r1, r1, #3",
+    "adds r1, r1, r6",
+    "lsls r2, r2, #3",
+    "adds r2, r2, r6",
+    "lsls r3, r3, #3",
+    "adds r3, r3, r6",
+    "bl zraster_small_walk_v6m",
+    // Refused (u32::MAX): the caller's. Else (the block still in r7, which the set-up
+    // keeps) tested into the sum, one face fewer to the next return, and on from the
+    // next face.
+    "adds r1, r0, #1",
+    "beq 67f",
+    "ldr r1, [r7, #88]",
+    "adds r1, r1, r0",
+    "str r1, [r7, #88]",
+    "adds r4, #6",
+    "ldr r1, [r7, #56]",
+    "ldr r2, [r7, #92]",
+    "subs r2, #1",
+    "str r2, [r7, #92]",
+    "beq 10f",
+    "cmp r4, r9",
+    "bhs 12f",
+    "b 2b",
+    "12:",
+    "b 3b",
+    // No normal: the flat colour (one for all), else the caller's.
+    "5:",
+    "ldr r2, [r7, #84]",
+    "cmp r2, #0",
+    "beq 67f",
+    "uxth r2, r2",
+    "b 8b",
+    // The face in r4 left to the caller.
+    "67:",
+    "ldr r7, [sp]",
+    "str r4, [r7, #52]",
+    "movs r0, #1",
+    "b 9f",
+    // FLUSH faces drawn: back with the next face.
+    "10:",
+    "str r4, [r7, #52]",
+    "movs r0, #2",
+    "9:",
+    "add sp, #4",
+    "pop {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4, r5, r6, r7, pc}}",
+    v6m_colour_cold!(),
+    concat!(".size ", $name, ", . - ", $name),
+    ".popsection",
+    color = const WALK_COLOR,
+);
+    };
+}
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m", general);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_narrow", narrow);
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+extern "C" {
+    /// The loops' colour code on its own: the colour of the face at `face` by block
+    /// `b`'s constants, 65536 without a normal.
+    ///
+    /// # Safety
+    ///
+    /// `b`'s `nend` and `ndelta` bound normals it may read (as the loops' blocks).
+    fn zraster_colour_v6m(b: *const FacesV6m, face: u32) -> u32;
+    /// [`zraster_colour_v6m`] with `v6m_term`'s `narrow` (|diffuse| < 2¹⁵).
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_colour_v6m`].
+    fn zraster_colour_v6m_narrow(b: *const FacesV6m, face: u32) -> u32;
+}
+
+/// The loops' colour code on its own as the function `$name` (term `$term`), for the
+/// checks.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! colour_v6m_fn {
+    ($name:literal, $term:ident) => {
+        // SAFETY (for `lit_565_v6m`): reads the block's constants and, below `nend`,
+        // the normal at face + `ndelta`; r4–r7 saved and restored.
+        core::arch::global_asm!(
+            concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
+            ".balign 4",
+            concat!(".global ", $name),
+            concat!(".hidden ", $name),
+            concat!(".type ", $name, ", %function"),
+            ".thumb_func",
+            concat!($name, ":"),
+            "push {{r4, r5, r6, r7, lr}}",
+            "mov r7, r0",
+            "mov r4, r1",
+            v6m_colour!("5f", $term),
+            "movs r0, r2",
+            "pop {{r4, r5, r6, r7, pc}}",
+            "5:",
+            "movs r0, #1",
+            "lsls r0, r0, #16",
+            "pop {{r4, r5, r6, r7, pc}}",
+            v6m_colour_cold!(),
+            concat!(".size ", $name, ", . - ", $name),
+            ".popsection",
+        );
+    };
+}
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+colour_v6m_fn!("zraster_colour_v6m", general);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+colour_v6m_fn!("zraster_colour_v6m_narrow", narrow);
+
+/// The ARMv6-M loops' colour code (`v6m_colour`) for face `f` lit by `l`, as
+/// [`lit_565`](super::lit_565) gives it (for the checks); elsewhere
+/// `lit_565_portable`.
+pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    {
+        let normals = l.normals();
+        let at = normals.as_ptr() as u32;
+        let block = FacesV6m {
+            light: l.light,
+            ambient: l.ambient,
+            diffuse: l.diffuse,
+            round: 1 << 12,
+            channels: l.channels,
+            half: l.half,
+            k: 32_897,
+            nend: at.wrapping_add(6 * normals.len() as u32),
+            ndelta: 0,
+            face: 0,
+            xy: 0,
+            len: 0,
+            end: 0,
+            neg_lo: 0,
+            span: 0,
+            walk: 0,
+            entries: 0,
+            flat: 0,
+            tested: 0,
+            drawn: 0,
+        };
+        // Faces past the normals as the first of them (not below `nend`).
+        let face = at.wrapping_add(6 * f.min(normals.len()) as u32);
+        // SAFETY: the normals' slice bounds what it reads (`nend`, `ndelta` 0).
+        let c = unsafe {
+            if narrow(l.diffuse) {
+                zraster_colour_v6m_narrow(&block, face)
+            } else {
+                zraster_colour_v6m(&block, face)
+            }
+        };
+        return u16::try_from(c).ok();
+    }
+    #[allow(unreachable_code)]
+    super::light::lit_565_portable(f, l)
+}
+
+/// Draw the faces of `scan` from `*pos` on into `b`, those the common case covers: the
+/// scan past the dropped faces, each drawn face coloured by `color` (one colour, or
+/// lit into 5-6-5 written as it is: `Raw565`) and drawn by the small triangles' set-up
+/// and rows (`Less` with depth writes, a two-byte colour), its counts into `counts`.
+/// Returns where it stopped ([`FacesStop`], as `faces_less`). On ARMv6-M one assembly
+/// loop; elsewhere it leaves every face to the caller ([`FacesStop::Refused`]).
+#[inline(always)]
+pub(crate) fn faces_less_v6m<'a, C: Copy>(
+    pos: &mut usize,
+    scan: (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    color: &FaceColor<'_, C>,
+    b: &mut Buffers<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> FacesStop<'a> {
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    return faces_v6m(pos, scan, color, b, counts);
+    #[allow(unreachable_code)]
+    {
+        let _ = (pos, scan, color, b, counts);
+        FacesStop::Refused
+    }
+}
+
+/// [`faces_less_v6m`] on ARMv6-M. Out of line (it runs once for a run of faces): its
+/// block is not stacked on the caller's frame.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+#[inline(never)]
+fn faces_v6m<'a, C: Copy>(
+    pos: &mut usize,
+    (regs, faces, cache): (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    color: &FaceColor<'_, C>,
+    b: &mut Buffers<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> FacesStop<'a> {
+    // Operands that are those of a scan of `faces` over `cache` (`CullScan::new`: x/y
+    // at byte 4 of the 8-byte entries); a face left.
+    let xy_at = cache.as_ptr().cast::<u8>().wrapping_add(4);
+    let own = regs.xy == xy_at
+        && regs.len == cache.len()
+        && regs.faces == faces.as_ptr()
+        && regs.end == faces.as_ptr_range().end
+        && regs.faces_len == faces.len();
+    if !own || *pos >= faces.len() {
+        return FacesStop::Refused;
+    }
+    let Some(walk) = b.walk_block() else {
+        return FacesStop::Refused;
+    };
+    let at = faces.as_ptr() as u32;
+    let mut block = FacesV6m {
+        light: [0; 3],
+        ambient: 0,
+        diffuse: 0,
+        round: 1 << 12,
+        channels: [0; 3],
+        half: 0,
+        k: 32_897,
+        nend: at,
+        ndelta: 0,
+        face: at.wrapping_add(6 * *pos as u32),
+        xy: regs.xy as u32,
+        len: regs.len as u32,
+        end: regs.end as u32,
+        neg_lo: regs.neg_lo as u32,
+        span: regs.span,
+        walk: walk as u32,
+        entries: cache.as_ptr() as u32,
+        flat: 0,
+        tested: 0,
+        drawn: FLUSH,
+    };
+    match *color {
+        FaceColor::Flat(c) => match super::rows::as_u16(&mut [], c) {
+            Some((_, bits)) => block.flat = 1 << 16 | u32::from(bits),
+            None => return FacesStop::Refused,
+        },
+        // Written as it is: `Raw565` proves the packed value is a `C`'s bytes.
+        FaceColor::Lit(l, _, Some(_)) => {
+            let normals = l.normals();
+            let n = normals.len().min(faces.len());
+            block.light = l.light;
+            block.ambient = l.ambient;
+            block.diffuse = l.diffuse;
+            block.channels = l.channels;
+            block.half = l.half;
+            block.nend = at.wrapping_add(6 * n as u32);
+            block.ndelta = (normals.as_ptr() as u32).wrapping_sub(at);
+        }
+        FaceColor::Lit(_, _, None) => return FacesStop::Refused,
+    }
+    let status = loop {
+        let failed = walk.wrapping_add(WALK_FAILED).cast::<u32>();
+        // SAFETY: `walk` is the started set-up block of `b` (`Buffers::walk_block`),
+        // whose `failed` word (at 28, aligned) the loop's calls only add to; the call:
+        // the block as built above (see the assembly's SAFETY comment).
+        let (status, failed) = unsafe {
+            failed.write(0);
+            let status = if narrow(block.diffuse) {
+                zraster_faces_v6m_narrow(&mut block)
+            } else {
+                zraster_faces_v6m(&mut block)
+            };
+            (status, failed.read())
+        };
+        counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
+        counts.failed = counts.failed.wrapping_add(u64::from(failed));
+        counts.drawn = counts.drawn.wrapping_add(FLUSH - block.drawn);
+        if status != 2 {
+            break status;
+        }
+        (block.tested, block.drawn) = (0, FLUSH);
+    };
+    // The place: the bytes from the first face over 6, exactly (as `skip_culled_v6m`).
+    let k = ((block.face.wrapping_sub(at) >> 1).wrapping_mul(0xAAAA_AAAB)) as usize;
+    *pos = k;
+    if status == 0 {
+        return FacesStop::Scan;
+    }
+    let get = |i: u16| cache.get(usize::from(i));
+    match faces.get(k) {
+        Some(&[a, b, c]) => match (get(a), get(b), get(c)) {
+            (Some(a), Some(b), Some(c)) => {
+                *pos = k + 1;
+                FacesStop::Face(k, [a, b, c])
+            }
+            _ => FacesStop::Scan,
+        },
+        None => FacesStop::Scan,
+    }
+}
+
+/// What the band loop reads and writes, at the offsets in the comments: the colour's
+/// constants and the set-up's and counts' words at [`FacesV6m`]'s offsets (the same
+/// colour code reads them), the faces, the merge's heads and links, the carry.
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+#[repr(C)]
+struct BandV6m {
+    light: [i32; 3],    // 0
+    ambient: i32,       // 12
+    diffuse: i32,       // 16
+    round: i32,         // 20
+    channels: [u32; 3], // 24
+    half: u32,          // 36
+    k: u32,             // 40
+    nend: u32,          // 44
+    ndelta: u32,        // 48
+    /// The faces' address, the links', the faces below which both lie, the entries.
+    faces: u32, // 52
+    links: u32,         // 56
+    n: u32,             // 60
+    len: u32,           // 64
+    /// The colours to take and the half to keep into.
+    read: u32, // 68
+    keep: u32,          // 72
+    walk: u32,          // 76
+    entries: u32,       // 80
+    flat: u32,          // 84
+    /// Pixels tested (the loop returns once the sum reaches 2³¹).
+    tested: u32, // 88
+    unused: u32,        // 92
+    /// Taken below `filled`, kept below `room`.
+    filled: u32, // 96
+    taken: u32,         // 100
+    kept: u32,          // 104
+    room: u32,          // 108
+    /// The head of the face the loop stopped at.
+    least: u32, // 112
+    /// The chains' heads in increasing order (`face << 2 | chain`).
+    heads: [u32; 4], // 116
+}
+
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::offset_of;
+    type B = BandV6m;
+    assert!(offset_of!(B, nend) == 44 && offset_of!(B, faces) == 52);
+    assert!(offset_of!(B, links) == 56 && offset_of!(B, n) == 60);
+    assert!(offset_of!(B, len) == 64 && offset_of!(B, read) == 68);
+    assert!(offset_of!(B, keep) == 72 && offset_of!(B, walk) == 76);
+    assert!(offset_of!(B, entries) == 80 && offset_of!(B, flat) == 84);
+    assert!(offset_of!(B, tested) == 88);
+    assert!(offset_of!(B, filled) == 96 && offset_of!(B, taken) == 100);
+    assert!(offset_of!(B, kept) == 104 && offset_of!(B, room) == 108);
+    assert!(offset_of!(B, least) == 112 && offset_of!(B, heads) == 116);
+};
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+extern "C" {
+    /// The band loop over block `b`: returns 0 at the end of the band's faces, 1 at a
+    /// face it leaves to the caller with nothing of its carry done (tall, or no
+    /// colour), 2 at one it does not draw (a corner past the cache, or refused by the
+    /// set-up) with a taken colour counted, both with the face's head in `least` and
+    /// the heads past it (the wrapper takes both back), 3 once the tested sum reaches
+    /// 2³¹; the heads stored back.
+    ///
+    /// # Safety
+    ///
+    /// As [`band_faces_less_v6m`] builds the block.
+    fn zraster_band_faces_v6m(b: *mut BandV6m) -> u32;
+}
+
+/// The band loop's set-up call (the colour in r2, the face's address in r4): the
+/// corners' indices below the cache's length, the colour into the set-up's block,
+/// their entries, the call; a corner past the cache or refused to `67f`, else the
+/// tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! band_call {
+    () => {
+        concat!(
+            "ldr r7, [sp]\n",
+            "ldr r0, [r7, #76]\n",
+            "str r2, [r0, #{color}]\n",
+            "ldrh r1, [r4, #0]\n",
+            "ldrh r2, [r4, #2]\n",
+            "ldrh r3, [r4, #4]\n",
+            "ldr r5, [r7, #64]\n",
+            "cmp r1, r5\n",
+            "bhs 67f\n",
+            "cmp r2, r5\n",
+            "bhs 67f\n",
+            "cmp r3, r5\n",
+            "bhs 67f\n",
+            "ldr r5, [r7, #80]\n",
+            "lsls r1, r1, #3\n",
+            "adds r1, r1, r5\n",
+            "lsls r2, r2, #3\n",
+            "adds r2, r2, r5\n",
+            "lsls r3, r3, #3\n",
+            "adds r3, r3, r5\n",
+            "bl zraster_small_walk_v6m\n",
+            "adds r1, r0, #1\n",
+            "beq 67f\n",
+            "ldr r1, [r7, #88]\n",
+            "adds r1, r1, r0\n",
+            "str r1, [r7, #88]\n",
+        )
+    };
+}
+
+// SAFETY (for `band_faces_less_v6m`): the merge reads `links[f]` and forms face f's
+// address only for the least head's f (head >> 2) below n, the smaller of the links'
+// and faces' lengths, whatever the heads and links hold (END or any number past the
+// faces fails the test and ends the loop); the chain's next head is the 16-bit link
+// shifted above the chain's number. The colour code reads the normal at face + `ndelta`
+// only below `nend` (the faces' address plus 6 · the normals there are, at most the
+// faces'). A carried colour is read at `read[taken]` only when taken < filled ≤ the
+// read half's length, one kept at `keep[kept]` only when kept < `room`, its length;
+// `C` is two bytes (the buffers' block is started only then), and each value kept a
+// `C`'s bytes (taken from `read`, the flat colour's, or the packed value `Raw565`
+// proves is). A face's three indices are tested below the cache's length before its
+// entries' addresses (entries + 8 · index) are formed; the set-up is
+// `zraster_faces_v6m`'s call. It keeps r4–r11: the heads live in r8–r11 across it.
+// The block's address is at [sp], the least head at [sp, #4]; the frame is 48 bytes
+// (8-aligned at the calls); the colour is a local subroutine (BL, its return by
+// `bx lr`: lr was saved by the prologue).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+core::arch::global_asm!(
+    ".pushsection .text.zraster_band_faces_v6m,\"ax\",%progbits",
+    ".balign 4",
+    ".global zraster_band_faces_v6m",
+    ".hidden zraster_band_faces_v6m",
+    ".type zraster_band_faces_v6m, %function",
+    ".thumb_func",
+    "zraster_band_faces_v6m:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4, r5, r6, r7}}",
+    "sub sp, #12",
+    "str r0, [sp]",
+    "adds r0, #116",
+    "ldm r0!, {{r1, r2, r3, r4}}",
+    "mov r8, r1",
+    "mov r9, r2",
+    "mov r10, r3",
+    "mov r11, r4",
+    "ldr r7, [sp]",
+    // The least head (r5, also at [sp, #4]): its face f (r4) below n, else the end
+    // (the block in r7).
+    "60:",
+    "mov r5, r8",
+    "str r5, [sp, #4]",
+    "lsrs r4, r5, #2",
+    "ldr r1, [r7, #60]",
+    "cmp r4, r1",
+    "bhs 66f",
+    // Its chain's next face (least + 4 (link − f)) moved down past the heads below it.
+    "ldr r1, [r7, #56]",
+    "lsls r2, r4, #1",
+    "ldrh r2, [r1, r2]",
+    "subs r2, r2, r4",
+    "lsls r2, r2, #2",
+    "adds r2, r2, r5",
+    "cmp r2, r9",
+    "bhs 61f",
+    "mov r8, r2",
+    // The face's address (r4).
+    "64:",
+    "movs r0, #6",
+    "muls r0, r4, r0",
+    "ldr r1, [r7, #52]",
+    "adds r4, r1, r0",
+    // By the chain (bit 0 to N, bit 1 to C): tall (3) the caller's; its own (2)
+    // worked out; kept (1) worked out, kept once drawn; taken (0) the next carried
+    // colour while there is one, else worked out, and counted.
+    "lsls r1, r5, #31",
+    "bcs 20f",
+    "bmi 25f",
+    "ldr r0, [r7, #100]",
+    "ldr r1, [r7, #96]",
+    "cmp r0, r1",
+    "bhs 26f",
+    "adds r1, r0, #1",
+    "str r1, [r7, #100]",
+    "ldr r1, [r7, #68]",
+    "lsls r0, r0, #1",
+    "ldrh r2, [r1, r0]",
+    "b 22f",
+    "26:",
+    "bl 30f",
+    "ldr r7, [sp]",
+    "ldr r1, [r7, #100]",
+    "adds r1, #1",
+    "str r1, [r7, #100]",
+    "b 22f",
+    "20:",
+    "bmi 68f",
+    "bl 30f",
+    // The colour in r2: the set-up and rows, the counts; back to the caller once the
+    // tested sum reaches 2³¹ (a face tests < 2^18.01 pixels: no wrap, of it nor of the
+    // failures, fewer).
+    "22:",
+    band_call!(),
+    "bpl 60b",
+    "b 10f",
+    // Kept: the colour (r6) into the half for the band below once drawn, while there
+    // is room.
+    "25:",
+    "bl 30f",
+    "mov r6, r2",
+    band_call!(),
+    "ldr r1, [r7, #104]",
+    "ldr r2, [r7, #108]",
+    "cmp r1, r2",
+    "bhs 1f",
+    "ldr r2, [r7, #72]",
+    "lsls r3, r1, #1",
+    "strh r6, [r2, r3]",
+    "adds r1, #1",
+    "str r1, [r7, #104]",
+    "1:",
+    "ldr r1, [r7, #88]",
+    "cmp r1, #0",
+    "bge 60b",
+    "10:",
+    "movs r0, #3",
+    "b 9f",
+    // The merge's other cases: the next head moved down past the second head.
+    "61:",
+    "mov r8, r9",
+    "cmp r2, r10",
+    "bhs 62f",
+    "mov r9, r2",
+    "b 64b",
+    "62:",
+    "mov r9, r10",
+    "cmp r2, r11",
+    "bhs 63f",
+    "mov r10, r2",
+    "b 64b",
+    "63:",
+    "mov r10, r11",
+    "mov r11, r2",
+    "b 64b",
+    "66:",
+    "movs r0, #0",
+    "b 9f",
+    // A corner past the cache or refused by the set-up (a taken colour counted); left
+    // to the caller (tall, no colour: nothing of its carry done). Its head at 112.
+    "67:",
+    "movs r0, #2",
+    "b 65f",
+    "68:",
+    "movs r0, #1",
+    "65:",
+    "ldr r1, [sp, #4]",
+    "ldr r7, [sp]",
+    "str r1, [r7, #112]",
+    // The heads back into the block.
+    "9:",
+    "ldr r7, [sp]",
+    "adds r7, #116",
+    "mov r1, r8",
+    "mov r2, r9",
+    "mov r3, r10",
+    "mov r4, r11",
+    "stm r7!, {{r1, r2, r3, r4}}",
+    "add sp, #12",
+    "pop {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4, r5, r6, r7, pc}}",
+    // The colour of the face at r4 into r2 (the block in r7 at every call); without a
+    // normal the flat colour, else the face is the caller's (nothing of its carry done
+    // yet).
+    "30:",
+    v6m_colour!("31f", general),
+    "bx lr",
+    v6m_colour_cold!(),
+    "31:",
+    "ldr r2, [r7, #84]",
+    "cmp r2, #0",
+    "bne 32f",
+    "b 68b",
+    "32:",
+    "uxth r2, r2",
+    "bx lr",
+    ".size zraster_band_faces_v6m, . - zraster_band_faces_v6m",
+    ".popsection",
+    color = const WALK_COLOR,
+);
+
+/// Draw a band's faces from its merged bin chains (`heads` in increasing order, each
+/// `face << 2 | chain`, the chains linked through `links`), those the common case
+/// covers, into `b`: each face's colour taken from the band above (chain 0) while
+/// `carry` has one, else coloured by `color` (one colour, or lit into 5-6-5 written as
+/// it is: `Raw565`), and kept for the band below (chain 1) while there is room; drawn
+/// by the small triangles' set-up and rows (`Less` with depth writes, a two-byte
+/// colour); its pixel counts into `counts` (not the drawn faces, which the band loop
+/// does not use). The heads move past each face it takes. Returns
+/// where it stopped ([`BandStop`], as `band_faces_less`). On ARMv6-M one assembly
+/// loop; elsewhere it leaves every face to the caller ([`BandStop::Refused`]).
+#[inline(always)]
+pub(crate) fn band_faces_less_v6m<C: Copy>(
+    heads: &mut [u32; 4],
+    tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
+    carry: &mut BandCarry<'_, '_, C>,
+    color: &FaceColor<'_, C>,
+    b: &mut Buffers<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> BandStop {
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    return band_faces_v6m(heads, tables, carry, color, b, counts);
+    #[allow(unreachable_code)]
+    {
+        let _ = (heads, tables, carry, color, b, counts);
+        BandStop::Refused
+    }
+}
+
+/// [`band_faces_less_v6m`] on ARMv6-M (inlined into its one caller, which runs once a
+/// band out of line).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+#[inline(always)]
+fn band_faces_v6m<C: Copy>(
+    heads: &mut [u32; 4],
+    (links, faces, cache): (&[u16], &[[u16; 3]], &[CachedVertex]),
+    carry: &mut BandCarry<'_, '_, C>,
+    color: &FaceColor<'_, C>,
+    b: &mut Buffers<'_, '_, C>,
+    counts: &mut FacesCounts,
+) -> BandStop {
+    // The block is started only for a two-byte `C` aligned to two: the carried
+    // colours are read and kept as u16s too.
+    let Some(walk) = b.walk_block() else {
+        return BandStop::Refused;
+    };
+    let at = faces.as_ptr() as u32;
+    let filled = carry.filled.min(carry.read.len()) as u32;
+    // Only compared with `filled` (at most the read half's length) and counted on: the
+    // delta goes back into the caller's cursor.
+    let taken0 = (*carry.taken).min(carry.read.len() + 1) as u32;
+    let kept0 = (*carry.kept).min(carry.keep.len()) as u32;
+    let mut block = BandV6m {
+        light: [0; 3],
+        ambient: 0,
+        diffuse: 0,
+        round: 1 << 12,
+        channels: [0; 3],
+        half: 0,
+        k: 32_897,
+        nend: at,
+        ndelta: 0,
+        faces: at,
+        links: links.as_ptr() as u32,
+        n: links.len().min(faces.len()).min(u32::MAX as usize) as u32,
+        len: cache.len().min(u32::MAX as usize) as u32,
+        walk: walk as u32,
+        entries: cache.as_ptr() as u32,
+        flat: 0,
+        tested: 0,
+        unused: 0,
+        heads: *heads,
+        read: carry.read.as_ptr() as u32,
+        keep: carry.keep.as_mut_ptr() as u32,
+        filled,
+        taken: taken0,
+        kept: kept0,
+        room: carry.keep.len().min(u32::MAX as usize) as u32,
+        least: 0,
+    };
+    match *color {
+        FaceColor::Flat(c) => match super::rows::as_u16(&mut [], c) {
+            Some((_, bits)) => block.flat = 1 << 16 | u32::from(bits),
+            None => return BandStop::Refused,
+        },
+        FaceColor::Lit(l, _, Some(_)) => {
+            let normals = l.normals();
+            let n = normals.len().min(faces.len());
+            block.light = l.light;
+            block.ambient = l.ambient;
+            block.diffuse = l.diffuse;
+            block.channels = l.channels;
+            block.half = l.half;
+            block.nend = at.wrapping_add(6 * n as u32);
+            block.ndelta = (normals.as_ptr() as u32).wrapping_sub(at);
+        }
+        FaceColor::Lit(_, _, None) => return BandStop::Refused,
+    }
+    let status = loop {
+        let failed = walk.wrapping_add(WALK_FAILED).cast::<u32>();
+        // SAFETY: as `faces_v6m`'s (the set-up block's `failed`), the call: the block
+        // as built above (see the assembly's SAFETY comment).
+        let (status, failed) = unsafe {
+            failed.write(0);
+            let status = zraster_band_faces_v6m(&mut block);
+            (status, failed.read())
+        };
+        counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
+        counts.failed = counts.failed.wrapping_add(u64::from(failed));
+        if status != 3 {
+            break status;
+        }
+        block.tested = 0;
+    };
+    // The face it left (1, 2): the heads and the carry as before it, for the caller's
+    // loop (its next head taken out again, the face's put back in front; a taken
+    // colour of a refused face given back).
+    if status == 1 || status == 2 {
+        let least = block.least;
+        let f = (least >> 2) as usize;
+        let link = links.get(f).map_or(0, |&l| u32::from(l));
+        let next = least.wrapping_add(link.wrapping_sub(f as u32).wrapping_mul(4));
+        // The heads before it: those below `next` (the first equal one: hostile bins
+        // may repeat heads) one place up, the face's in front.
+        if let Some(p) = block.heads.iter().position(|&h| h == next) {
+            block.heads.copy_within(0..p, 1);
+            block.heads[0] = least;
+        }
+        if status == 2 && least & 3 == 0 {
+            block.taken = block.taken.wrapping_sub(1);
+        }
+    }
+    *heads = block.heads;
+    *carry.taken = carry
+        .taken
+        .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
+    *carry.kept = block.kept as usize;
+    match status {
+        0 => BandStop::Done,
+        _ => BandStop::Whole(block.least),
+    }
+}
+
+/// On-target check of the ARMv6-M face loop (`faces_less_v6m`) against its twin (the
+/// scan's, the colour's and the set-up's portable twins face by face), for the bench
+/// firmware: `cases` random meshes (up to 16 faces over up to 12 cache entries, some
+/// unplaced or far apart, indices out of range; normals for some faces only; lit or
+/// one colour; the three cull modes) drawn into copies of the same random 48 × 16
+/// buffers (the colour rows at both alignments to the depth rows, clips of the whole
+/// or part), the faces the loop leaves drawn by the twin as the renderer would. `buf`
+/// holds four 48 × 16 buffers (a shorter one is a failure). Returns the number of
+/// cases whose buffers, pixel counts or drawn faces differ, or where the loop refuses
+/// on ARMv6-M (elsewhere it leaves every face to the twin).
+#[inline(never)]
+pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
+    use super::cull::{culled_run_portable, CullScan};
+    use super::faces::Raw565;
+    use super::light::{lit_565_portable, LightBlock};
+    use super::rows_v6m::small_walk_portable;
+    use super::SmallDone;
+    use crate::raster::{Clip, ScreenVertex};
+    const W: usize = 48;
+    const H: usize = 16;
+    const N: usize = W * H;
+    let Some(buf) = buf.get_mut(..4 * N) else {
+        return usize::MAX;
+    };
+    let (mine, theirs) = buf.split_at_mut(2 * N);
+    let (z1, c1) = mine.split_at_mut(N);
+    let (z2, c2) = theirs.split_at_mut(N);
+    let mut rnd = super::xorshift32(0x510e_527f);
+    let mut bad = 0;
+    for case in 0..cases {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let off = case / 2 % 2;
+        let first_row = (rnd() % 5) as i32 - 2;
+        let rows = (H - off) as i32;
+        // Clips inside both buffers (the set-up's condition).
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (rnd() % 29) as i32,
+                y1: first_row + y0 + (rnd() % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + rows,
+            }
+        };
+        // Entries near the buffers (1/16 pixel), some unplaced, one far on some cases.
+        let len = rnd() as usize % 13;
+        let mut cache = [CachedVertex::EMPTY; 12];
+        let span = 64 << (case % 4);
+        let (bx, by) = (
+            (rnd() % (W as u32 * 16)) as i32 - 40,
+            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        for (i, e) in cache.iter_mut().enumerate() {
+            let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
+            let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
+            let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
+            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
+            *e = CachedVertex {
+                z,
+                xy: super::XyWord::new(x, y),
+            };
+            if rnd().is_multiple_of(24) {
+                e.xy = super::XyWord::new(i16::MIN, (rnd() % 64) as i16);
+            }
+        }
+        let cache = cache.get(..len).unwrap_or(&[]);
+        let mut faces = [[0u16; 3]; 16];
+        for t in faces.iter_mut() {
+            for i in t.iter_mut() {
+                *i = (rnd() % (len as u32 + 1).min(12)) as u16;
+                if rnd().is_multiple_of(48) {
+                    *i = (len as u32 + rnd() % 4) as u16; // out of range
+                }
+            }
+        }
+        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
+        let (lo, cspan) = match rnd() % 3 {
+            0 => (0, i32::MAX as u32),   // back faces
+            1 => (i32::MIN, 1u32 << 31), // front faces
+            _ => (0, 0),                 // none
+        };
+        let scan = CullScan::new(faces, cache, 4, CachedVertex::xy, lo, cspan);
+        let regs = scan.operands();
+        // Light and normals as `check_light_kernel`'s (ARMv6-M's diffuse range).
+        let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
+        let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
+        let ambient = (rnd() % 131_073) as i32 - 65536;
+        let diffuse = (rnd() % 131_073) as i32 - 65536;
+        let channels = [0; 3].map(|_| rnd() as u8);
+        let count = rnd() as usize % (faces.len() + 2);
+        let block = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&normals),
+        );
+        let flat = rnd() as u16;
+        let same: fn(u16) -> u16 = |c| c;
+        let color = match case % 4 {
+            3 => FaceColor::Flat(flat),
+            _ => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
+        };
+        // A drawn face's colour as the renderer gives it (a fixed one without a normal).
+        let color_of = |k: usize| match color {
+            FaceColor::Flat(c) => c,
+            FaceColor::Lit(b, f, _) => lit_565_portable(k, b).map_or(0x1234, f),
+        };
+        let corners = |t: [&CachedVertex; 3]| {
+            t.map(|e| {
+                let (x, y) = e.xy();
+                ScreenVertex::from_raw(x, y, e.z)
+            })
+        };
+        // The loop, the faces it leaves drawn by the twin.
+        let mut mine = FacesCounts::default();
+        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
+            return usize::MAX;
+        };
+        let mut b = Buffers::unstarted(&mut z1[..], ca, W, first_row, clip);
+        b.start();
+        let mut pos = 0;
+        let mut refused = false;
+        while pos < faces.len() {
+            match faces_less_v6m(&mut pos, (&regs, faces, cache), &color, &mut b, &mut mine) {
+                FacesStop::Scan => pos += 1,
+                FacesStop::Face(k, tri) => {
+                    let [p, q, r] = corners(tri);
+                    mine.drawn += 1;
+                    let (z, c) = b.parts();
+                    let done =
+                        small_walk_portable([&p, &q, &r], &clip, first_row, W, z, c, color_of(k));
+                    if let SmallDone::Drawn(tested, failed) = done {
+                        mine.tested += u64::from(tested);
+                        mine.failed += u64::from(failed);
+                    }
+                }
+                FacesStop::Refused => {
+                    refused = true;
+                    break;
+                }
+            }
+        }
+        if FACES_V6M_KERNEL && refused {
+            bad += 1;
+        }
+        // The twin, face by face (where the loop refused, for both).
+        let twin = |z: &mut [u16], c: &mut [u16], counts: &mut FacesCounts| {
+            for (k, tri) in faces.iter().enumerate() {
+                let (n, drawn) = culled_run_portable(core::slice::from_ref(tri), &scan);
+                let get = |i: u16| cache.get(usize::from(i));
+                let (Some(a), Some(b), Some(e)) = (get(tri[0]), get(tri[1]), get(tri[2])) else {
+                    continue;
+                };
+                if n == 1 || !drawn {
+                    continue;
+                }
+                let [p, q, r] = corners([a, b, e]);
+                counts.drawn += 1;
+                let done =
+                    small_walk_portable([&p, &q, &r], &clip, first_row, W, z, c, color_of(k));
+                if let SmallDone::Drawn(tested, failed) = done {
+                    counts.tested += u64::from(tested);
+                    counts.failed += u64::from(failed);
+                }
+            }
+        };
+        let mut theirs = FacesCounts::default();
+        if refused {
+            let (z, c) = b.parts();
+            twin(z, c, &mut mine);
+        }
+        twin(z2, cb, &mut theirs);
+        if mine != theirs || z1 != z2 || c1 != c2 {
+            bad += 1;
+        }
+    }
+    bad
+}
+
+/// On-target check of the ARMv6-M band loop (`band_faces_less_v6m`) against its twin
+/// (the band loop's merge, carry, colour and the set-up's portable twin, face by
+/// face), for the bench firmware: `cases` random bands (buffers, clips, caches, meshes
+/// and colours as [`check_faces_v6m_kernel`]'s) walked from random bins: four chains' heads, links
+/// increasing, ending in `END` or a face past the faces, over links shorter or longer
+/// than the faces; tall faces among them; carried colours up to and past the read
+/// half, the keep half sometimes full. The faces the loop leaves are drawn by the twin
+/// as the band loop would. Returns the number of cases whose buffers, pixel counts,
+/// drawn faces, heads or carry differ. `buf` holds four 48 × 16 buffers (a shorter one
+/// is a failure).
+#[inline(never)]
+pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
+    use super::faces::Raw565;
+    use super::light::{lit_565_portable, LightBlock};
+    use super::rows_v6m::small_walk_portable;
+    use super::SmallDone;
+    use crate::raster::{Clip, ScreenVertex};
+    const W: usize = 48;
+    const H: usize = 16;
+    const N: usize = W * H;
+    const END: u16 = u16::MAX;
+    /// The band loop's carry (`ColorCarry`) over two halves of eight.
+    #[derive(Clone, PartialEq)]
+    struct Carry8 {
+        read: [u16; 8],
+        keep: [u16; 8],
+        filled: usize,
+        taken: usize,
+        kept: usize,
+    }
+    impl Carry8 {
+        fn take(&mut self) -> Option<u16> {
+            let i = self.taken;
+            self.taken += 1;
+            (i < self.filled)
+                .then(|| self.read.get(i).copied())
+                .flatten()
+        }
+        fn last_taken(&self) -> Option<u16> {
+            let i = self.taken.checked_sub(1)?;
+            (i < self.filled)
+                .then(|| self.read.get(i).copied())
+                .flatten()
+        }
+        fn keep(&mut self, c: u16) {
+            if let Some(slot) = self.keep.get_mut(self.kept) {
+                *slot = c;
+                self.kept += 1;
+            }
+        }
+    }
+    let Some(buf) = buf.get_mut(..4 * N) else {
+        return usize::MAX;
+    };
+    let (mine, theirs) = buf.split_at_mut(2 * N);
+    let (z1, c1) = mine.split_at_mut(N);
+    let (z2, c2) = theirs.split_at_mut(N);
+    let mut rnd = super::xorshift32(0xa54f_f53a);
+    let mut bad = 0;
+    for case in 0..cases {
+        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
+            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
+        }
+        z2.copy_from_slice(z1);
+        c2.copy_from_slice(c1);
+        let off = case / 2 % 2;
+        let first_row = (rnd() % 5) as i32 - 2;
+        let rows = (H - off) as i32;
+        let clip = if case % 3 == 0 {
+            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+            Clip {
+                x0,
+                y0: first_row + y0,
+                x1: x0 + (rnd() % 29) as i32,
+                y1: first_row + y0 + (rnd() % 10) as i32,
+            }
+        } else {
+            Clip {
+                x0: 0,
+                y0: first_row,
+                x1: W as i32,
+                y1: first_row + rows,
+            }
+        };
+        let len = rnd() as usize % 13;
+        let mut cache = [CachedVertex::EMPTY; 12];
+        let span = 64 << (case % 4);
+        let (bx, by) = (
+            (rnd() % (W as u32 * 16)) as i32 - 40,
+            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
+        );
+        for (i, e) in cache.iter_mut().enumerate() {
+            let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
+            let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
+            let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
+            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
+            *e = CachedVertex {
+                z,
+                xy: super::XyWord::new(x, y),
+            };
+            if rnd().is_multiple_of(24) {
+                e.xy = super::XyWord::new(i16::MIN, (rnd() % 64) as i16);
+            }
+        }
+        let cache = cache.get(..len).unwrap_or(&[]);
+        let mut faces = [[0u16; 3]; 16];
+        for t in faces.iter_mut() {
+            for i in t.iter_mut() {
+                *i = (rnd() % (len as u32 + 1).min(12)) as u16;
+                if rnd().is_multiple_of(64) {
+                    *i = (len as u32 + rnd() % 4) as u16; // out of range
+                }
+            }
+        }
+        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
+        // The bins: links increasing (so every chain ends), to END or past the faces.
+        let mut links = [0u16; 18];
+        for (f, l) in links.iter_mut().enumerate() {
+            *l = match rnd() % 8 {
+                0 => END,
+                1 => 16 + (rnd() % 3) as u16,
+                _ => (f as u32 + 1 + rnd() % 3) as u16,
+            };
+        }
+        let links = links.get(..rnd() as usize % 19).unwrap_or(&[]);
+        let mut heads = [0u32; 4];
+        for (c, h) in heads.iter_mut().enumerate() {
+            let f = if rnd().is_multiple_of(5) {
+                END
+            } else {
+                (rnd() % 18) as u16
+            };
+            // Tall faces (chain 3) on some cases only, as a band has few.
+            let c = if c == 3 && case % 4 != 0 { 2 } else { c as u32 };
+            *h = u32::from(f) << 2 | c;
+        }
+        heads.sort_unstable();
+        let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
+        let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
+        let ambient = (rnd() % 131_073) as i32 - 65536;
+        let diffuse = (rnd() % 131_073) as i32 - 65536;
+        let channels = [0; 3].map(|_| rnd() as u8);
+        let count = rnd() as usize % (faces.len() + 2);
+        let block = LightBlock::new(
+            light,
+            ambient,
+            diffuse,
+            channels,
+            normals.get(..count).unwrap_or(&normals),
+        );
+        let flat = rnd() as u16;
+        let same: fn(u16) -> u16 = |c| c;
+        let color = match case % 4 {
+            3 => FaceColor::Flat(flat),
+            _ => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
+        };
+        let color_of = |k: usize| match color {
+            FaceColor::Flat(c) => c,
+            FaceColor::Lit(b, f, _) => lit_565_portable(k, b).map_or(0x1234, f),
+        };
+        let mut carry = Carry8 {
+            read: [0; 8].map(|_| rnd() as u16),
+            keep: [0; 8].map(|_| rnd() as u16),
+            filled: rnd() as usize % 11,
+            taken: rnd() as usize % 3,
+            kept: rnd() as usize % 9,
+        };
+        let mut carry2 = carry.clone();
+        // One face as the band loop draws it (`carried`: its carry done by the fused
+        // loop); `false` at a corner past the cache (the band loop's error: it stops).
+        let face = |head: u32,
+                    carried: bool,
+                    carry: &mut Carry8,
+                    z: &mut [u16],
+                    c: &mut [u16],
+                    counts: &mut FacesCounts| {
+            let (f, k) = ((head >> 2) as usize, head & 3);
+            let Some(&t) = faces.get(f) else {
+                return false;
+            };
+            let get = |i: u16| cache.get(usize::from(i));
+            let (Some(a), Some(b), Some(e)) = (get(t[0]), get(t[1]), get(t[2])) else {
+                return false;
+            };
+            let taken = match (k, carried) {
+                (0, false) => carry.take(),
+                (0, true) => carry.last_taken(),
+                _ => None,
+            };
+            let col = taken.unwrap_or_else(|| color_of(f));
+            if k == 1 && !carried {
+                carry.keep(col);
+            }
+            let [p, q, r] = [a, b, e].map(|e| {
+                let (x, y) = e.xy();
+                ScreenVertex::from_raw(x, y, e.z)
+            });
+            let done = small_walk_portable([&p, &q, &r], &clip, first_row, W, z, c, col);
+            if let SmallDone::Drawn(tested, failed) = done {
+                counts.drawn += 1;
+                counts.tested += u64::from(tested);
+                counts.failed += u64::from(failed);
+            }
+            true
+        };
+        // The band loop's merge: the least head's face, its chain's next in its place.
+        let n = links.len().min(faces.len());
+        let next = |heads: &mut [u32; 4]| {
+            let least = heads[0];
+            let f = (least >> 2) as usize;
+            let &link = links.get(f).filter(|_| f < n)?;
+            let next = u32::from(link) << 2 | least & 3;
+            let mut i = 0;
+            while let Some(&h) = heads.get(i + 1).filter(|&&h| next >= h) {
+                if let Some(slot) = heads.get_mut(i) {
+                    *slot = h;
+                }
+                i += 1;
+            }
+            if let Some(slot) = heads.get_mut(i) {
+                *slot = next;
+            }
+            Some(least)
+        };
+        // The fused loop, the faces it leaves drawn by the twin.
+        let mut mine = FacesCounts::default();
+        let mut heads1 = heads;
+        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
+            return usize::MAX;
+        };
+        let mut t = Buffers::unstarted(&mut z1[..], ca, W, first_row, clip);
+        t.start();
+        let mut stopped = false;
+        let mut refused = false;
+        loop {
+            let Carry8 {
+                read,
+                keep,
+                filled,
+                taken,
+                kept,
+            } = &mut carry;
+            let mut parts = BandCarry {
+                read: &read[..],
+                keep: &mut keep[..],
+                filled: *filled,
+                taken,
+                kept,
+                states: &mut KeptStates::new(&mut [], 0), // nothing kept on ARMv6-M
+            };
+            let tables = (links, faces, cache);
+            let (head, carried) = match band_faces_less_v6m(
+                &mut heads1,
+                tables,
+                &mut parts,
+                &color,
+                &mut t,
+                &mut mine,
+            ) {
+                BandStop::Done => break,
+                // The heads and the carry as before the face it left: the twin's.
+                BandStop::Whole(_) | BandStop::Fill(_) => match next(&mut heads1) {
+                    Some(h) => (h, false),
+                    None => break,
+                },
+                BandStop::Refused => {
+                    // Only where there is no assembly: the twin's face by face.
+                    refused = true;
+                    match next(&mut heads1) {
+                        Some(h) => (h, false),
+                        None => break,
+                    }
+                }
+            };
+            let (z, c) = t.parts();
+            if !face(head, carried, &mut carry, z, c, &mut mine) {
+                stopped = true;
+                break;
+            }
+        }
+        // The twin.
+        let mut theirs = FacesCounts::default();
+        let mut heads2 = heads;
+        let mut stopped2 = false;
+        while let Some(head) = next(&mut heads2) {
+            if !face(head, false, &mut carry2, z2, cb, &mut theirs) {
+                stopped2 = true;
+                break;
+            }
+        }
+        // After a stop (an error: the frame is not drawn on) the carry is not compared.
+        let same_carry = stopped || carry == carry2;
+        // The loop does not count drawn faces (the band loop does not use them).
+        let same_counts = (mine.tested, mine.failed) == (theirs.tested, theirs.failed);
+        let same_draw = same_counts && z1 == z2 && c1 == c2 && heads1 == heads2;
+        if !same_draw || stopped != stopped2 || !same_carry || (FACES_V6M_KERNEL && refused) {
+            bad += 1;
+        }
+    }
+    bad
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn faces_v6m_kernel_matches_its_twin() {
+        let mut buf = [0u16; 4 * 48 * 16];
+        assert_eq!(check_faces_v6m_kernel(&mut buf, 2_000), 0);
+        assert_eq!(check_faces_v6m_kernel(&mut buf[..100], 1), usize::MAX);
+    }
+
+    #[test]
+    fn band_faces_v6m_kernel_matches_its_twin() {
+        let mut buf = [0u16; 4 * 48 * 16];
+        assert_eq!(check_band_faces_v6m_kernel(&mut buf, 4_000), 0);
+        assert_eq!(check_band_faces_v6m_kernel(&mut buf[..100], 1), usize::MAX);
+    }
+}
