@@ -2,20 +2,20 @@
 //! projection and the entry in one Thumb-1 assembly loop, beside its portable twin.
 //!
 //! It computes `ScreenMap::project_fast` of `FixedTransform::apply`, then
-//! `CachedVertex::placing`, step for step: the six rows (x, y, z and w in two partial
-//! sums each), the near, far and w planes on z and w in units of 2¹⁴, w's bits beyond
-//! 31 against the hint the block carries (a four-step search on a miss), w and z + w
-//! normalised, x and y normalised by one shift each, the reciprocal ⌊2⁶²/wn⌋, the
-//! screen coordinates by five 16 × 16-bit products each and the depth by the rounded
-//! high word of four. It refuses one value more next to a screen coordinate's rounding
-//! boundary (4 in 16,384 instead of 3), which a shorter test finds. The reciprocal is
-//! [`recip62_low`] (the integer projection's too), its first step from the 512-entry
-//! table `recip32_small` reads. Any vertex it does not place stops the loop for the
-//! caller's exact path.
+//! `CachedVertex::placing`: the six rows (x, y, z and w in two partial sums each), the
+//! near, far and w planes on z and w in units of 2¹⁴, w's bits beyond 31 against the
+//! hint the block carries (a four-step search on a miss), w and z + w normalised, x
+//! and y normalised by two shifts each, the reciprocal ⌊2⁶²/wn⌋, the screen
+//! coordinates by five 16 × 16-bit products each in two's complement and the depth by
+//! the rounded high word of four. Its coordinates have their own error bound (viewports
+//! up to 4096 pixels): they are the integer projection's wherever it places a vertex,
+//! and it leaves 4 values in 16,384 next to a rounding boundary (not the same ones as
+//! `project_fast`). The reciprocal is [`recip62_low`] (the integer projection's too),
+//! its first step from the 512-entry table `recip32_small` reads. Any vertex it does
+//! not place stops the loop for the caller's exact path.
 #![allow(unsafe_code)]
 
 use super::{CachedVertex, XyWord};
-use crate::fixed::MAX_DEPTH;
 use crate::num::armv6m::RECIP16;
 
 /// Whether [`place_run_v6m`] is the assembly loop (ARMv6-M).
@@ -25,45 +25,55 @@ pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(crate) struct PlaceV6m<'a> {
-    /// y's operands: right shift, overflow shift, left shift (of the normalisation
-    /// by 2^(sh − e)), the half height, 2¹³ + 4, the y origin (1/16 pixel).
-    ys: [u32; 6],
-    /// x's operands, as `ys` with the half width and the x origin.
-    xs: [u32; 6],
-    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
-    rows: &'a [[i32; 4]; 6],
-    /// sh − 1 for w's bits sh beyond 31 at the last vertex that changed it (the hint,
-    /// 0..=13).
+    /// 16 + sh for w's bits sh beyond 31 at the last vertex that changed it (the hint,
+    /// sh in 1..=14).
     hint: u32,
     /// 14 − sh.
     up: u32,
+    /// y's operands (`RIGHT` to `LIMIT`): the shifts of the normalisation by
+    /// 2^(sh − e) and its range, the half height, the rounding constant, the y origin
+    /// (1/16 pixel) and the bounds of a placed coordinate.
+    ys: [u32; 9],
+    /// x's operands, as `ys` with the half width and the x origin.
+    xs: [u32; 9],
+    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
+    rows: &'a [[i32; 4]; 6],
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
 }
 
-// The loop reads y's operands at 0, x's at 24, the rows' address at 48, the hint at
-// 52, 14 − sh at 56 and e at 60 (addresses of 32 bits).
+// The loop reads the hint at 0, 14 − sh at 4, y's operands at 8, x's at 44, the rows'
+// address at 80 and e at 84 (addresses of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
-    core::mem::offset_of!(PlaceV6m<'_>, ys) == 0
-        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 24
-        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 48
-        && core::mem::offset_of!(PlaceV6m<'_>, hint) == 52
-        && core::mem::offset_of!(PlaceV6m<'_>, up) == 56
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
-        && core::mem::size_of::<PlaceV6m<'_>>() == 64
+    core::mem::offset_of!(PlaceV6m<'_>, hint) == 0
+        && core::mem::offset_of!(PlaceV6m<'_>, up) == 4
+        && core::mem::offset_of!(PlaceV6m<'_>, ys) == 8
+        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 44
+        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 80
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 84
+        && core::mem::size_of::<PlaceV6m<'_>>() == 88
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
-/// Where in `ys` and `xs` the half extent, the rounding constant and the origin go.
-const HALF: usize = 3;
-const ROUND: usize = 4;
-const ORIGIN: usize = 5;
+/// Where in `ys` and `xs` each operand goes, in the order the loop loads them: the
+/// right and left shifts of v, the bias and limit of v's range test (v + bias ≤ limit
+/// unsigned: the normalised v within ±(2³¹ − 1)), the half extent, the rounding
+/// constant, the origin, and the bias and limit of the placed coordinate (|c| < 2¹⁴).
+const RIGHT: usize = 0;
+const LEFT: usize = 1;
+const RANGE: usize = 2;
+const RANGE_LIMIT: usize = 3;
+const HALF: usize = 4;
+const ROUND: usize = 5;
+const ORIGIN: usize = 6;
+const FIT: usize = 7;
+const LIMIT: usize = 8;
 
 impl<'a> PlaceV6m<'a> {
     /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
     /// c₂, t]`, as `FixedTransform::with_rows_v6m` gives them), x and y's scale exponent `e`
-    /// (0..=20), the half width and height `half` (1/16 pixel, at most 2¹⁶) and the
+    /// (0..=20), the half width and height `half` (1/16 pixel, at most 2¹⁵) and the
     /// origin `org`, w's bits beyond 31 guessed as `sh` (1..=14).
     pub(crate) fn new(
         rows: &'a [[i32; 4]; 6],
@@ -72,31 +82,35 @@ impl<'a> PlaceV6m<'a> {
         org: [i32; 2],
         sh: u32,
     ) -> PlaceV6m<'a> {
-        let operands = |h: u32, o: i32| [0, 31, 0, h, (1 << 13) + 4, o as u32];
+        let k = (1 << 14) - 1;
+        let operands = |h: u32, o: i32| [0, 0, 0, 0, h, (1 << 13) + 2, o as u32, k, 2 * k];
         let mut b = PlaceV6m {
+            hint: 0,
+            up: 0,
             ys: operands(half[1], org[1]),
             xs: operands(half[0], org[0]),
             rows,
-            hint: 0,
-            up: 0,
             e,
         };
         b.set_sh(sh);
         b
     }
 
-    /// The hint for w's bits `sh` beyond 31 (1..=14), and the normalisation's shifts
-    /// for k = sh − e: right by k when k ≥ 0, else left by −k, the magnitude first
-    /// checked below 2^(31 + k).
+    /// The hint for w's bits `sh` beyond 31 (1..=14), and the normalisation's operands
+    /// for k = sh − e: right by k when k > 0 (any v), else left by −k with |v| below
+    /// 2^(31 + k) (v + 2^(31 + k) − 1 at most twice that, unsigned).
     fn set_sh(&mut self, sh: u32) {
         let k = sh as i32 - self.e as i32;
-        let (right, left) = (k.max(0) as u32, (-k).max(0) as u32);
-        self.hint = sh - 1;
+        let s = if k > 0 {
+            [k as u32, 0, 0, u32::MAX]
+        } else {
+            let m = u32::MAX >> (1 - k);
+            [0, (-k) as u32, m, 2 * m]
+        };
+        self.hint = 16 + sh;
         self.up = 14 - sh;
-        for s in [&mut self.ys, &mut self.xs] {
-            s[0] = right;
-            s[1] = 31 - left;
-            s[2] = left;
+        for o in [&mut self.ys, &mut self.xs] {
+            o[..4].copy_from_slice(&s);
         }
     }
 }
@@ -143,38 +157,45 @@ pub(crate) fn recip62_low(d: u32) -> u32 {
     x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
-/// One screen coordinate's offset from its origin: `v·2^e/2^sh · h/wn` rounded (the
-/// operands `s` of [`PlaceV6m`]), through r = ⌊2⁶²/wn⌋ in halves `rh`, `rl`, as
-/// `project::signed_ratio` where it gives one; `None` where that cannot tell (or one
-/// value more) or the normalised v reaches 2³¹.
+/// One screen coordinate's offset from its origin, `v·2^e/2^sh · h/wn` rounded (halves
+/// away from zero), through r = ⌊2⁶²/wn⌋ in halves `rh`, `rl` and the operands `s` of
+/// [`PlaceV6m`], as `project::signed_ratio` gives it; `None` where the normalised v
+/// would reach ±2³¹ or next to a rounding boundary (4 values in 16,384).
+///
+/// In two's complement throughout: with xn = a₁·2¹⁶ + a₀ (a₁ signed), P = a₁r₁ +
+/// ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ lies in (X − 3, X] for X = xn·r/2³² (three dropped
+/// fractions; |P| ≤ 2³¹ as |X| < 2³¹ − 2 for r < 2³² − 3), F = ⌊P·h/2¹⁶⌋ = p₁h +
+/// ⌊p₀h/2¹⁶⌋ in (V − 2.5, V] for V = xn·h·r/2⁴⁸ and h ≤ 2¹⁵ (|F| ≤ 2³⁰). With f = F +
+/// 2¹³ + 2, V + 2¹³ lies in [f − 2, f + ½): where f mod 2¹⁴ ≥ 4 no multiple of 2¹⁴ is
+/// in it, so ⌊f/2¹⁴⌋ is ⌊(V + 2¹³)/2¹⁴⌋ and no tie, which rounds halves away from zero
+/// for either sign.
 #[inline(always)]
-fn ratio(v: i32, s: &[u32; 6], rh: u32, rl: u32) -> Option<i32> {
-    let sign = v >> 31;
-    let a = ((v >> s[0]) ^ sign).wrapping_sub(sign) as u32;
-    if a >> s[1] != 0 {
+fn ratio(v: i32, s: &[u32; 9], rh: u32, rl: u32) -> Option<i32> {
+    if (v as u32).wrapping_add(s[RANGE]) > s[RANGE_LIMIT] {
         return None;
     }
-    let a = a << s[2];
-    let (a1, a0) = (a >> 16, a & 0xffff);
-    let p = (a1.wrapping_mul(rh))
-        .wrapping_add(a1.wrapping_mul(rl) >> 16)
-        .wrapping_add(a0.wrapping_mul(rh) >> 16);
+    let a = (v >> s[RIGHT]).wrapping_shl(s[LEFT]);
+    let (a1, a0) = (a >> 16, (a & 0xffff) as u32);
+    let p = a1
+        .wrapping_mul(rh as i32)
+        .wrapping_add(a1.wrapping_mul(rl as i32) >> 16)
+        .wrapping_add((a0.wrapping_mul(rh) >> 16) as i32);
     let h = s[HALF];
     let f = (p >> 16)
-        .wrapping_mul(h)
-        .wrapping_add((p & 0xffff).wrapping_mul(h) >> 16)
-        .wrapping_add(s[ROUND]);
-    // None within 4 of a rounding boundary (project::signed_ratio's 3 and one more).
+        .wrapping_mul(h as i32)
+        .wrapping_add((((p & 0xffff) as u32).wrapping_mul(h) >> 16) as i32)
+        .wrapping_add(s[ROUND] as i32);
     if f & 0x3fff < 4 {
         return None;
     }
-    Some(((f >> 14) as i32 ^ sign).wrapping_sub(sign))
+    Some(f >> 14)
 }
 
-/// |c| < 2¹⁴ (a placed coordinate), as `CachedVertex::placing` tests it.
+/// `c` when |c| < 2¹⁴ (a placed coordinate, as `CachedVertex::placing` tests it), by
+/// the operands `s`: c + 16383 ≤ 32766 unsigned.
 #[inline(always)]
-fn fits(c: i32) -> bool {
-    c.wrapping_add((1 << 14) - 1) as u32 <= 2 * ((1 << 14) - 1)
+fn fits(c: i32, s: &[u32; 9]) -> Option<i32> {
+    ((c as u32).wrapping_add(s[FIT]) <= s[LIMIT]).then_some(c)
 }
 
 /// The entry of position `p`, or `None` where the loop stops: the portable twin of one
@@ -189,15 +210,17 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
     };
     let [x, y, zh, wh, zl, wl] = b.rows.map(row);
     let (zt, wt) = (zh.wrapping_add(zl >> 14), wh.wrapping_add(wl >> 14));
-    let (zl, wl) = ((zl & 0x3fff) as u32, (wl & 0x3fff) as u32);
-    // w ≥ 2³¹ and z strictly between −w and w with a unit of room (a negative wt fails
-    // one of the two z tests).
-    if (wt as u32) >> 17 == 0 || i64::from(zt) + i64::from(wt) <= 0 || zt >= wt.wrapping_sub(1) {
+    // z strictly between −w and w with a unit of room, then w ≥ 2³¹ (the hint's test
+    // or the search's; a negative wt fails one of the z tests).
+    if zt >= wt.wrapping_sub(1) || i64::from(zt) + i64::from(wt) <= 0 {
         return None;
     }
     // wt >> (16 + sh) = 1 for the hint's sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
-    if (wt as u32) >> 17 >> b.hint != 1 {
+    if (wt as u32) >> b.hint != 1 {
         let mut t = (wt as u32) >> 17;
+        if t == 0 {
+            return None;
+        }
         let mut sh = 1;
         for k in [8, 4, 2, 1] {
             if t >> k != 0 {
@@ -207,16 +230,20 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
         }
         b.set_sh(sh);
     }
-    let (sh, up) = (b.hint + 1, b.up);
-    let wn = ((wt as u32) << up).wrapping_add(wl >> sh);
+    // wn = ⌊w/2^sh⌋ = (wh << up) + (wl >> sh), un = ⌊(z + w)/2^sh⌋ likewise (the top
+    // parts are multiples of 2^sh), both exact modulo 2³² and below it.
+    let (sh, up) = (b.hint - 16, b.up);
+    let wn = ((wh as u32) << up).wrapping_add((wl >> sh) as u32);
     if wn << 2 == 0 {
         return None; // wn = 2³⁰
     }
-    let ut = (zt as u32).wrapping_add(wt as u32);
-    let un = (ut << up).wrapping_add((zl + wl) >> sh);
+    let ul = i64::from(zl) + i64::from(wl);
+    let un = ((zh.wrapping_add(wh) as u32) << up).wrapping_add((ul >> sh) as u32);
     let r = recip62_low(wn);
     let (rh, rl) = (r >> 16, r & 0xffff);
     // Depth: the rounded high word of un·r (q30), then 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋.
+    // z < w − 2¹⁴ makes un ≤ 2·wn, so un·r ≤ 2⁶³ and q30 ≤ 2³¹ (where the depth is
+    // MAX_DEPTH): no clamp.
     let (a1, a0) = (un >> 16, un & 0xffff);
     let (m1, m2) = (a1.wrapping_mul(rl), a0.wrapping_mul(rh));
     let low = (a0.wrapping_mul(rl) >> 16)
@@ -228,21 +255,16 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
         .wrapping_add(m1 >> 16)
         .wrapping_add(m2 >> 16)
         .wrapping_add(low >> 16);
-    // Above q30 = 2³¹ (where it is MAX_DEPTH) the depth is clamped.
     let d = q30.wrapping_add((1 << 14) - 1) >> 15;
-    let sz = if q30 > 1 << 31 {
-        MAX_DEPTH
-    } else {
-        q30.wrapping_add(q30.wrapping_sub(d))
-    };
-    let sy = (b.ys[ORIGIN] as i32).wrapping_sub(ratio(y, &b.ys, rh, rl)?);
-    if !fits(sy) {
-        return None;
-    }
-    let sx = (b.xs[ORIGIN] as i32).wrapping_add(ratio(x, &b.xs, rh, rl)?);
-    if !fits(sx) {
-        return None;
-    }
+    let sz = q30.wrapping_add(q30.wrapping_sub(d));
+    let sy = fits(
+        (b.ys[ORIGIN] as i32).wrapping_sub(ratio(y, &b.ys, rh, rl)?),
+        &b.ys,
+    )?;
+    let sx = fits(
+        (b.xs[ORIGIN] as i32).wrapping_add(ratio(x, &b.xs, rh, rl)?),
+        &b.xs,
+    )?;
     Some(CachedVertex {
         z: sz,
         xy: XyWord::new(sx as i16, sy as i16),
@@ -329,64 +351,59 @@ macro_rules! place_row {
     };
 }
 
-/// One screen coordinate (the twin's `ratio`, then the origin and `fits`): the
-/// operands at r7 (the block for y, plus 24 for x), the coordinate's row value
-/// popped, r's halves in r0 (high) and r1 (low); the coordinate in r3. `$org` is the
-/// origin's operation (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail`
-/// where a refusal goes.
+/// One screen coordinate (the twin's `ratio`, then the origin and `fits`): its
+/// operands at r7 (advanced past them), the coordinate's row value popped, r's halves
+/// in r0 (high) and r1 (low); the coordinate in r3. `$org` is the origin's operation
+/// (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail` where a refusal goes.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! place_coordinate {
     ($org:literal, $fail:literal) => {
         concat!(
-            "ldm r7!, {{r2, r3, r6}}\n",
+            // v's range, then xn = (v >> right) << left.
+            "ldm r7!, {{r2, r3, r5, r6}}\n",
             "pop {{r4}}\n",
-            "asrs r5, r4, #31\n",
-            "asrs r4, r4, r2\n",
-            "eors r4, r4, r5\n",
-            "subs r4, r4, r5\n",
-            "movs r2, r4\n",
-            "lsrs r2, r2, r3\n",
-            "beq 9f\n",
+            "adds r5, r5, r4\n",
+            "cmp r5, r6\n",
+            "bls 9f\n",
             "b ",
             $fail,
             "\n9:\n",
-            "lsls r4, r4, r6\n",
-            // P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋.
-            "lsrs r2, r4, #16\n",
+            "asrs r4, r4, r2\n",
+            "lsls r4, r4, r3\n",
+            // P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋, a₁ signed.
+            "asrs r2, r4, #16\n",
             "uxth r4, r4\n",
             "movs r3, r2\n",
             "muls r3, r0, r3\n",
             "muls r2, r1, r2\n",
-            "lsrs r2, r2, #16\n",
+            "asrs r2, r2, #16\n",
             "muls r4, r0, r4\n",
             "lsrs r4, r4, #16\n",
             "adds r3, r3, r2\n",
             "adds r3, r3, r4\n",
-            // f + 4 = ⌊P·h/2¹⁶⌋ + 2¹³ + 4.
+            // f = p₁h + ⌊p₀h/2¹⁶⌋ + 2¹³ + 2, p₁ signed.
             "ldm r7!, {{r2, r4, r6}}\n",
-            "uxth r7, r3\n",
-            "lsrs r3, r3, #16\n",
+            "asrs r5, r3, #16\n",
+            "uxth r3, r3\n",
+            "muls r5, r2, r5\n",
             "muls r3, r2, r3\n",
-            "muls r7, r2, r7\n",
-            "lsrs r7, r7, #16\n",
-            "adds r3, r3, r7\n",
+            "lsrs r3, r3, #16\n",
+            "adds r3, r3, r5\n",
             "adds r3, r3, r4\n",
-            "lsls r7, r3, #18\n",
-            "lsrs r7, r7, #20\n",
+            // f mod 2¹⁴ ≥ 4.
+            "lsls r5, r3, #18\n",
+            "lsrs r5, r5, #20\n",
             "bne 9f\n",
             "b ",
             $fail,
             "\n9:\n",
-            "lsrs r3, r3, #14\n",
-            "eors r3, r3, r5\n",
-            "subs r3, r3, r5\n",
+            "asrs r3, r3, #14\n",
             $org,
             "\n",
             // |c| < 2¹⁴: c + 16383 ≤ 32766 unsigned.
-            "ldr r4, ={k}\n",
-            "adds r2, r3, r4\n",
-            "lsls r4, r4, #1\n",
-            "cmp r2, r4\n",
+            "ldm r7!, {{r4, r5}}\n",
+            "adds r4, r4, r3\n",
+            "cmp r4, r5\n",
             "bls 9f\n",
             "b ",
             $fail,
@@ -395,16 +412,17 @@ macro_rules! place_coordinate {
     };
 }
 
-// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (64 bytes: the
-// operands at 0..48, the rows' address, the hint, 14 − sh, e) and the rows through
-// r8, that address (96 bytes by LDM), and writes only the block's shifts, hint and
-// 14 − sh (0..12, 24..36, 52, 56) on a search; reads three halfwords at r9
+// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (88 bytes: the
+// hint, 14 − sh, y's and x's operands, the rows' address, e) and the rows through r8,
+// that address (96 bytes by LDM), and writes only the block's hint, 14 − sh and
+// shifts and ranges (0..8, 8..24, 44..60) on a search; reads three halfwords at r9
 // and writes the entry at r10 a turn (its depth word, then the halves of y and x), r9
 // advancing 6 and r10 8, and stops when r10 reaches r11 (checked after each entry; the
 // caller passes end > out) or at an entry it does not place (r10 still below r11; that
-// entry may hold its depth and y). It reads RECIP16 at an index below 512. The stack: r4–r7, lr and
-// r8–r11 saved and restored as AAPCS wants; a turn pushes up to five row values and
-// pops them (a refusal drops what is left by the label it takes).
+// entry may hold its depth and y). It reads RECIP16 at an index below 512. The stack:
+// r4–r7, lr and r8–r11 saved and restored as AAPCS wants; a turn pushes up to five row
+// values and pops them (a refusal drops what is left by the label it takes), the search
+// four registers it pops.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     ".pushsection .text.zraster_place_v6m,\"ax\",%progbits",
@@ -421,7 +439,7 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
     "mov r12, r0",
-    "ldr r4, [r0, #48]",
+    "ldr r4, [r0, #80]",
     "mov r8, r4",
     "mov r9, r1",
     "mov r10, r2",
@@ -450,89 +468,86 @@ core::arch::global_asm!(
     "push {{r0}}",
     place_row!(),
     "pop {{r1, r2, r3}}",
-    // r0 = w low, r1 = z low, r2 = w high, r3 = z high; y, x on the stack. Then
-    // r2 = wt, r3 = zt, r0 and r1 the low 14 bits of w and z.
+    // r0 = w low, r1 = z low, r2 = w high, r3 = z high; y, x on the stack. r4 = wt,
+    // r5 = zt.
     "asrs r4, r0, #14",
-    "adds r2, r2, r4",
-    "lsls r0, r0, #18",
-    "lsrs r0, r0, #18",
-    "asrs r4, r1, #14",
-    "adds r3, r3, r4",
-    "lsls r1, r1, #18",
-    "lsrs r1, r1, #18",
-    // wt ≥ 2¹⁷ (or negative), zt + wt > 0 (the sum's true sign), zt < wt − 1.
-    "lsrs r4, r2, #17",
-    "bne 9f",
-    "b 8f",
-    "9:",
-    "adds r5, r3, r2",
-    "bgt 9f",
-    "b 8f",
-    "9:",
-    "subs r6, r2, #1",
-    "cmp r3, r6",
+    "adds r4, r4, r2",
+    "asrs r5, r1, #14",
+    "adds r5, r5, r3",
+    // zt < wt − 1, zt + wt > 0 (the sum's true sign).
+    "subs r6, r4, #1",
+    "cmp r5, r6",
     "blt 9f",
     "b 8f",
     "9:",
-    // (wt >> 17) >> (sh − 1) = 1 for the hint's sh, else the search.
+    "adds r5, r5, r4",
+    "bgt 9f",
+    "b 8f",
+    "9:",
+    // wt >> (16 + sh) = 1 for the hint's sh (so wt ≥ 2¹⁷: w ≥ 2³¹), else the search.
+    // r5 = 16 + sh, r6 = up = 14 − sh, r7 at y's operands.
     "mov r7, r12",
-    "ldr r6, [r7, #52]",
-    "lsrs r4, r4, r6",
+    "ldm r7!, {{r5, r6}}",
+    "lsrs r4, r4, r5",
     "cmp r4, #1",
     "beq 3f",
     "b 5f",
-    // un = (ut << up) + ((zl + wl) >> sh), wn = (wt << up) + (wl >> sh).
+    // wn = (wh << up) + (wl >> sh), un = ((zh + wh) << up) + ((zl + wl) >> sh): the
+    // top parts are multiples of 2^sh. Where zl + wl overflows, the exact sum apart.
     "3:",
-    "ldr r3, [r7, #56]",
-    "adds r6, #1",
+    "subs r5, #16",
+    "adds r3, r3, r2",
     "adds r1, r1, r0",
-    "lsrs r1, r1, r6",
-    "lsls r5, r5, r3",
-    "adds r5, r5, r1",
-    "lsls r2, r2, r3",
-    "lsrs r0, r0, r6",
-    "adds r1, r2, r0",
-    "lsls r4, r1, #2",
+    "bvc 9f",
+    "b 4f",
+    "9:",
+    "lsls r2, r2, r6",
+    "asrs r0, r0, r5",
+    "adds r2, r2, r0",
+    "lsls r3, r3, r6",
+    "asrs r1, r1, r5",
+    "adds r5, r3, r1",
+    "1:",
+    "lsls r4, r2, #2",
     "bne 9f",
     "b 8f",
     "9:",
-    // r1 = wn, r5 = un. The reciprocal: the table, one Newton step, a correction.
-    // The table's entry 512 + d's bits 29..21 less 512, by an address 1,024 bytes
-    // below the table (d < 2³¹).
-    "lsrs r0, r1, #21",
+    // r2 = wn = d, r6 = −d, r5 = un. The reciprocal: the table, one Newton step, a
+    // correction. The table's entry 512 + d's bits 29..21 less 512, by an address
+    // 1,024 bytes below the table (d < 2³¹).
+    "rsbs r6, r2, #0",
+    "lsrs r0, r2, #21",
     "lsls r0, r0, #1",
-    "ldr r2, ={recip16} - 1024",
-    "ldrh r2, [r2, r0]",
-    "lsrs r0, r1, #15",
+    "ldr r1, ={recip16} - 1024",
+    "ldrh r1, [r1, r0]",
+    "lsrs r0, r2, #15",
     "adds r0, r0, #1",
     "ldr r3, =0x80000000",
     "movs r4, r0",
-    "muls r4, r2, r4",
+    "muls r4, r1, r4",
     "subs r4, r3, r4",
     "lsrs r4, r4, #7",
-    "muls r4, r2, r4",
+    "muls r4, r1, r4",
     "lsrs r4, r4, #24",
-    "adds r2, r2, r4",
+    "adds r1, r1, r4",
     "movs r4, r0",
-    "muls r4, r2, r4",
+    "muls r4, r1, r4",
     "subs r4, r3, r4",
     "cmp r4, r0",
     "movs r4, #0",
-    "adcs r2, r2, r4",
+    "adcs r1, r4",
     // Step 2: y = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋, e = −d·y.
-    "movs r4, r1",
-    "muls r4, r2, r4",
-    "rsbs r4, r4, #0",
+    "movs r4, r6",
+    "muls r4, r1, r4",
     "lsrs r4, r4, #16",
-    "muls r4, r2, r4",
+    "muls r4, r1, r4",
     "lsrs r4, r4, #27",
-    "lsls r2, r2, #3",
-    "adds r2, r2, r4",
+    "lsls r1, r1, #3",
+    "adds r1, r1, r4",
     // Step 3, then the correction by the remainder.
-    "movs r4, r1",
-    "muls r4, r2, r4",
-    "rsbs r4, r4, #0",
-    "lsrs r0, r2, #3",
+    "movs r4, r6",
+    "muls r4, r1, r4",
+    "lsrs r0, r1, #3",
     "lsrs r3, r4, #16",
     "muls r3, r0, r3",
     "uxth r4, r4",
@@ -540,123 +555,144 @@ core::arch::global_asm!(
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
     "lsrs r3, r3, #17",
-    "lsls r2, r2, #13",
-    "adds r2, r2, r3",
-    "movs r4, r1",
-    "muls r4, r2, r4",
-    "rsbs r4, r4, #0",
-    "cmp r4, r1",
+    "lsls r1, r1, #13",
+    "adds r1, r1, r3",
+    "movs r4, r6",
+    "muls r4, r1, r4",
+    "cmp r4, r2",
     "movs r4, #0",
-    "adcs r2, r2, r4",
-    // r in r2: its halves in r0 (high), r1 (low). The depth: q30 = the rounded high
+    "adcs r1, r4",
+    // r in r1: its halves in r0 (high), r1 (low). The depth: q30 = the rounded high
     // word of un·r.
-    "lsrs r0, r2, #16",
-    "uxth r1, r2",
+    "lsrs r0, r1, #16",
+    "uxth r1, r1",
     "lsrs r3, r5, #16",
     "uxth r4, r5",
     "movs r6, r3",
     "muls r6, r1, r6",
-    "movs r7, r4",
-    "muls r7, r0, r7",
+    "movs r5, r4",
+    "muls r5, r0, r5",
     "muls r3, r0, r3",
     "muls r4, r1, r4",
     "lsrs r4, r4, #16",
-    "uxth r5, r6",
-    "adds r4, r4, r5",
-    "uxth r5, r7",
-    "adds r4, r4, r5",
-    "lsrs r5, r6, #16",
+    "uxth r2, r6",
+    "adds r4, r4, r2",
+    "uxth r2, r5",
+    "adds r4, r4, r2",
+    "lsrs r6, r6, #16",
+    "adds r3, r3, r6",
+    "lsrs r5, r5, #16",
     "adds r3, r3, r5",
-    "lsrs r5, r7, #16",
-    "adds r3, r3, r5",
-    "ldr r5, =0x8000",
-    "adds r4, r4, r5",
+    "ldr r2, =0x8000",
+    "adds r4, r4, r2",
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
-    // sz = 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋, or MAX_DEPTH where q30 > 2³¹ (sz grows with
-    // q30, and is MAX_DEPTH at 2³¹; q30 ≥ 1 as un·r ≥ 2³¹), into the entry.
-    "subs r4, r3, #1",
-    "bpl 1f",
-    "ldr r3, ={max_depth}",
-    "b 4f",
-    "1:",
+    // sz = 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋ (q30 ≤ 2³¹: see the twin), into the entry.
     "ldr r4, ={k}",
     "adds r4, r4, r3",
     "lsrs r4, r4, #15",
     "subs r4, r3, r4",
     "adds r3, r3, r4",
-    "4:",
-    "mov r7, r10",
-    "str r3, [r7, #0]",
+    "mov r2, r10",
+    "str r3, [r2, #0]",
     // y, then x, each into its half of the entry's second word.
-    "mov r7, r12",
     place_coordinate!("subs r3, r6, r3", "7f"),
-    "mov r7, r10",
-    "strh r3, [r7, #6]",
-    "mov r7, r12",
-    "adds r7, #24",
+    "mov r2, r10",
+    "strh r3, [r2, #6]",
     place_coordinate!("adds r3, r6, r3", "6f"),
-    "mov r7, r10",
-    "strh r3, [r7, #4]",
-    "adds r7, #8",
-    "mov r10, r7",
-    "cmp r10, r11",
+    "mov r2, r10",
+    "strh r3, [r2, #4]",
+    "adds r2, #8",
+    "mov r10, r2",
+    "cmp r2, r11",
     "beq 6f",
     "b 2b",
-    // The search: sh − 1 = ⌊log₂(wt/2¹⁷)⌋ and up = 14 − sh, then the shifts for
-    // k = sh − e.
+    // zl + wl overflowed: un from zt + wt and the low 14 bits of zl and wl (r0 = wl,
+    // r1 = zl + wl wrapped, r2 = wh, r3 = zh + wh, r5 = sh, r6 = up).
+    "4:",
+    "subs r1, r1, r0",
+    "asrs r4, r1, #14",
+    "adds r3, r3, r4",
+    "asrs r4, r0, #14",
+    "adds r3, r3, r4",
+    "lsls r1, r1, #18",
+    "lsrs r1, r1, #18",
+    "lsls r4, r0, #18",
+    "lsrs r4, r4, #18",
+    "adds r1, r1, r4",
+    "lsrs r1, r1, r5",
+    "lsls r3, r3, r6",
+    "adds r3, r3, r1",
+    "lsls r2, r2, r6",
+    "asrs r0, r0, r5",
+    "adds r2, r2, r0",
+    "movs r5, r3",
+    "b 1b",
+    // The search (r0–r3 kept): t = wt >> 17 ≥ 1 (else w < 2³¹), 16 + sh = 17 +
+    // ⌊log₂ t⌋, up = 14 − sh, then the operands for k = sh − e.
     "5:",
-    "lsrs r4, r2, #17",
-    "movs r6, #0",
+    "asrs r4, r0, #14",
+    "adds r4, r4, r2",
+    "lsrs r4, r4, #17",
+    "bne 9f",
+    "b 8f",
+    "9:",
+    "push {{r0, r1, r2, r3}}",
+    "movs r5, #17",
     "lsrs r3, r4, #8",
-    "beq 1f",
+    "beq 9f",
     "movs r4, r3",
-    "adds r6, #8",
-    "1:",
+    "adds r5, #8",
+    "9:",
     "lsrs r3, r4, #4",
-    "beq 1f",
+    "beq 9f",
     "movs r4, r3",
-    "adds r6, #4",
-    "1:",
+    "adds r5, #4",
+    "9:",
     "lsrs r3, r4, #2",
-    "beq 1f",
+    "beq 9f",
     "movs r4, r3",
-    "adds r6, #2",
-    "1:",
+    "adds r5, #2",
+    "9:",
     "lsrs r3, r4, #1",
-    "beq 1f",
-    "adds r6, #1",
-    "1:",
-    "str r6, [r7, #52]",
-    "movs r3, #13",
-    "subs r3, r3, r6",
-    "str r3, [r7, #56]",
-    "ldr r3, [r7, #60]",
-    "subs r4, r6, r3",
-    "adds r4, #1",
-    "bmi 1f",
-    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 0, x's at 24).
-    "str r4, [r7, #0]",
-    "str r4, [r7, #24]",
-    "movs r4, #31",
-    "str r4, [r7, #4]",
-    "str r4, [r7, #28]",
+    "beq 9f",
+    "adds r5, #1",
+    "9:",
+    "mov r7, r12",
+    "str r5, [r7, #0]",
+    "movs r6, #30",
+    "subs r6, r6, r5",
+    "str r6, [r7, #4]",
+    "ldr r4, [r7, #84]",
+    "subs r4, r5, r4",
+    "subs r4, #16",
+    "ble 9f",
+    // k > 0: right by k, any v.
+    "movs r0, #0",
+    "mvns r1, r0",
+    "movs r2, #0",
+    "b 1f",
+    "9:",
+    // k ≤ 0: left by −k, v + m ≤ 2m for m = 2^(31 + k) − 1.
+    "rsbs r0, r4, #0",
     "movs r4, #0",
-    "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
-    "b 3b",
+    "mvns r1, r4",
+    "lsrs r1, r1, #1",
+    "lsrs r1, r1, r0",
+    "movs r2, r1",
+    "adds r1, r1, r1",
+    // r4 = right, r0 = left, r2 = the bias, r1 = the limit, into y's and x's.
     "1:",
-    // k < 0: right by 0, the magnitude below 2^(31 + k), left by −k.
-    "rsbs r4, r4, #0",
     "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
-    "movs r3, #31",
-    "subs r3, r3, r4",
-    "str r3, [r7, #4]",
-    "str r3, [r7, #28]",
-    "movs r4, #0",
-    "str r4, [r7, #0]",
-    "str r4, [r7, #24]",
+    "str r0, [r7, #12]",
+    "str r2, [r7, #16]",
+    "str r1, [r7, #20]",
+    "str r4, [r7, #44]",
+    "str r0, [r7, #48]",
+    "str r2, [r7, #52]",
+    "str r1, [r7, #56]",
+    "adds r7, #8",
+    "pop {{r0, r1, r2, r3}}",
     "b 3b",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
     "8:",
@@ -676,7 +712,6 @@ core::arch::global_asm!(
     ".popsection",
     recip16 = sym RECIP16,
     k = const (1 << 14) - 1,
-    max_depth = const MAX_DEPTH,
 );
 
 /// The vertex loop (`place_run_v6m`) against its twin on this target: 24 transforms of
@@ -722,7 +757,7 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
             0 => [2560, 1920],
             1 => [1920, 1920],
             2 => [512, 384],
-            _ => [1 << 16, 6144],
+            _ => [1 << 15, 6144],
         };
         let e = match case % 5 {
             0 => 10,
