@@ -22,58 +22,69 @@ use crate::num::armv6m::RECIP16;
 pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m));
 
 /// The operands of [`place_run_v6m`], read by the loop at fixed offsets (`repr(C)`).
+///
+/// x and y in the z/w scale normalised by 2^sh are `v·2^(e − sh)` for the row value v:
+/// for k = sh − e > 0 the loop shifts v right by k; otherwise it takes `v·2^L` (L = −k)
+/// as v times `h·2^L₂` (L₂ the most of L that keeps the factor within 2¹⁵, and at most
+/// 5, which keeps |x|, |y| within 64·w: the guard band) shifted left by the rest L₁.
+/// Where some L₁ > 0 (a slow mode: a large image of a small viewport) the hint is 48 +
+/// sh, so that every vertex takes the search's way, which shifts and range-tests v.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(crate) struct PlaceV6m<'a> {
     /// 16 + sh for w's bits sh beyond 31 at the last vertex that changed it (the hint,
-    /// sh in 1..=14).
+    /// sh in 1..=14), 48 + sh in the slow mode.
     hint: u32,
     /// 14 − sh.
     up: u32,
-    /// y's operands (`RIGHT` to `LIMIT`): the shifts of the normalisation by
-    /// 2^(sh − e) and its range, the half height, the rounding constant, the y origin
-    /// (1/16 pixel) and the bounds of a placed coordinate.
-    ys: [u32; 9],
+    /// y's operands (`RIGHT` to `LIMIT`): v's right shift, the half height times
+    /// 2^L₂, the rounding constant, the y origin (1/16 pixel), the bias and limit of a
+    /// placed coordinate (|c| < 2¹⁴).
+    ys: [u32; 6],
     /// x's operands, as `ys` with the half width and the x origin.
-    xs: [u32; 9],
+    xs: [u32; 6],
     /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
     rows: &'a [[i32; 4]; 6],
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
+    /// The half height and width (1/16 pixel, at most 2¹⁵).
+    half: [u32; 2],
+    /// For y and x, the most of L folded into the half extent.
+    fold: [u32; 2],
+    /// For y and x, L₁: the rest of L, v's left shift (0 but in the slow mode).
+    left: [u32; 2],
 }
 
-// The loop reads the hint at 0, 14 − sh at 4, y's operands at 8, x's at 44, the rows'
-// address at 80 and e at 84 (addresses of 32 bits).
+// The loop reads the hint at 0, 14 − sh at 4, y's operands at 8, x's at 32, the rows'
+// address at 56, e at 60, the halves at 64, the folds at 72 and L₁ at 80 (addresses
+// of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
     core::mem::offset_of!(PlaceV6m<'_>, hint) == 0
         && core::mem::offset_of!(PlaceV6m<'_>, up) == 4
         && core::mem::offset_of!(PlaceV6m<'_>, ys) == 8
-        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 44
-        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 80
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 84
+        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 32
+        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 56
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
+        && core::mem::offset_of!(PlaceV6m<'_>, half) == 64
+        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 72
+        && core::mem::offset_of!(PlaceV6m<'_>, left) == 80
         && core::mem::size_of::<PlaceV6m<'_>>() == 88
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
-/// Where in `ys` and `xs` each operand goes, in the order the loop loads them: the
-/// right and left shifts of v, the bias and limit of v's range test (v + bias ≤ limit
-/// unsigned: the normalised v within ±(2³¹ − 1)), the half extent, the rounding
-/// constant, the origin, and the bias and limit of the placed coordinate (|c| < 2¹⁴).
+/// Where in `ys` and `xs` each operand goes, in the order the loop loads them.
 const RIGHT: usize = 0;
-const LEFT: usize = 1;
-const RANGE: usize = 2;
-const RANGE_LIMIT: usize = 3;
-const HALF: usize = 4;
-const ROUND: usize = 5;
-const ORIGIN: usize = 6;
-const FIT: usize = 7;
-const LIMIT: usize = 8;
+const HALF: usize = 1;
+const ROUND: usize = 2;
+const ORIGIN: usize = 3;
+const FIT: usize = 4;
+const LIMIT: usize = 5;
 
 impl<'a> PlaceV6m<'a> {
     /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
     /// c₂, t]`, as `FixedTransform::with_rows_v6m` gives them), x and y's scale exponent `e`
-    /// (0..=20), the half width and height `half` (1/16 pixel, at most 2¹⁵) and the
+    /// (0..=20), the half width and height `half` (1/16 pixel, 1 to 2¹⁵) and the
     /// origin `org`, w's bits beyond 31 guessed as `sh` (1..=14).
     pub(crate) fn new(
         rows: &'a [[i32; 4]; 6],
@@ -83,36 +94,53 @@ impl<'a> PlaceV6m<'a> {
         sh: u32,
     ) -> PlaceV6m<'a> {
         let k = (1 << 14) - 1;
-        let operands = |h: u32, o: i32| [0, 0, 0, 0, h, (1 << 13) + 2, o as u32, k, 2 * k];
+        let operands = |o: i32| [0, 0, (1 << 13) + 2, o as u32, k, 2 * k];
+        let half = [half[1], half[0]].map(|h| h.clamp(1, 1 << 15));
         let mut b = PlaceV6m {
             hint: 0,
             up: 0,
-            ys: operands(half[1], org[1]),
-            xs: operands(half[0], org[0]),
+            ys: operands(org[1]),
+            xs: operands(org[0]),
             rows,
             e,
+            half,
+            fold: half.map(|h| ((1 << 15) / h).ilog2().min(5)),
+            left: [0; 2],
         };
         b.set_sh(sh);
         b
     }
 
-    /// The hint for w's bits `sh` beyond 31 (1..=14), and the normalisation's operands
-    /// for k = sh − e: right by k when k > 0 (any v), else left by −k with |v| below
-    /// 2^(31 + k) (v + 2^(31 + k) − 1 at most twice that, unsigned).
+    /// The hint for w's bits `sh` beyond 31 (1..=14) and the operands of the
+    /// normalisation by 2^(sh − e) (see [`PlaceV6m`]).
     fn set_sh(&mut self, sh: u32) {
         let k = sh as i32 - self.e as i32;
-        let s = if k > 0 {
-            [k as u32, 0, 0, u32::MAX]
+        let (right, l) = if k > 0 {
+            (k as u32, 0)
         } else {
-            let m = u32::MAX >> (1 - k);
-            [0, (-k) as u32, m, 2 * m]
+            (0, (-k) as u32)
         };
-        self.hint = 16 + sh;
         self.up = 14 - sh;
-        for o in [&mut self.ys, &mut self.xs] {
-            o[..4].copy_from_slice(&s);
+        let (half, fold) = (self.half, self.fold);
+        for (i, o) in [&mut self.ys, &mut self.xs].into_iter().enumerate() {
+            let l2 = l.min(fold[i]);
+            o[RIGHT] = right;
+            o[HALF] = half[i] << l2;
+            self.left[i] = l - l2;
         }
+        self.hint = 16 + sh + if self.left == [0; 2] { 0 } else { 32 };
     }
+}
+
+/// v·2^l where |v| < 2^(31 − l) (the slow mode's left shift of a row value), else
+/// `None`.
+#[inline(always)]
+fn widened(v: i32, l: u32) -> Option<i32> {
+    if l == 0 {
+        return Some(v);
+    }
+    let m = i32::MAX as u32 >> l;
+    ((v as u32).wrapping_add(m) <= 2 * m).then(|| v << l)
 }
 
 /// ⌊2³¹/(v + 1)⌋ for 2¹⁵ ≤ v < 2¹⁶: the table's 2²⁵/(513 + i) for v's top nine bits
@@ -159,22 +187,19 @@ pub(crate) fn recip62_low(d: u32) -> u32 {
 
 /// One screen coordinate's offset from its origin, `v·2^e/2^sh · h/wn` rounded (halves
 /// away from zero), through r = ⌊2⁶²/wn⌋ in halves `rh`, `rl` and the operands `s` of
-/// [`PlaceV6m`], as `project::signed_ratio` gives it; `None` where the normalised v
-/// would reach ±2³¹ or next to a rounding boundary (4 values in 16,384).
+/// [`PlaceV6m`], as `project_integer` gives it (v already shifted left by L₁); `None`
+/// next to a rounding boundary (4 values in 16,384).
 ///
-/// In two's complement throughout: with xn = a₁·2¹⁶ + a₀ (a₁ signed), P = a₁r₁ +
-/// ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ lies in (X − 3, X] for X = xn·r/2³² (three dropped
-/// fractions; |P| ≤ 2³¹ as |X| < 2³¹ − 2 for r < 2³² − 3), F = ⌊P·h/2¹⁶⌋ = p₁h +
-/// ⌊p₀h/2¹⁶⌋ in (V − 2.5, V] for V = xn·h·r/2⁴⁸ and h ≤ 2¹⁵ (|F| ≤ 2³⁰). With f = F +
+/// In two's complement throughout: with a = v >> right = a₁·2¹⁶ + a₀ (a₁ signed), P =
+/// a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ lies in (X − 3, X] for X = a·r/2³² (three dropped
+/// fractions; P ≥ −2³¹ as X ≥ −2³¹ + 2 for r ≤ 2³² − 4), F = ⌊P·H/2¹⁶⌋ = p₁H +
+/// ⌊p₀H/2¹⁶⌋ in (V − 2.5, V] for V = a·H·r/2⁴⁸ and H ≤ 2¹⁵ (|F| ≤ 2³⁰). With f = F +
 /// 2¹³ + 2, V + 2¹³ lies in [f − 2, f + ½): where f mod 2¹⁴ ≥ 4 no multiple of 2¹⁴ is
 /// in it, so ⌊f/2¹⁴⌋ is ⌊(V + 2¹³)/2¹⁴⌋ and no tie, which rounds halves away from zero
 /// for either sign.
 #[inline(always)]
-fn ratio(v: i32, s: &[u32; 9], rh: u32, rl: u32) -> Option<i32> {
-    if (v as u32).wrapping_add(s[RANGE]) > s[RANGE_LIMIT] {
-        return None;
-    }
-    let a = (v >> s[RIGHT]).wrapping_shl(s[LEFT]);
+fn ratio(v: i32, s: &[u32; 6], rh: u32, rl: u32) -> Option<i32> {
+    let a = v >> s[RIGHT];
     let (a1, a0) = (a >> 16, (a & 0xffff) as u32);
     let p = a1
         .wrapping_mul(rh as i32)
@@ -194,7 +219,7 @@ fn ratio(v: i32, s: &[u32; 9], rh: u32, rl: u32) -> Option<i32> {
 /// `c` when |c| < 2¹⁴ (a placed coordinate, as `CachedVertex::placing` tests it), by
 /// the operands `s`: c + 16383 ≤ 32766 unsigned.
 #[inline(always)]
-fn fits(c: i32, s: &[u32; 9]) -> Option<i32> {
+fn fits(c: i32, s: &[u32; 6]) -> Option<i32> {
     ((c as u32).wrapping_add(s[FIT]) <= s[LIMIT]).then_some(c)
 }
 
@@ -208,31 +233,37 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
             .wrapping_add(c2.wrapping_mul(pz))
             .wrapping_add(t)
     };
-    let [x, y, zh, wh, zl, wl] = b.rows.map(row);
+    let [mut x, mut y, zh, wh, zl, wl] = b.rows.map(row);
     let (zt, wt) = (zh.wrapping_add(zl >> 14), wh.wrapping_add(wl >> 14));
     // z strictly between −w and w with a unit of room, then w ≥ 2³¹ (the hint's test
     // or the search's; a negative wt fails one of the z tests).
     if zt >= wt.wrapping_sub(1) || i64::from(zt) + i64::from(wt) <= 0 {
         return None;
     }
-    // wt >> (16 + sh) = 1 for the hint's sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
-    if (wt as u32) >> b.hint != 1 {
-        let mut t = (wt as u32) >> 17;
-        if t == 0 {
-            return None;
-        }
-        let mut sh = 1;
-        for k in [8, 4, 2, 1] {
-            if t >> k != 0 {
-                t >>= k;
-                sh += k;
+    // wt >> (16 + sh) = 1 for the hint's sh (a shift by 32 or more gives 0), else the
+    // slow mode's same sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
+    let wt = wt as u32;
+    if wt.checked_shr(b.hint).unwrap_or(0) != 1 {
+        if b.hint < 48 || wt >> (b.hint - 32) != 1 {
+            let mut t = wt >> 17;
+            if t == 0 {
+                return None;
             }
+            let mut sh = 1;
+            for k in [8, 4, 2, 1] {
+                if t >> k != 0 {
+                    t >>= k;
+                    sh += k;
+                }
+            }
+            b.set_sh(sh);
         }
-        b.set_sh(sh);
+        y = widened(y, b.left[0])?;
+        x = widened(x, b.left[1])?;
     }
     // wn = ⌊w/2^sh⌋ = (wh << up) + (wl >> sh), un = ⌊(z + w)/2^sh⌋ likewise (the top
     // parts are multiples of 2^sh), both exact modulo 2³² and below it.
-    let (sh, up) = (b.hint - 16, b.up);
+    let (sh, up) = ((b.hint & 31) - 16, b.up);
     let wn = ((wh as u32) << up).wrapping_add((wl >> sh) as u32);
     if wn << 2 == 0 {
         return None; // wn = 2³⁰
@@ -359,17 +390,10 @@ macro_rules! place_row {
 macro_rules! place_coordinate {
     ($org:literal, $fail:literal) => {
         concat!(
-            // v's range, then xn = (v >> right) << left.
-            "ldm r7!, {{r2, r3, r5, r6}}\n",
+            // a = v >> right.
+            "ldm r7!, {{r2}}\n",
             "pop {{r4}}\n",
-            "adds r5, r5, r4\n",
-            "cmp r5, r6\n",
-            "bls 9f\n",
-            "b ",
-            $fail,
-            "\n9:\n",
             "asrs r4, r4, r2\n",
-            "lsls r4, r4, r3\n",
             // P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋, a₁ signed.
             "asrs r2, r4, #16\n",
             "uxth r4, r4\n",
@@ -381,7 +405,7 @@ macro_rules! place_coordinate {
             "lsrs r4, r4, #16\n",
             "adds r3, r3, r2\n",
             "adds r3, r3, r4\n",
-            // f = p₁h + ⌊p₀h/2¹⁶⌋ + 2¹³ + 2, p₁ signed.
+            // f = p₁H + ⌊p₀H/2¹⁶⌋ + 2¹³ + 2, p₁ signed.
             "ldm r7!, {{r2, r4, r6}}\n",
             "asrs r5, r3, #16\n",
             "uxth r3, r3\n",
@@ -413,9 +437,11 @@ macro_rules! place_coordinate {
 }
 
 // SAFETY (for `place_run_v6m`): the loop reads the block through r12 (88 bytes: the
-// hint, 14 − sh, y's and x's operands, the rows' address, e) and the rows through r8,
-// that address (96 bytes by LDM), and writes only the block's hint, 14 − sh and
-// shifts and ranges (0..8, 8..24, 44..60) on a search; reads three halfwords at r9
+// hint, 14 − sh, y's and x's operands, the rows' address, e, the halves, folds and
+// left shifts) and the rows through r8, that address (96 bytes by LDM), and writes
+// only the block's hint, 14 − sh, right shifts, factors and left shifts (0..16,
+// 32..40, 80..88) on a search; the slow mode reads and writes the two row values it
+// keeps on the stack; reads three halfwords at r9
 // and writes the entry at r10 a turn (its depth word, then the halves of y and x), r9
 // advancing 6 and r10 8, and stops when r10 reaches r11 (checked after each entry; the
 // caller passes end > out) or at an entry it does not place (r10 still below r11; that
@@ -439,7 +465,7 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
     "mov r12, r0",
-    "ldr r4, [r0, #80]",
+    "ldr r4, [r0, #56]",
     "mov r8, r4",
     "mov r9, r1",
     "mov r10, r2",
@@ -628,16 +654,26 @@ core::arch::global_asm!(
     "adds r2, r2, r0",
     "movs r5, r3",
     "b 1b",
-    // The search (r0–r3 kept): t = wt >> 17 ≥ 1 (else w < 2³¹), 16 + sh = 17 +
-    // ⌊log₂ t⌋, up = 14 − sh, then the operands for k = sh − e.
+    // The hint missed (r5 = its 16 + sh, or 48 + sh in the slow mode; r6 = up; r7 at
+    // y's operands): in the slow mode with the same sh only y's and x's shifts,
+    // else the search (r0–r3 kept on the stack, y and x above them).
     "5:",
+    "push {{r0, r1, r2, r3}}",
     "asrs r4, r0, #14",
     "adds r4, r4, r2",
+    "subs r5, #32",
+    "bmi 1f",
+    "movs r0, r4",
+    "lsrs r0, r0, r5",
+    "cmp r0, #1",
+    "beq 4f",
+    // The search: t = wt >> 17 ≥ 1 (else w < 2³¹), 16 + sh = 17 + ⌊log₂ t⌋.
+    "1:",
     "lsrs r4, r4, #17",
     "bne 9f",
+    "add sp, #16",
     "b 8f",
     "9:",
-    "push {{r0, r1, r2, r3}}",
     "movs r5, #17",
     "lsrs r3, r4, #8",
     "beq 9f",
@@ -658,40 +694,89 @@ core::arch::global_asm!(
     "beq 9f",
     "adds r5, #1",
     "9:",
+    // up = 14 − sh; k = sh − e: right by k (L = 0) for k > 0, else L = −k.
     "mov r7, r12",
-    "str r5, [r7, #0]",
     "movs r6, #30",
     "subs r6, r6, r5",
     "str r6, [r7, #4]",
-    "ldr r4, [r7, #84]",
+    "ldr r4, [r7, #60]",
     "subs r4, r5, r4",
     "subs r4, #16",
-    "ble 9f",
-    // k > 0: right by k, any v.
-    "movs r0, #0",
-    "mvns r1, r0",
-    "movs r2, #0",
+    "bgt 9f",
+    "rsbs r3, r4, #0",
+    "movs r4, #0",
     "b 1f",
     "9:",
-    // k ≤ 0: left by −k, v + m ≤ 2m for m = 2^(31 + k) − 1.
-    "rsbs r0, r4, #0",
-    "movs r4, #0",
-    "mvns r1, r4",
-    "lsrs r1, r1, #1",
-    "lsrs r1, r1, r0",
-    "movs r2, r1",
-    "adds r1, r1, r1",
-    // r4 = right, r0 = left, r2 = the bias, r1 = the limit, into y's and x's.
+    "movs r3, #0",
     "1:",
     "str r4, [r7, #8]",
-    "str r0, [r7, #12]",
-    "str r2, [r7, #16]",
-    "str r1, [r7, #20]",
-    "str r4, [r7, #44]",
-    "str r0, [r7, #48]",
-    "str r2, [r7, #52]",
-    "str r1, [r7, #56]",
+    "str r4, [r7, #32]",
+    // Per axis: L₂ = min(L, fold), H = half << L₂, L₁ = L − L₂ (r2: their OR).
+    "ldr r0, [r7, #72]",
+    "cmp r3, r0",
+    "bhs 9f",
+    "movs r0, r3",
+    "9:",
+    "ldr r1, [r7, #64]",
+    "lsls r1, r1, r0",
+    "str r1, [r7, #12]",
+    "subs r0, r3, r0",
+    "str r0, [r7, #80]",
+    "movs r2, r0",
+    "ldr r0, [r7, #76]",
+    "cmp r3, r0",
+    "bhs 9f",
+    "movs r0, r3",
+    "9:",
+    "ldr r1, [r7, #68]",
+    "lsls r1, r1, r0",
+    "str r1, [r7, #36]",
+    "subs r0, r3, r0",
+    "str r0, [r7, #84]",
+    "orrs r2, r0",
+    // The hint: 16 + sh, 48 + sh in the slow mode (some L₁ > 0).
+    "movs r4, r5",
+    "cmp r2, #0",
+    "beq 9f",
+    "adds r4, #32",
+    "9:",
+    "str r4, [r7, #0]",
     "adds r7, #8",
+    // y and x (at sp + 16 and 20) shifted left by their L₁ where |v| < 2^(31 − L₁),
+    // else refused.
+    "4:",
+    "ldr r0, [r7, #72]",
+    "cmp r0, #0",
+    "beq 9f",
+    "ldr r1, [sp, #16]",
+    "ldr r2, ={imax}",
+    "lsrs r2, r2, r0",
+    "adds r3, r1, r2",
+    "lsls r2, r2, #1",
+    "cmp r3, r2",
+    "bls 1f",
+    "add sp, #16",
+    "b 8f",
+    "1:",
+    "lsls r1, r1, r0",
+    "str r1, [sp, #16]",
+    "9:",
+    "ldr r0, [r7, #76]",
+    "cmp r0, #0",
+    "beq 9f",
+    "ldr r1, [sp, #20]",
+    "ldr r2, ={imax}",
+    "lsrs r2, r2, r0",
+    "adds r3, r1, r2",
+    "lsls r2, r2, #1",
+    "cmp r3, r2",
+    "bls 1f",
+    "add sp, #16",
+    "b 8f",
+    "1:",
+    "lsls r1, r1, r0",
+    "str r1, [sp, #20]",
+    "9:",
     "pop {{r0, r1, r2, r3}}",
     "b 3b",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
@@ -712,6 +797,7 @@ core::arch::global_asm!(
     ".popsection",
     recip16 = sym RECIP16,
     k = const (1 << 14) - 1,
+    imax = const i32::MAX,
 );
 
 /// The vertex loop (`place_run_v6m`) against its twin on this target: 24 transforms of
