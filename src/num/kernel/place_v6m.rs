@@ -121,12 +121,12 @@ impl<'a> PlaceV6m<'a> {
             (0, (-k) as u32)
         };
         self.up = 14 - sh;
-        let (half, fold) = (self.half, self.fold);
-        for (i, o) in [&mut self.ys, &mut self.xs].into_iter().enumerate() {
-            let l2 = l.min(fold[i]);
+        let axes = [&mut self.ys, &mut self.xs].into_iter().zip(&mut self.left);
+        for ((o, left), (h, fold)) in axes.zip(self.half.into_iter().zip(self.fold)) {
+            let l2 = l.min(fold);
             o[RIGHT] = right;
-            o[HALF] = half[i] << l2;
-            self.left[i] = l - l2;
+            o[HALF] = h << l2;
+            *left = l - l2;
         }
         self.hint = 16 + sh + if self.left == [0; 2] { 0 } else { 32 };
     }
