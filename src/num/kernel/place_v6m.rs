@@ -143,9 +143,10 @@ fn widened(v: i32, l: u32) -> Option<i32> {
     ((v as u32).wrapping_add(m) <= 2 * m).then(|| v << l)
 }
 
-/// ⌊2³¹/(v + 1)⌋ for 2¹⁵ ≤ v < 2¹⁶: the table's 2²⁵/(513 + i) for v's top nine bits
-/// (at most 2³¹/(v + 1), and within 2⁻⁹ of it), one Newton step (error below 1.3: the
-/// step's square 0.28, the dropped bits 1.01) and a correction by the remainder.
+/// About 2³¹/(v + 1) for 2¹⁵ ≤ v < 2¹⁶, from below: the table's 2²⁵/(513 + i) for v's
+/// top nine bits (at most 2³¹/(v + 1), and within 2⁻⁹ of it) and one Newton step,
+/// which leaves it in (2³¹/(v + 1) − 1.3, 2³¹/(v + 1)] (the step's square 0.28, the
+/// dropped bits 1.01; a test checks every v).
 #[inline(always)]
 fn recip31_table(v: u32) -> u32 {
     let w = v + 1;
@@ -153,20 +154,23 @@ fn recip31_table(v: u32) -> u32 {
     let t = u32::from(RECIP16.get(i).copied().unwrap_or(0));
     // e = 2³¹ − w·t in [0, 2²³): t·⌊e/2⁷⌋ < 2³².
     let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(t));
-    let y = t.wrapping_add(t.wrapping_mul(e >> 7) >> 24);
-    y + u32::from((1u32 << 31).wrapping_sub(w.wrapping_mul(y)) >= w)
+    t.wrapping_add(t.wrapping_mul(e >> 7) >> 24)
 }
 
 /// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a division (on ARMv6-M,
 /// 64-bit products are long): the integer projection's reciprocal, here beside the
 /// vertex loop that does the same. Each step's error is read off the low word of a
-/// product, exact because the step keeps it in `[0, 2³²)`:
+/// product, exact because the step keeps it within 32 bits:
 ///
-/// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v ([`recip31_table`]: a test checks every
-///    v). Then y ≤ 2⁴⁶/d and e = 2⁴⁶ − d·y < 2⁴⁶/(v + 1) + v·2¹⁵ ≤ 2³².
-/// 2. With ε = e/2⁴⁶ < 2⁻¹⁴, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the
-///    last term below 2⁻⁹: y' = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋ lies within [2⁴⁹/d − 2, 2⁴⁹/d]
-///    (1 + 2⁻¹⁶ + 2⁻⁹ dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
+/// 1. y ≈ 2³¹/(v + 1) from below, within 1.3, for d's top 16 bits v
+///    ([`recip31_table`]). Then y ≤ 2³¹/(v + 1) ≤ 2⁴⁶/d, and 2⁴⁶/d − y < 2³¹/(v(v +
+///    1)) + 1.3 ≤ 3.3, so e = 2⁴⁶ − d·y is in [0, 3.3·d) and y·e < 3.3·2⁴⁶.
+/// 2. e'' = 2⁴⁵ − ⌈d/2⌉·y = (e − (d mod 2)·y)/2, in (−2¹⁵, 1.65·2⁴⁶/y], is the low
+///    word of −⌈d/2⌉·y as a signed number (−⌈d/2⌉ = (−d) >> 1). With ε = e/2⁴⁶ <
+///    3.3·2⁻¹⁵, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the last term below
+///    0.006: y' = 8y + ⌊y·⌊e''/2¹⁷⌋/2²⁵⌋ (|y·⌊e''/2¹⁷⌋| < 2³¹) lies within
+///    (2⁴⁹/d − 1.02, 2⁴⁹/d] (y²/2⁴³ < 2⁻¹¹ for the halved remainder, 2⁻⁹ and 1
+///    dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
 /// 3. Likewise 2⁶²/d = 2¹³y' + y'·e'/2³⁶ + t with t = 2¹³y'·ε'²/(1 − ε') < ¼
 ///    (ε' < 2⁻¹⁷, y' < 2¹⁹); x = 2¹³y' + ⌊(y'/8)·e'/2³³⌋ (the product from 16-bit
 ///    halves of e', y'/8 < 2¹⁶) drops below 0.5 + 2⁻¹⁷ + 1, so 2⁶²/d − x ∈ [0, 2).
@@ -176,8 +180,8 @@ pub(crate) fn recip62_low(d: u32) -> u32 {
     // 1.
     let y = recip31_table(d >> 15);
     // 2.
-    let e = d.wrapping_mul(y).wrapping_neg();
-    let y = 8 * y + ((y * (e >> 16)) >> 27);
+    let e = (d.wrapping_neg() as i32 >> 1).wrapping_mul(y as i32);
+    let y = (8 * y).wrapping_add(((y as i32).wrapping_mul(e >> 17) >> 25) as u32);
     // 3.
     let e = d.wrapping_mul(y).wrapping_neg();
     let h = y >> 3;
@@ -538,8 +542,7 @@ core::arch::global_asm!(
     "bne 9f",
     "b 8f",
     "9:",
-    // r2 = wn = d, r6 = −d, r5 = un. The reciprocal: the table, one Newton step, a
-    // correction. The table's entry 512 + d's bits 29..21 less 512, by an address
+    // r2 = wn = d, r6 = −d, r5 = un. The reciprocal: the table and one Newton step. The table's entry 512 + d's bits 29..21 less 512, by an address
     // 1,024 bytes below the table (d < 2³¹).
     "rsbs r6, r2, #0",
     "lsrs r0, r2, #21",
@@ -556,18 +559,12 @@ core::arch::global_asm!(
     "muls r4, r1, r4",
     "lsrs r4, r4, #24",
     "adds r1, r1, r4",
-    "movs r4, r0",
+    // Step 2: y = 8y + ⌊y·⌊e''/2¹⁷⌋/2²⁵⌋, e'' = −⌈d/2⌉·y signed.
+    "asrs r4, r6, #1",
     "muls r4, r1, r4",
-    "subs r4, r3, r4",
-    "cmp r4, r0",
-    "movs r4, #0",
-    "adcs r1, r4",
-    // Step 2: y = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋, e = −d·y.
-    "movs r4, r6",
+    "asrs r4, r4, #17",
     "muls r4, r1, r4",
-    "lsrs r4, r4, #16",
-    "muls r4, r1, r4",
-    "lsrs r4, r4, #27",
+    "asrs r4, r4, #25",
     "lsls r1, r1, #3",
     "adds r1, r1, r4",
     // Step 3, then the correction by the remainder.
@@ -886,8 +883,8 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
 mod tests {
     use super::*;
 
-    /// The table's first step is ⌊2³¹/(v + 1)⌋ for every v (its products within
-    /// `u32`), and the reciprocal ⌊2⁶²/d⌋ at every step's edges and 10⁷ random d;
+    /// The table's first step is within 1.3 below 2³¹/(v + 1) for every v (its
+    /// products within `u32`), and the reciprocal ⌊2⁶²/d⌋ at every step's edges and 10⁷ random d;
     /// `ZRASTER_EXHAUSTIVE=1` checks every d (2³⁰ of them; in a release build, some
     /// seconds).
     #[test]
@@ -898,7 +895,13 @@ mod tests {
             assert!(t * u64::from(w) <= 1 << 31, "v {v}");
             let e = (1u64 << 31) - t * u64::from(w);
             assert!(t * (e >> 7) < 1 << 32, "v {v}");
-            assert_eq!(recip31_table(v), (1 << 31) / w, "v {v}");
+            // Within 1.3 below 2³¹/w: 10·(2³¹ − w·y) < 13·w.
+            let y = u64::from(recip31_table(v));
+            assert!(y * u64::from(w) <= 1 << 31, "v {v}");
+            assert!(
+                10 * ((1 << 31) - y * u64::from(w)) < 13 * u64::from(w),
+                "v {v}"
+            );
             for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
                 if d > 1 << 30 && d < 1 << 31 {
                     assert_eq!(u64::from(recip62_low(d)), (1 << 62) / u64::from(d));
