@@ -244,11 +244,11 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
     if zt >= wt.wrapping_sub(1) || i64::from(zt) + i64::from(wt) <= 0 {
         return None;
     }
-    // wt >> (16 + sh) = 1 for the hint's sh (a shift by 32 or more gives 0), else the
-    // slow mode's same sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
-    let wt = wt as u32;
-    if wt.checked_shr(b.hint).unwrap_or(0) != 1 {
-        if b.hint < 48 || wt >> (b.hint - 32) != 1 {
+    // (wt − 1) >> (16 + sh) = 1 for the hint's sh (a shift by 32 or more gives 0),
+    // else the slow mode's same sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
+    let (wt, w1) = (wt as u32, wt.wrapping_sub(1) as u32);
+    if w1.checked_shr(b.hint).unwrap_or(0) != 1 {
+        if b.hint < 48 || w1 >> (b.hint - 32) != 1 {
             let mut t = wt >> 17;
             if t == 0 {
                 return None;
@@ -264,13 +264,17 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
         }
         y = widened(y, b.left[0])?;
         x = widened(x, b.left[1])?;
+        // wt = 2¹⁶⁺ˢʰ (where wn may be 2³⁰) left.
+        if w1 >> ((b.hint & 31) - 16) >> 16 != 1 {
+            return None;
+        }
     }
     // wn = ⌊w/2^sh⌋ = (wh << up) + (wl >> sh), un = ⌊(z + w)/2^sh⌋ likewise (the top
     // parts are multiples of 2^sh), both exact modulo 2³² and below it.
     let (sh, up) = ((b.hint & 31) - 16, b.up);
     let wn = ((wh as u32) << up).wrapping_add((wl >> sh) as u32);
-    if wn << 2 == 0 {
-        return None; // wn = 2³⁰
+    if wn >> 31 != 0 {
+        return None; // wt = 2¹⁷⁺ˢʰ, from the hint's test
     }
     let ul = i64::from(zl) + i64::from(wl);
     let un = ((zh.wrapping_add(wh) as u32) << up).wrapping_add((ul >> sh) as u32);
@@ -386,13 +390,43 @@ macro_rules! place_row {
     };
 }
 
+/// P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ into r3 from a₁ (r2, signed) and a₀ (r4), r's
+/// halves r0 (high) and r1 (low) kept for the next coordinate.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! place_products_keep {
+    () => {
+        "movs r3, r2\n\
+         muls r3, r0, r3\n\
+         muls r2, r1, r2\n\
+         asrs r2, r2, #16\n\
+         muls r4, r0, r4\n\
+         lsrs r4, r4, #16\n\
+         adds r3, r3, r2\n\
+         adds r3, r3, r4\n"
+    };
+}
+
+/// The same for the last coordinate, which needs r0 and r1 no more (no copy of a₁).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! place_products_last {
+    () => {
+        "muls r4, r0, r4\n\
+         lsrs r4, r4, #16\n\
+         muls r1, r2, r1\n\
+         asrs r1, r1, #16\n\
+         muls r2, r0, r2\n\
+         adds r3, r2, r1\n\
+         adds r3, r3, r4\n"
+    };
+}
+
 /// One screen coordinate (the twin's `ratio`, then the origin and `fits`): its
 /// operands at r7 (advanced past them), the coordinate's row value popped, r's halves
 /// in r0 (high) and r1 (low); the coordinate in r3. `$org` is the origin's operation
 /// (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail` where a refusal goes.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! place_coordinate {
-    ($org:literal, $fail:literal) => {
+    ($products:expr, $org:literal, $fail:literal) => {
         concat!(
             // a = v >> right.
             "ldm r7!, {{r2}}\n",
@@ -401,14 +435,7 @@ macro_rules! place_coordinate {
             // P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋, a₁ signed.
             "asrs r2, r4, #16\n",
             "uxth r4, r4\n",
-            "movs r3, r2\n",
-            "muls r3, r0, r3\n",
-            "muls r2, r1, r2\n",
-            "asrs r2, r2, #16\n",
-            "muls r4, r0, r4\n",
-            "lsrs r4, r4, #16\n",
-            "adds r3, r3, r2\n",
-            "adds r3, r3, r4\n",
+            $products,
             // f = p₁H + ⌊p₀H/2¹⁶⌋ + 2¹³ + 2, p₁ signed.
             "ldm r7!, {{r2, r4, r6}}\n",
             "asrs r5, r3, #16\n",
@@ -471,19 +498,20 @@ core::arch::global_asm!(
     "mov r12, r0",
     "ldr r4, [r0, #56]",
     "mov r8, r4",
+    "subs r1, #6",
     "mov r9, r1",
     "mov r10, r2",
     "mov r11, r3",
+    // The position at r9 + 6 (r9 at the last one), r9 advanced by the same 6.
     "2:",
     "mov r7, r9",
-    "ldrh r4, [r7, #0]",
-    "sxth r4, r4",
-    "ldrh r5, [r7, #2]",
-    "sxth r5, r5",
-    "ldrh r6, [r7, #4]",
-    "sxth r6, r6",
-    "adds r7, #6",
-    "mov r9, r7",
+    "movs r3, #6",
+    "ldrsh r4, [r7, r3]",
+    "add r9, r3",
+    "movs r3, #8",
+    "ldrsh r5, [r7, r3]",
+    "movs r3, #10",
+    "ldrsh r6, [r7, r3]",
     "mov r7, r8",
     // x, y, z high, w high, z low pushed; w low in r0.
     place_row!(),
@@ -504,18 +532,18 @@ core::arch::global_asm!(
     "adds r4, r4, r2",
     "asrs r5, r1, #14",
     "adds r5, r5, r3",
-    // zt < wt − 1, zt + wt > 0 (the sum's true sign).
-    "subs r6, r4, #1",
-    "cmp r5, r6",
-    "blt 9f",
-    "b 8f",
-    "9:",
-    "adds r5, r5, r4",
+    // zt + wt > 0 (the sum's true sign), zt < wt − 1.
+    "adds r6, r5, r4",
     "bgt 9f",
     "b 8f",
     "9:",
-    // wt >> (16 + sh) = 1 for the hint's sh (so wt ≥ 2¹⁷: w ≥ 2³¹), else the search.
-    // r5 = 16 + sh, r6 = up = 14 − sh, r7 at y's operands.
+    "subs r4, r4, #1",
+    "cmp r5, r4",
+    "blt 9f",
+    "b 8f",
+    "9:",
+    // (wt − 1) >> (16 + sh) = 1 for the hint's sh (so w > 2³⁰⁺ˢʰ, wn > 2³⁰, and w ≥
+    // 2³¹), else the search. r5 = 16 + sh, r6 = up = 14 − sh, r7 at y's operands.
     "mov r7, r12",
     "ldm r7!, {{r5, r6}}",
     "lsrs r4, r4, r5",
@@ -531,17 +559,16 @@ core::arch::global_asm!(
     "bvc 9f",
     "b 4f",
     "9:",
-    "lsls r2, r2, r6",
-    "asrs r0, r0, r5",
-    "adds r2, r2, r0",
     "lsls r3, r3, r6",
     "asrs r1, r1, r5",
+    "lsls r2, r2, r6",
+    "asrs r0, r0, r5",
     "adds r5, r3, r1",
-    "1:",
-    "lsls r4, r2, #2",
-    "bne 9f",
+    // wn < 2³¹ (wt − 1 < 2¹⁷⁺ˢʰ leaves only wt = 2¹⁷⁺ˢʰ above).
+    "adds r2, r2, r0",
+    "bpl 1f",
     "b 8f",
-    "9:",
+    "1:",
     // r2 = wn = d, r6 = −d, r5 = un. The reciprocal: the table and one Newton step. The table's entry 512 + d's bits 29..21 less 512, by an address
     // 1,024 bytes below the table (d < 2³¹).
     "rsbs r6, r2, #0",
@@ -619,17 +646,19 @@ core::arch::global_asm!(
     "mov r2, r10",
     "str r3, [r2, #0]",
     // y, then x, each into its half of the entry's second word.
-    place_coordinate!("subs r3, r6, r3", "7f"),
+    place_coordinate!(place_products_keep!(), "subs r3, r6, r3", "7f"),
     "mov r2, r10",
     "strh r3, [r2, #6]",
-    place_coordinate!("adds r3, r6, r3", "6f"),
+    place_coordinate!(place_products_last!(), "adds r3, r6, r3", "6f"),
     "mov r2, r10",
     "strh r3, [r2, #4]",
     "adds r2, #8",
     "mov r10, r2",
     "cmp r2, r11",
-    "beq 6f",
+    "beq 9f",
     "b 2b",
+    "9:",
+    "b 6f",
     // zl + wl overflowed: un from zt + wt and the low 14 bits of zl and wl (r0 = wl,
     // r1 = zl + wl wrapped, r2 = wh, r3 = zh + wh, r5 = sh, r6 = up).
     "4:",
@@ -648,8 +677,11 @@ core::arch::global_asm!(
     "adds r3, r3, r1",
     "lsls r2, r2, r6",
     "asrs r0, r0, r5",
-    "adds r2, r2, r0",
     "movs r5, r3",
+    "adds r2, r2, r0",
+    "bpl 9f",
+    "b 8f",
+    "9:",
     "b 1b",
     // The hint missed (r5 = its 16 + sh, or 48 + sh in the slow mode; r6 = up; r7 at
     // y's operands): in the slow mode with the same sh only y's and x's shifts,
@@ -660,7 +692,7 @@ core::arch::global_asm!(
     "adds r4, r4, r2",
     "subs r5, #32",
     "bmi 1f",
-    "movs r0, r4",
+    "subs r0, r4, #1",
     "lsrs r0, r0, r5",
     "cmp r0, #1",
     "beq 4f",
@@ -774,8 +806,17 @@ core::arch::global_asm!(
     "lsls r1, r1, r0",
     "str r1, [sp, #20]",
     "9:",
+    // (wt − 1) >> (16 + sh) = 1 (wt = 2¹⁶⁺ˢʰ would give wn = 2³⁰), r5 = 16 + sh.
     "pop {{r0, r1, r2, r3}}",
+    "asrs r4, r0, #14",
+    "adds r4, r4, r2",
+    "subs r4, r4, #1",
+    "lsrs r4, r4, r5",
+    "cmp r4, #1",
+    "bne 9f",
     "b 3b",
+    "9:",
+    "b 8f",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
     "8:",
     "add sp, #4",
