@@ -448,8 +448,8 @@ impl ScreenMap {
     /// The ARMv6-M vertex kernel's operands ([`PlaceV6m`]) for a transform's rows
     /// (`FixedTransform::with_rows_v6m`) and scale and this mapping: `None` unless the scale
     /// is 2^e with 0 ≤ e ≤ 20 (where [`project_fast`](ScreenMap::project_fast) places
-    /// no vertex either) and the viewport is at most 4096 pixels on a side (the kernel's
-    /// products in 32 bits).
+    /// no vertex either), the viewport is at most 4096 pixels on a side and its centre
+    /// within ±4096 pixels (the kernel's sums in 32 bits).
     pub(crate) fn place_block_v6m<'a>(
         &self,
         rows: &'a [[i32; 4]; 6],
@@ -457,13 +457,14 @@ impl ScreenMap {
     ) -> Option<PlaceV6m<'a>> {
         let bits = s.to_bits();
         let e = (bits >> 23) as i32 - 127;
-        if bits & 0x807f_ffff != 0
-            || !(0..=20).contains(&e)
-            || self.half_w.max(self.half_h) > 1 << 15
-        {
+        let (half, org) = (
+            self.half_w.max(self.half_h),
+            self.ox_i.abs().max(self.oy_i.abs()),
+        );
+        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) || half > 1 << 15 || org >= 1 << 16 {
             return None;
         }
-        // half_w, half_h ≤ 2¹⁵; the origins truncated to i32 as project_fast does.
+        // half_w, half_h ≤ 2¹⁵, |ox_i|, |oy_i| < 2¹⁶.
         Some(PlaceV6m::new(
             rows,
             e as u32,

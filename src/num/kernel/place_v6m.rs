@@ -37,12 +37,11 @@ pub(crate) struct PlaceV6m<'a> {
     hint: u32,
     /// 14 − sh.
     up: u32,
-    /// y's operands (`RIGHT` to `LIMIT`): v's right shift, the half height times
-    /// 2^L₂, the rounding constant, the y origin (1/16 pixel), the bias and limit of a
-    /// placed coordinate (|c| < 2¹⁴).
-    ys: [u32; 6],
-    /// x's operands, as `ys` with the half width and the x origin.
-    xs: [u32; 6],
+    /// The coordinates' operands, in the order the loop loads them (`Y_RIGHT` to
+    /// `X_ORIGIN`): v's right shift, the half extent times 2^L₂, the origin (1/16
+    /// pixel) times 2¹⁴ plus the rounding constant, and the bias and limit of a placed
+    /// coordinate (|c| < 2¹⁴), for y and x.
+    ops: [u32; 10],
     /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
     rows: &'a [[i32; 4]; 6],
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
@@ -55,37 +54,41 @@ pub(crate) struct PlaceV6m<'a> {
     left: [u32; 2],
 }
 
-// The loop reads the hint at 0, 14 − sh at 4, y's operands at 8, x's at 32, the rows'
-// address at 56, e at 60, the halves at 64, the folds at 72 and L₁ at 80 (addresses
-// of 32 bits).
+// The loop reads the hint at 0, 14 − sh at 4, the operands at 8, the rows' address at
+// 48, e at 52, the halves at 56, the folds at 64 and L₁ at 72 (addresses of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
     core::mem::offset_of!(PlaceV6m<'_>, hint) == 0
         && core::mem::offset_of!(PlaceV6m<'_>, up) == 4
-        && core::mem::offset_of!(PlaceV6m<'_>, ys) == 8
-        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 32
-        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 56
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
-        && core::mem::offset_of!(PlaceV6m<'_>, half) == 64
-        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 72
-        && core::mem::offset_of!(PlaceV6m<'_>, left) == 80
-        && core::mem::size_of::<PlaceV6m<'_>>() == 88
+        && core::mem::offset_of!(PlaceV6m<'_>, ops) == 8
+        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 48
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 52
+        && core::mem::offset_of!(PlaceV6m<'_>, half) == 56
+        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 64
+        && core::mem::offset_of!(PlaceV6m<'_>, left) == 72
+        && core::mem::size_of::<PlaceV6m<'_>>() == 80
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
-/// Where in `ys` and `xs` each operand goes, in the order the loop loads them.
-const RIGHT: usize = 0;
-const HALF: usize = 1;
-const ROUND: usize = 2;
-const ORIGIN: usize = 3;
-const FIT: usize = 4;
-const LIMIT: usize = 5;
+/// Where in `ops` each operand goes: y's right shift, factor and origin, x's right
+/// shift (the same) with y's bias and limit (one load), x's bias, limit, factor and
+/// origin (one load).
+const Y_RIGHT: usize = 0;
+const Y_FACTOR: usize = 1;
+const Y_ORIGIN: usize = 2;
+const X_RIGHT: usize = 3;
+const Y_BIAS: usize = 4;
+const Y_LIMIT: usize = 5;
+const X_BIAS: usize = 6;
+const X_LIMIT: usize = 7;
+const X_FACTOR: usize = 8;
+const X_ORIGIN: usize = 9;
 
 impl<'a> PlaceV6m<'a> {
     /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
     /// c₂, t]`, as `FixedTransform::with_rows_v6m` gives them), x and y's scale exponent `e`
     /// (0..=20), the half width and height `half` (1/16 pixel, 1 to 2¹⁵) and the
-    /// origin `org`, w's bits beyond 31 guessed as `sh` (1..=14).
+    /// origin `org` (within ±2¹⁶), w's bits beyond 31 guessed as `sh` (1..=14).
     pub(crate) fn new(
         rows: &'a [[i32; 4]; 6],
         e: u32,
@@ -94,13 +97,18 @@ impl<'a> PlaceV6m<'a> {
         sh: u32,
     ) -> PlaceV6m<'a> {
         let k = (1 << 14) - 1;
-        let operands = |o: i32| [0, 0, (1 << 13) + 2, o as u32, k, 2 * k];
+        // G = org·2¹⁴ + 2¹³ + 2 + F for x, org·2¹⁴ + 2¹³ − F for y (see `placed`).
+        let lim = (1 << 16) - 1;
+        let origin = |o: i32, r: u32| ((o.clamp(-lim, lim) << 14) as u32).wrapping_add(r);
+        let mut ops = [0; 10];
+        ops[Y_ORIGIN] = origin(org[1], 1 << 13);
+        ops[X_ORIGIN] = origin(org[0], (1 << 13) + 2);
+        (ops[Y_BIAS], ops[X_BIAS], ops[Y_LIMIT], ops[X_LIMIT]) = (k, k, 2 * k, 2 * k);
         let half = [half[1], half[0]].map(|h| h.clamp(1, 1 << 15));
         let mut b = PlaceV6m {
             hint: 0,
             up: 0,
-            ys: operands(org[1]),
-            xs: operands(org[0]),
+            ops,
             rows,
             e,
             half,
@@ -121,13 +129,12 @@ impl<'a> PlaceV6m<'a> {
             (0, (-k) as u32)
         };
         self.up = 14 - sh;
-        let axes = [&mut self.ys, &mut self.xs].into_iter().zip(&mut self.left);
-        for ((o, left), (h, fold)) in axes.zip(self.half.into_iter().zip(self.fold)) {
-            let l2 = l.min(fold);
-            o[RIGHT] = right;
-            o[HALF] = h << l2;
-            *left = l - l2;
-        }
+        let [l2y, l2x] = self.fold.map(|f| l.min(f));
+        let [hy, hx] = self.half;
+        let o = &mut self.ops;
+        (o[Y_RIGHT], o[X_RIGHT]) = (right, right);
+        (o[Y_FACTOR], o[X_FACTOR]) = (hy << l2y, hx << l2x);
+        self.left = [l - l2y, l - l2x];
         self.hint = 16 + sh + if self.left == [0; 2] { 0 } else { 32 };
     }
 }
@@ -189,42 +196,45 @@ pub(crate) fn recip62_low(d: u32) -> u32 {
     x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
-/// One screen coordinate's offset from its origin, `v·2^e/2^sh · h/wn` rounded (halves
-/// away from zero), through r = ⌊2⁶²/wn⌋ in halves `rh`, `rl` and the operands `s` of
-/// [`PlaceV6m`], as `project_integer` gives it (v already shifted left by L₁); `None`
-/// next to a rounding boundary (4 values in 16,384).
+/// F = ⌊P·H/2¹⁶⌋ for a = v >> `right`, P ≈ a·r/2³² (r = ⌊2⁶²/wn⌋ in halves `rh`,
+/// `rl`) and the factor H ≤ 2¹⁵: within 2.5 below V = a·H·r/2⁴⁸, the screen
+/// coordinate's offset from its origin in units of 2⁻¹⁴ (v already shifted left by
+/// L₁), |F| ≤ 2³⁰.
 ///
-/// In two's complement throughout: with a = v >> right = a₁·2¹⁶ + a₀ (a₁ signed), P =
-/// a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ lies in (X − 3, X] for X = a·r/2³² (three dropped
-/// fractions; P ≥ −2³¹ as X ≥ −2³¹ + 2 for r ≤ 2³² − 4), F = ⌊P·H/2¹⁶⌋ = p₁H +
-/// ⌊p₀H/2¹⁶⌋ in (V − 2.5, V] for V = a·H·r/2⁴⁸ and H ≤ 2¹⁵ (|F| ≤ 2³⁰). With f = F +
-/// 2¹³ + 2, V + 2¹³ lies in [f − 2, f + ½): where f mod 2¹⁴ ≥ 4 no multiple of 2¹⁴ is
-/// in it, so ⌊f/2¹⁴⌋ is ⌊(V + 2¹³)/2¹⁴⌋ and no tie, which rounds halves away from zero
-/// for either sign.
+/// In two's complement throughout: with a = a₁·2¹⁶ + a₀ (a₁ signed), P = a₁r₁ +
+/// ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ lies in (X − 3, X] for X = a·r/2³² (three dropped
+/// fractions; P ≥ −2³¹ as X ≥ −2³¹ + 2 for r ≤ 2³² − 4), F = p₁H + ⌊p₀H/2¹⁶⌋ in
+/// (V − 3H/2¹⁶ − 1, V].
 #[inline(always)]
-fn ratio(v: i32, s: &[u32; 6], rh: u32, rl: u32) -> Option<i32> {
-    let a = v >> s[RIGHT];
+fn scaled(v: i32, right: u32, h: u32, rh: u32, rl: u32) -> i32 {
+    let a = v >> right;
     let (a1, a0) = (a >> 16, (a & 0xffff) as u32);
     let p = a1
         .wrapping_mul(rh as i32)
         .wrapping_add(a1.wrapping_mul(rl as i32) >> 16)
         .wrapping_add((a0.wrapping_mul(rh) >> 16) as i32);
-    let h = s[HALF];
-    let f = (p >> 16)
+    (p >> 16)
         .wrapping_mul(h as i32)
         .wrapping_add((((p & 0xffff) as u32).wrapping_mul(h) >> 16) as i32)
-        .wrapping_add(s[ROUND] as i32);
-    if f & 0x3fff < 4 {
-        return None;
-    }
-    Some(f >> 14)
 }
 
-/// `c` when |c| < 2¹⁴ (a placed coordinate, as `CachedVertex::placing` tests it), by
-/// the operands `s`: c + 16383 ≤ 32766 unsigned.
+/// The placed coordinate ⌊G/2¹⁴⌋ with |c| < 2¹⁴ (c + bias ≤ limit unsigned, as
+/// `CachedVertex::placing` tests it), or `None` there or where G mod 2¹⁴ < 4.
+///
+/// For x, G = org·2¹⁴ + 2¹³ + 2 + F: V + 2¹³ lies in [g − 2, g + ½) for g = G −
+/// org·2¹⁴, so where G mod 2¹⁴ ≥ 4 no multiple of 2¹⁴ is in it and ⌊G/2¹⁴⌋ is org +
+/// ⌊(V + 2¹³)/2¹⁴⌋, no tie: the offset rounded, halves away from zero for either sign.
+/// For y, G = org·2¹⁴ + 2¹³ − F = org·2¹⁴ + 2¹⁴ + X for X = −F − 2¹³, and −V − 2¹³
+/// lies in (X − 2.5, X]: where X mod 2¹⁴ = G mod 2¹⁴ ≥ 3 no multiple of 2¹⁴ is in
+/// [X − 2, X], so ⌊G/2¹⁴⌋ = org + ⌈X/2¹⁴⌉ = org − ⌊(V + 2¹³)/2¹⁴⌋, no tie. (|org| <
+/// 2¹⁶ and |F| ≤ 2³⁰: |G| < 2³¹.)
 #[inline(always)]
-fn fits(c: i32, s: &[u32; 6]) -> Option<i32> {
-    ((c as u32).wrapping_add(s[FIT]) <= s[LIMIT]).then_some(c)
+fn placed(g: i32, bias: u32, limit: u32) -> Option<i32> {
+    if g & 0x3fff < 4 {
+        return None;
+    }
+    let c = g >> 14;
+    ((c as u32).wrapping_add(bias) <= limit).then_some(c)
 }
 
 /// The entry of position `p`, or `None` where the loop stops: the portable twin of one
@@ -296,14 +306,11 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
         .wrapping_add(low >> 16);
     let d = q30.wrapping_add((1 << 14) - 1) >> 15;
     let sz = q30.wrapping_add(q30.wrapping_sub(d));
-    let sy = fits(
-        (b.ys[ORIGIN] as i32).wrapping_sub(ratio(y, &b.ys, rh, rl)?),
-        &b.ys,
-    )?;
-    let sx = fits(
-        (b.xs[ORIGIN] as i32).wrapping_add(ratio(x, &b.xs, rh, rl)?),
-        &b.xs,
-    )?;
+    let o = &b.ops;
+    let fy = scaled(y, o[Y_RIGHT], o[Y_FACTOR], rh, rl);
+    let sy = placed((o[Y_ORIGIN] as i32).wrapping_sub(fy), o[Y_BIAS], o[Y_LIMIT])?;
+    let fx = scaled(x, o[X_RIGHT], o[X_FACTOR], rh, rl);
+    let sx = placed((o[X_ORIGIN] as i32).wrapping_add(fx), o[X_BIAS], o[X_LIMIT])?;
     Some(CachedVertex {
         z: sz,
         xy: XyWord::new(sx as i16, sy as i16),
@@ -327,8 +334,8 @@ pub(crate) fn place_run_v6m(
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
         let start = out.as_mut_ptr().cast::<u32>();
-        // SAFETY: the loop reads the block (`repr(C)`, 64 bytes, 4-aligned) and the rows
-        // it borrows (96 bytes) and writes the block's hint words, reads one position a
+        // SAFETY: the loop reads the block (`repr(C)`, 80 bytes, 4-aligned) and the rows
+        // it borrows (96 bytes) and writes its hint and shift words, reads one position a
         // turn (three halfwords, 2-aligned as `[i16; 3]` is) from `positions`' start and
         // writes one entry a turn (a word and two halfwords, 4-aligned as
         // `CachedVertex` is; any bits are a valid entry) from `out`'s start, and stops
@@ -390,96 +397,103 @@ macro_rules! place_row {
     };
 }
 
-/// P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ into r3 from a₁ (r2, signed) and a₀ (r4), r's
-/// halves r0 (high) and r1 (low) kept for the next coordinate.
+/// y's coordinate (the twin's `scaled` and `placed`): its operands at r7 (advanced
+/// past them, to x's), y's row value popped, r's halves in r0 (high) and r1 (low),
+/// kept; the coordinate written into the entry at r10, x's right shift left in r2.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-macro_rules! place_products_keep {
+macro_rules! place_y {
     () => {
-        "movs r3, r2\n\
-         muls r3, r0, r3\n\
-         muls r2, r1, r2\n\
-         asrs r2, r2, #16\n\
-         muls r4, r0, r4\n\
-         lsrs r4, r4, #16\n\
-         adds r3, r3, r2\n\
-         adds r3, r3, r4\n"
+        // a = v >> right; P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋, a₁ signed.
+        "ldm r7!, {{r2}}
+         pop {{r4}}
+         asrs r4, r4, r2
+         asrs r2, r4, #16
+         uxth r4, r4
+         movs r3, r2
+         muls r3, r0, r3
+         muls r2, r1, r2
+         asrs r2, r2, #16
+         muls r4, r0, r4
+         lsrs r4, r4, #16
+         adds r3, r3, r2
+         adds r3, r3, r4
+         ldm r7!, {{r2, r4}}
+         asrs r5, r3, #16
+         uxth r3, r3
+         muls r5, r2, r5
+         muls r3, r2, r3
+         lsrs r3, r3, #16
+         adds r3, r3, r5
+         subs r3, r4, r3
+         lsls r5, r3, #18
+         lsrs r5, r5, #20
+         bne 9f
+         b 7f
+         9:
+         asrs r3, r3, #14
+         ldm r7!, {{r2, r4, r5}}
+         adds r4, r4, r3
+         cmp r4, r5
+         bls 9f
+         b 7f
+         9:
+         mov r6, r10
+         strh r3, [r6, #6]"
     };
 }
 
-/// The same for the last coordinate, which needs r0 and r1 no more (no copy of a₁).
+/// x's coordinate, as [`place_y`] with x's row value, x's right shift in r2 and no
+/// copy of a₁ (r's halves are not needed after it), its bias and limit in r0 and r1;
+/// the coordinate in r3, not written.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-macro_rules! place_products_last {
+macro_rules! place_x {
     () => {
-        "muls r4, r0, r4\n\
-         lsrs r4, r4, #16\n\
-         muls r1, r2, r1\n\
-         asrs r1, r1, #16\n\
-         muls r2, r0, r2\n\
-         adds r3, r2, r1\n\
-         adds r3, r3, r4\n"
+        "pop {{r4}}
+         asrs r4, r4, r2
+         asrs r2, r4, #16
+         uxth r4, r4
+         muls r4, r0, r4
+         lsrs r4, r4, #16
+         muls r1, r2, r1
+         asrs r1, r1, #16
+         muls r2, r0, r2
+         adds r3, r2, r1
+         adds r3, r3, r4
+         ldm r7!, {{r0, r1, r2, r4}}
+         asrs r5, r3, #16
+         uxth r3, r3
+         muls r5, r2, r5
+         muls r3, r2, r3
+         lsrs r3, r3, #16
+         adds r3, r3, r5
+         adds r3, r3, r4
+         lsls r5, r3, #18
+         lsrs r5, r5, #20
+         bne 9f
+         b 6f
+         9:
+         asrs r3, r3, #14
+         adds r4, r3, r0
+         cmp r4, r1
+         bls 9f
+         b 6f
+         9:"
     };
 }
 
-/// One screen coordinate (the twin's `ratio`, then the origin and `fits`): its
-/// operands at r7 (advanced past them), the coordinate's row value popped, r's halves
-/// in r0 (high) and r1 (low); the coordinate in r3. `$org` is the origin's operation
-/// (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail` where a refusal goes.
-#[cfg(all(zraster_thumb, zraster_armv6m))]
-macro_rules! place_coordinate {
-    ($products:expr, $org:literal, $fail:literal) => {
-        concat!(
-            // a = v >> right.
-            "ldm r7!, {{r2}}\n",
-            "pop {{r4}}\n",
-            "asrs r4, r4, r2\n",
-            // P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋, a₁ signed.
-            "asrs r2, r4, #16\n",
-            "uxth r4, r4\n",
-            $products,
-            // f = p₁H + ⌊p₀H/2¹⁶⌋ + 2¹³ + 2, p₁ signed.
-            "ldm r7!, {{r2, r4, r6}}\n",
-            "asrs r5, r3, #16\n",
-            "uxth r3, r3\n",
-            "muls r5, r2, r5\n",
-            "muls r3, r2, r3\n",
-            "lsrs r3, r3, #16\n",
-            "adds r3, r3, r5\n",
-            "adds r3, r3, r4\n",
-            // f mod 2¹⁴ ≥ 4.
-            "lsls r5, r3, #18\n",
-            "lsrs r5, r5, #20\n",
-            "bne 9f\n",
-            "b ",
-            $fail,
-            "\n9:\n",
-            "asrs r3, r3, #14\n",
-            $org,
-            "\n",
-            // |c| < 2¹⁴: c + 16383 ≤ 32766 unsigned.
-            "ldm r7!, {{r4, r5}}\n",
-            "adds r4, r4, r3\n",
-            "cmp r4, r5\n",
-            "bls 9f\n",
-            "b ",
-            $fail,
-            "\n9:"
-        )
-    };
-}
-
-// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (88 bytes: the
-// hint, 14 − sh, y's and x's operands, the rows' address, e, the halves, folds and
-// left shifts) and the rows through r8, that address (96 bytes by LDM), and writes
-// only the block's hint, 14 − sh, right shifts, factors and left shifts (0..16,
-// 32..40, 80..88) on a search; the slow mode reads and writes the two row values it
-// keeps on the stack; reads three halfwords at r9
-// and writes the entry at r10 a turn (its depth word, then the halves of y and x), r9
-// advancing 6 and r10 8, and stops when r10 reaches r11 (checked after each entry; the
-// caller passes end > out) or at an entry it does not place (r10 still below r11; that
-// entry may hold its depth and y). It reads RECIP16 at an index below 512. The stack:
-// r4–r7, lr and r8–r11 saved and restored as AAPCS wants; a turn pushes up to five row
-// values and pops them (a refusal drops what is left by the label it takes), the search
-// four registers it pops.
+// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (80 bytes: the
+// hint, 14 − sh, the coordinates' operands, the rows' address, e, the halves, folds
+// and left shifts) and the rows through r8, that address (96 bytes by LDM), and writes
+// only the block's hint, 14 − sh, right shifts, factors and left shifts (0..16, 20,
+// 40, 72..80) on a search; the slow mode reads and writes the two row values it keeps
+// on the stack. A turn reads three halfwords at r9 + 6 and writes the entry at r10
+// (advanced by 8 first: its depth word, then the halves of y and x), r9 advancing 6,
+// and stops after the entry at r11 (end − 8, so r10 returned past it) or at an entry
+// it does not place (r10 returned at it, below end; that entry may hold its depth and
+// y): n turns at most, every access inside the slices. It reads RECIP16 at an index
+// below 512. The stack: r4–r7, lr and r8–r11 saved and restored as AAPCS wants; a turn
+// pushes up to five row values and pops them (a refusal drops what is left by the
+// label it takes), the search four registers it pops.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     ".pushsection .text.zraster_place_v6m,\"ax\",%progbits",
@@ -496,13 +510,16 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
     "mov r12, r0",
-    "ldr r4, [r0, #56]",
+    "ldr r4, [r0, #48]",
     "mov r8, r4",
     "subs r1, #6",
     "mov r9, r1",
+    "subs r2, #8",
     "mov r10, r2",
+    "subs r3, #8",
     "mov r11, r3",
-    // The position at r9 + 6 (r9 at the last one), r9 advanced by the same 6.
+    // The position at r9 + 6 (r9 at the last one), r9 advanced by the same 6, r10 by
+    // 8 to this turn's entry (r11 at the last entry's).
     "2:",
     "mov r7, r9",
     "movs r3, #6",
@@ -510,6 +527,7 @@ core::arch::global_asm!(
     "add r9, r3",
     "movs r3, #8",
     "ldrsh r5, [r7, r3]",
+    "add r10, r3",
     "movs r3, #10",
     "ldrsh r6, [r7, r3]",
     "mov r7, r8",
@@ -646,18 +664,17 @@ core::arch::global_asm!(
     "mov r2, r10",
     "str r3, [r2, #0]",
     // y, then x, each into its half of the entry's second word.
-    place_coordinate!(place_products_keep!(), "subs r3, r6, r3", "7f"),
-    "mov r2, r10",
-    "strh r3, [r2, #6]",
-    place_coordinate!(place_products_last!(), "adds r3, r6, r3", "6f"),
+    place_y!(),
+    place_x!(),
     "mov r2, r10",
     "strh r3, [r2, #4]",
-    "adds r2, #8",
-    "mov r10, r2",
     "cmp r2, r11",
     "beq 9f",
     "b 2b",
+    // The last entry written: r10 past it.
     "9:",
+    "adds r2, #8",
+    "mov r10, r2",
     "b 6f",
     // zl + wl overflowed: un from zt + wt and the low 14 bits of zl and wl (r0 = wl,
     // r1 = zl + wl wrapped, r2 = wh, r3 = zh + wh, r5 = sh, r6 = up).
@@ -728,7 +745,7 @@ core::arch::global_asm!(
     "movs r6, #30",
     "subs r6, r6, r5",
     "str r6, [r7, #4]",
-    "ldr r4, [r7, #60]",
+    "ldr r4, [r7, #52]",
     "subs r4, r5, r4",
     "subs r4, #16",
     "bgt 9f",
@@ -739,29 +756,29 @@ core::arch::global_asm!(
     "movs r3, #0",
     "1:",
     "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
+    "str r4, [r7, #20]",
     // Per axis: L₂ = min(L, fold), H = half << L₂, L₁ = L − L₂ (r2: their OR).
-    "ldr r0, [r7, #72]",
+    "ldr r0, [r7, #64]",
     "cmp r3, r0",
     "bhs 9f",
     "movs r0, r3",
     "9:",
-    "ldr r1, [r7, #64]",
+    "ldr r1, [r7, #56]",
     "lsls r1, r1, r0",
     "str r1, [r7, #12]",
     "subs r0, r3, r0",
-    "str r0, [r7, #80]",
+    "str r0, [r7, #72]",
     "movs r2, r0",
-    "ldr r0, [r7, #76]",
+    "ldr r0, [r7, #68]",
     "cmp r3, r0",
     "bhs 9f",
     "movs r0, r3",
     "9:",
-    "ldr r1, [r7, #68]",
+    "ldr r1, [r7, #60]",
     "lsls r1, r1, r0",
-    "str r1, [r7, #36]",
+    "str r1, [r7, #40]",
     "subs r0, r3, r0",
-    "str r0, [r7, #84]",
+    "str r0, [r7, #76]",
     "orrs r2, r0",
     // The hint: 16 + sh, 48 + sh in the slow mode (some L₁ > 0).
     "movs r4, r5",
@@ -774,7 +791,7 @@ core::arch::global_asm!(
     // y and x (at sp + 16 and 20) shifted left by their L₁ where |v| < 2^(31 − L₁),
     // else refused.
     "4:",
-    "ldr r0, [r7, #72]",
+    "ldr r0, [r7, #64]",
     "cmp r0, #0",
     "beq 9f",
     "ldr r1, [sp, #16]",
@@ -790,7 +807,7 @@ core::arch::global_asm!(
     "lsls r1, r1, r0",
     "str r1, [sp, #16]",
     "9:",
-    "ldr r0, [r7, #76]",
+    "ldr r0, [r7, #68]",
     "cmp r0, #0",
     "beq 9f",
     "ldr r1, [sp, #20]",
