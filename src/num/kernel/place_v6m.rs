@@ -159,8 +159,8 @@ fn recip31_table(v: u32) -> u32 {
     let w = v + 1;
     let i = ((v >> 6) & 0x1ff) as usize;
     let t = u32::from(RECIP16.get(i).copied().unwrap_or(0));
-    // e = 2³¹ − w·t in [0, 2²³): t·⌊e/2⁷⌋ < 2³².
-    let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(t));
+    // e = 2³¹ − w·t in [0, 2²³) (the low 31 bits of −w·t): t·⌊e/2⁷⌋ < 2³².
+    let e = w.wrapping_neg().wrapping_mul(t) << 1 >> 1;
     t.wrapping_add(t.wrapping_mul(e >> 7) >> 24)
 }
 
@@ -399,7 +399,7 @@ macro_rules! place_row {
 
 /// y's coordinate (the twin's `scaled` and `placed`): its operands at r7 (advanced
 /// past them, to x's), y's row value popped, r's halves in r0 (high) and r1 (low),
-/// kept; the coordinate written into the entry at r10, x's right shift left in r2.
+/// kept; the coordinate written into the entry at r6, x's right shift left in r2.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! place_y {
     () => {
@@ -437,14 +437,13 @@ macro_rules! place_y {
          bls 9f
          b 7f
          9:
-         mov r6, r10
          strh r3, [r6, #6]"
     };
 }
 
 /// x's coordinate, as [`place_y`] with x's row value, x's right shift in r2 and no
 /// copy of a₁ (r's halves are not needed after it), its bias and limit in r0 and r1;
-/// the coordinate in r3, not written.
+/// the coordinate in r3, not written (r6 kept).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! place_x {
     () => {
@@ -594,13 +593,12 @@ core::arch::global_asm!(
     "lsls r0, r0, #1",
     "ldr r1, ={recip16} - 1024",
     "ldrh r1, [r1, r0]",
+    // e = 2³¹ − w·t for w = v + 1 is the low 31 bits of −w·t = ~v·t (w·t ≤ 2³¹).
     "lsrs r0, r2, #15",
-    "adds r0, r0, #1",
-    "ldr r3, =0x80000000",
-    "movs r4, r0",
+    "mvns r4, r0",
     "muls r4, r1, r4",
-    "subs r4, r3, r4",
-    "lsrs r4, r4, #7",
+    "lsls r4, r4, #1",
+    "lsrs r4, r4, #8",
     "muls r4, r1, r4",
     "lsrs r4, r4, #24",
     "adds r1, r1, r4",
@@ -661,20 +659,19 @@ core::arch::global_asm!(
     "lsrs r4, r4, #15",
     "subs r4, r3, r4",
     "adds r3, r3, r4",
-    "mov r2, r10",
-    "str r3, [r2, #0]",
+    "mov r6, r10",
+    "str r3, [r6, #0]",
     // y, then x, each into its half of the entry's second word.
     place_y!(),
     place_x!(),
-    "mov r2, r10",
-    "strh r3, [r2, #4]",
-    "cmp r2, r11",
+    "strh r3, [r6, #4]",
+    "cmp r6, r11",
     "beq 9f",
     "b 2b",
     // The last entry written: r10 past it.
     "9:",
-    "adds r2, #8",
-    "mov r10, r2",
+    "adds r6, #8",
+    "mov r10, r6",
     "b 6f",
     // zl + wl overflowed: un from zt + wt and the low 14 bits of zl and wl (r0 = wl,
     // r1 = zl + wl wrapped, r2 = wh, r3 = zh + wh, r5 = sh, r6 = up).
