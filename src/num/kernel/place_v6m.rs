@@ -37,11 +37,11 @@ pub(crate) struct PlaceV6m<'a> {
     hint: u32,
     /// 14 − sh.
     up: u32,
-    /// The coordinates' operands, in the order the loop loads them (`Y_RIGHT` to
-    /// `X_ORIGIN`): v's right shift, the half extent times 2^L₂, the origin (1/16
-    /// pixel) times 2¹⁴ plus the rounding constant, and the bias and limit of a placed
-    /// coordinate (|c| < 2¹⁴), for y and x.
-    ops: [u32; 10],
+    /// The depth's and the coordinates' operands, in the order the loop loads them
+    /// (`D_ROUND` to `X_ORIGIN`): 2¹⁵ and 2¹⁴ − 1, then for y and x v's right shift,
+    /// the half extent times 2^L₂, the origin (1/16 pixel) times 2¹⁴ plus the rounding
+    /// constant, and the bias and limit of a placed coordinate (|c| < 2¹⁴).
+    ops: [u32; 12],
     /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
     rows: &'a [[i32; 4]; 6],
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
@@ -55,34 +55,36 @@ pub(crate) struct PlaceV6m<'a> {
 }
 
 // The loop reads the hint at 0, 14 − sh at 4, the operands at 8, the rows' address at
-// 48, e at 52, the halves at 56, the folds at 64 and L₁ at 72 (addresses of 32 bits).
+// 56, e at 60, the halves at 64, the folds at 72 and L₁ at 80 (addresses of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
     core::mem::offset_of!(PlaceV6m<'_>, hint) == 0
         && core::mem::offset_of!(PlaceV6m<'_>, up) == 4
         && core::mem::offset_of!(PlaceV6m<'_>, ops) == 8
-        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 48
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 52
-        && core::mem::offset_of!(PlaceV6m<'_>, half) == 56
-        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 64
-        && core::mem::offset_of!(PlaceV6m<'_>, left) == 72
-        && core::mem::size_of::<PlaceV6m<'_>>() == 80
+        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 56
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
+        && core::mem::offset_of!(PlaceV6m<'_>, half) == 64
+        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 72
+        && core::mem::offset_of!(PlaceV6m<'_>, left) == 80
+        && core::mem::size_of::<PlaceV6m<'_>>() == 88
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
-/// Where in `ops` each operand goes: y's right shift, factor and origin, x's right
-/// shift (the same) with y's bias and limit (one load), x's bias, limit, factor and
-/// origin (one load).
-const Y_RIGHT: usize = 0;
-const Y_FACTOR: usize = 1;
-const Y_ORIGIN: usize = 2;
-const X_RIGHT: usize = 3;
-const Y_BIAS: usize = 4;
-const Y_LIMIT: usize = 5;
-const X_BIAS: usize = 6;
-const X_LIMIT: usize = 7;
-const X_FACTOR: usize = 8;
-const X_ORIGIN: usize = 9;
+/// Where in `ops` each operand goes: the depth's two constants (one load), y's right
+/// shift, factor and origin, x's right shift (the same) with y's bias and limit (one
+/// load), x's bias, limit, factor and origin (one load).
+const D_ROUND: usize = 0;
+const D_K: usize = 1;
+const Y_RIGHT: usize = 2;
+const Y_FACTOR: usize = 3;
+const Y_ORIGIN: usize = 4;
+const X_RIGHT: usize = 5;
+const Y_BIAS: usize = 6;
+const Y_LIMIT: usize = 7;
+const X_BIAS: usize = 8;
+const X_LIMIT: usize = 9;
+const X_FACTOR: usize = 10;
+const X_ORIGIN: usize = 11;
 
 impl<'a> PlaceV6m<'a> {
     /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
@@ -100,7 +102,8 @@ impl<'a> PlaceV6m<'a> {
         // G = org·2¹⁴ + 2¹³ + 2 + F for x, org·2¹⁴ + 2¹³ − F for y (see `placed`).
         let lim = (1 << 16) - 1;
         let origin = |o: i32, r: u32| ((o.clamp(-lim, lim) << 14) as u32).wrapping_add(r);
-        let mut ops = [0; 10];
+        let mut ops = [0; 12];
+        (ops[D_ROUND], ops[D_K]) = (1 << 15, k);
         ops[Y_ORIGIN] = origin(org[1], 1 << 13);
         ops[X_ORIGIN] = origin(org[0], (1 << 13) + 2);
         (ops[Y_BIAS], ops[X_BIAS], ops[Y_LIMIT], ops[X_LIMIT]) = (k, k, 2 * k, 2 * k);
@@ -334,7 +337,7 @@ pub(crate) fn place_run_v6m(
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
         let start = out.as_mut_ptr().cast::<u32>();
-        // SAFETY: the loop reads the block (`repr(C)`, 80 bytes, 4-aligned) and the rows
+        // SAFETY: the loop reads the block (`repr(C)`, 88 bytes, 4-aligned) and the rows
         // it borrows (96 bytes) and writes its hint and shift words, reads one position a
         // turn (three halfwords, 2-aligned as `[i16; 3]` is) from `positions`' start and
         // writes one entry a turn (a word and two halfwords, 4-aligned as
@@ -480,11 +483,11 @@ macro_rules! place_x {
     };
 }
 
-// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (80 bytes: the
-// hint, 14 − sh, the coordinates' operands, the rows' address, e, the halves, folds
-// and left shifts) and the rows through r8, that address (96 bytes by LDM), and writes
-// only the block's hint, 14 − sh, right shifts, factors and left shifts (0..16, 20,
-// 40, 72..80) on a search; the slow mode reads and writes the two row values it keeps
+// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (88 bytes: the
+// hint, 14 − sh, the depth's and coordinates' operands, the rows' address, e, the
+// halves, folds and left shifts) and the rows through r8, that address (96 bytes by
+// LDM), and writes only the block's hint, 14 − sh, right shifts, factors and left
+// shifts (0..8, 16..24, 28, 48, 80..88) on a search; the slow mode reads and writes the two row values it keeps
 // on the stack. A turn reads three halfwords at r9 + 6 and writes the entry at r10
 // (advanced by 8 first: its depth word, then the halves of y and x), r9 advancing 6,
 // and stops after the entry at r11 (end − 8, so r10 returned past it) or at an entry
@@ -509,7 +512,7 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
     "mov r12, r0",
-    "ldr r4, [r0, #48]",
+    "ldr r4, [r0, #56]",
     "mov r8, r4",
     "subs r1, #6",
     "mov r9, r1",
@@ -649,13 +652,13 @@ core::arch::global_asm!(
     "adds r3, r3, r6",
     "lsrs r5, r5, #16",
     "adds r3, r3, r5",
-    "ldr r2, =0x8000",
+    // 2¹⁵ and 2¹⁴ − 1 from the block (r7 to y's operands).
+    "ldm r7!, {{r2, r5}}",
     "adds r4, r4, r2",
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
     // sz = 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋ (q30 ≤ 2³¹: see the twin), into the entry.
-    "ldr r4, ={k}",
-    "adds r4, r4, r3",
+    "adds r4, r5, r3",
     "lsrs r4, r4, #15",
     "subs r4, r3, r4",
     "adds r3, r3, r4",
@@ -742,7 +745,7 @@ core::arch::global_asm!(
     "movs r6, #30",
     "subs r6, r6, r5",
     "str r6, [r7, #4]",
-    "ldr r4, [r7, #52]",
+    "ldr r4, [r7, #60]",
     "subs r4, r5, r4",
     "subs r4, #16",
     "bgt 9f",
@@ -752,30 +755,30 @@ core::arch::global_asm!(
     "9:",
     "movs r3, #0",
     "1:",
-    "str r4, [r7, #8]",
-    "str r4, [r7, #20]",
+    "str r4, [r7, #16]",
+    "str r4, [r7, #28]",
     // Per axis: L₂ = min(L, fold), H = half << L₂, L₁ = L − L₂ (r2: their OR).
-    "ldr r0, [r7, #64]",
+    "ldr r0, [r7, #72]",
     "cmp r3, r0",
     "bhs 9f",
     "movs r0, r3",
     "9:",
-    "ldr r1, [r7, #56]",
+    "ldr r1, [r7, #64]",
     "lsls r1, r1, r0",
-    "str r1, [r7, #12]",
+    "str r1, [r7, #20]",
     "subs r0, r3, r0",
-    "str r0, [r7, #72]",
+    "str r0, [r7, #80]",
     "movs r2, r0",
-    "ldr r0, [r7, #68]",
+    "ldr r0, [r7, #76]",
     "cmp r3, r0",
     "bhs 9f",
     "movs r0, r3",
     "9:",
-    "ldr r1, [r7, #60]",
+    "ldr r1, [r7, #68]",
     "lsls r1, r1, r0",
-    "str r1, [r7, #40]",
+    "str r1, [r7, #48]",
     "subs r0, r3, r0",
-    "str r0, [r7, #76]",
+    "str r0, [r7, #84]",
     "orrs r2, r0",
     // The hint: 16 + sh, 48 + sh in the slow mode (some L₁ > 0).
     "movs r4, r5",
@@ -788,7 +791,7 @@ core::arch::global_asm!(
     // y and x (at sp + 16 and 20) shifted left by their L₁ where |v| < 2^(31 − L₁),
     // else refused.
     "4:",
-    "ldr r0, [r7, #64]",
+    "ldr r0, [r7, #72]",
     "cmp r0, #0",
     "beq 9f",
     "ldr r1, [sp, #16]",
@@ -804,7 +807,7 @@ core::arch::global_asm!(
     "lsls r1, r1, r0",
     "str r1, [sp, #16]",
     "9:",
-    "ldr r0, [r7, #68]",
+    "ldr r0, [r7, #76]",
     "cmp r0, #0",
     "beq 9f",
     "ldr r1, [sp, #20]",
@@ -848,7 +851,6 @@ core::arch::global_asm!(
     ".size zraster_place_v6m, . - zraster_place_v6m",
     ".popsection",
     recip16 = sym RECIP16,
-    k = const (1 << 14) - 1,
     imax = const i32::MAX,
 );
 
