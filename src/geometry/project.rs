@@ -457,21 +457,15 @@ impl ScreenMap {
     ) -> Option<PlaceV6m<'a>> {
         let bits = s.to_bits();
         let e = (bits >> 23) as i32 - 127;
-        let (half, org) = (
-            self.half_w.max(self.half_h),
-            self.ox_i.abs().max(self.oy_i.abs()),
-        );
-        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) || half > 1 << 15 || org >= 1 << 16 {
+        // half_w, half_h and the origins fit 32 bits (see ScreenMap).
+        let half = [self.half_w as u32, self.half_h as u32];
+        let org = [self.ox_i as i32, self.oy_i as i32];
+        let fits =
+            half.iter().all(|&h| h <= 1 << 15) && org.iter().all(|o| o.unsigned_abs() < 1 << 16);
+        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) || !fits {
             return None;
         }
-        // half_w, half_h ≤ 2¹⁵, |ox_i|, |oy_i| < 2¹⁶.
-        Some(PlaceV6m::new(
-            rows,
-            e as u32,
-            [self.half_w as u32, self.half_h as u32],
-            [self.ox_i as i32, self.oy_i as i32],
-            W_SHIFT_HINT,
-        ))
+        Some(PlaceV6m::new(rows, e as u32, half, org))
     }
 
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by

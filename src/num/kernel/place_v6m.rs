@@ -90,36 +90,30 @@ impl<'a> PlaceV6m<'a> {
     /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
     /// c₂, t]`, as `FixedTransform::with_rows_v6m` gives them), x and y's scale exponent `e`
     /// (0..=20), the half width and height `half` (1/16 pixel, 1 to 2¹⁵) and the
-    /// origin `org` (within ±2¹⁶), w's bits beyond 31 guessed as `sh` (1..=14).
-    pub(crate) fn new(
-        rows: &'a [[i32; 4]; 6],
-        e: u32,
-        half: [u32; 2],
-        org: [i32; 2],
-        sh: u32,
-    ) -> PlaceV6m<'a> {
+    /// origin `org` (within ±2¹⁶). Its hint misses (a shift by 31 in the slow mode's
+    /// test), so that the first vertex's search sets the hint and the shifts.
+    pub(crate) fn new(rows: &'a [[i32; 4]; 6], e: u32, half: [u32; 2], org: [i32; 2]) -> Self {
         let k = (1 << 14) - 1;
         // G = org·2¹⁴ + 2¹³ + 2 + F for x, org·2¹⁴ + 2¹³ − F for y (see `placed`).
-        let lim = (1 << 16) - 1;
-        let origin = |o: i32, r: u32| ((o.clamp(-lim, lim) << 14) as u32).wrapping_add(r);
-        let mut ops = [0; 12];
+        let origin = |o: i32, r: u32| ((o << 14) as u32).wrapping_add(r);
+        // The shifts and factors (k until the first search) and the rest.
+        let mut ops = [k; 12];
         (ops[D_ROUND], ops[D_K]) = (1 << 15, k);
         ops[Y_ORIGIN] = origin(org[1], 1 << 13);
         ops[X_ORIGIN] = origin(org[0], (1 << 13) + 2);
-        (ops[Y_BIAS], ops[X_BIAS], ops[Y_LIMIT], ops[X_LIMIT]) = (k, k, 2 * k, 2 * k);
-        let half = [half[1], half[0]].map(|h| h.clamp(1, 1 << 15));
-        let mut b = PlaceV6m {
-            hint: 0,
+        (ops[Y_LIMIT], ops[X_LIMIT]) = (2 * k, 2 * k);
+        let half = [half[1], half[0]];
+        PlaceV6m {
+            hint: 63,
             up: 0,
             ops,
             rows,
             e,
             half,
-            fold: half.map(|h| ((1 << 15) / h).ilog2().min(5)),
+            // The most f with h·2^f ≤ 2¹⁵ (15 − ⌈log₂ h⌉), at most 5.
+            fold: half.map(|h| h.wrapping_sub(1).leading_zeros().saturating_sub(17).min(5)),
             left: [0; 2],
-        };
-        b.set_sh(sh);
-        b
+        }
     }
 
     /// The hint for w's bits `sh` beyond 31 (1..=14) and the operands of the
@@ -907,7 +901,7 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
             _ => 16,
         };
         let org = [(case % 3) as i32 * 592 - 640, (case % 5) as i32 * 176];
-        let mut mine = PlaceV6m::new(&rows, e, half, org, 1 + case % 14);
+        let mut mine = PlaceV6m::new(&rows, e, half, org);
         let mut twin = mine;
         for _ in 0..n.div_ceil(8) {
             for p in &mut run {
