@@ -620,9 +620,8 @@ core::arch::global_asm!(
     "lsrs r3, r3, #17",
     "lsls r1, r1, #13",
     "adds r1, r1, r3",
-    "movs r4, r6",
-    "muls r4, r1, r4",
-    "cmp r4, r2",
+    "muls r6, r1, r6",
+    "cmp r6, r2",
     "movs r4, #0",
     "adcs r1, r4",
     // r in r1: its halves in r0 (high), r1 (low). The depth: q30 = the rounded high
