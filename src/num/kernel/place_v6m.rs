@@ -1,18 +1,19 @@
 //! The vertex cache's usual vertex on ARMv6-M: the fixed-point transform, the integer
 //! projection and the entry in one Thumb-1 assembly loop, beside its portable twin.
 //!
-//! It computes `ScreenMap::project_fast` of `FixedTransform::apply`, then
-//! `CachedVertex::placing`: the six rows (x, y, z and w in two partial sums each), the
+//! It computes `ScreenMap::project_integer`'s entry for the usual vertex, as
+//! `ScreenMap::project_fast` of `FixedTransform::apply` then `CachedVertex::placing`
+//! do, in its own steps: the six rows (x, y, z and w in two partial sums each), the
 //! near, far and w planes on z and w in units of 2¹⁴, w's bits beyond 31 against the
-//! hint the block carries (a four-step search on a miss), w and z + w normalised, x
-//! and y normalised by two shifts each, the reciprocal ⌊2⁶²/wn⌋, the screen
-//! coordinates by five 16 × 16-bit products each in two's complement and the depth by
-//! the rounded high word of four. Its coordinates have their own error bound (viewports
-//! up to 4096 pixels): they are the integer projection's wherever it places a vertex,
-//! and it leaves 4 values in 16,384 next to a rounding boundary (not the same ones as
-//! `project_fast`). The reciprocal is [`recip62_low`] (the integer projection's too),
-//! its first step from the 512-entry table `recip32_small` reads. Any vertex it does
-//! not place stops the loop for the caller's exact path.
+//! hint the block carries (a four-step search on a miss), w and z + w normalised from
+//! the partial sums, the reciprocal ⌊2⁶²/wn⌋ ([`recip62_low`], the integer
+//! projection's too, its first step from the 512-entry table `recip32_small` reads),
+//! the screen coordinates by five 16 × 16-bit products each in two's complement (x and
+//! y's scale folded into the half extent) and the depth by the rounded high word of
+//! four. Its coordinates have their own error bound (viewports up to 4096 pixels,
+//! centred within ±4096): it leaves 4 values in 16,384 next to a rounding boundary,
+//! not the same ones as `project_fast`, and places some that `project_fast` leaves.
+//! Any vertex it does not place stops the loop for the caller's exact path.
 #![allow(unsafe_code)]
 
 use super::{CachedVertex, XyWord};
