@@ -448,7 +448,8 @@ impl ScreenMap {
     /// The ARMv6-M vertex kernel's operands ([`PlaceV6m`]) for a transform's rows
     /// (`FixedTransform::with_rows_v6m`) and scale and this mapping: `None` unless the scale
     /// is 2^e with 0 ≤ e ≤ 20 (where [`project_fast`](ScreenMap::project_fast) places
-    /// no vertex either).
+    /// no vertex either), the viewport is at most 4096 pixels on a side and its centre
+    /// within ±4096 pixels (the kernel's sums in 32 bits).
     pub(crate) fn place_block_v6m<'a>(
         &self,
         rows: &'a [[i32; 4]; 6],
@@ -456,17 +457,15 @@ impl ScreenMap {
     ) -> Option<PlaceV6m<'a>> {
         let bits = s.to_bits();
         let e = (bits >> 23) as i32 - 127;
-        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) {
+        // half_w, half_h and the origins fit 32 bits (see ScreenMap).
+        let half = [self.half_w as u32, self.half_h as u32];
+        let org = [self.ox_i as i32, self.oy_i as i32];
+        let fits =
+            half.iter().all(|&h| h <= 1 << 15) && org.iter().all(|o| o.unsigned_abs() < 1 << 16);
+        if bits & 0x807f_ffff != 0 || !(0..=20).contains(&e) || !fits {
             return None;
         }
-        // half_w, half_h ≤ 2¹⁶; the origins truncated to i32 as project_fast does.
-        Some(PlaceV6m::new(
-            rows,
-            e as u32,
-            [self.half_w as u32, self.half_h as u32],
-            [self.ox_i as i32, self.oy_i as i32],
-            W_SHIFT_HINT,
-        ))
+        Some(PlaceV6m::new(rows, e as u32, half, org))
     }
 
     /// Fills `cache` with the entries of `positions` (as many as the shorter holds) by
@@ -887,10 +886,12 @@ mod tests {
         );
     }
 
-    /// The ARMv6-M vertex kernel's twin gives `project_fast` then
-    /// `CachedVertex::placing` where it gives an entry, and gives one wherever they do
-    /// but next to a screen coordinate's rounding boundary (one value in 16,384 more
-    /// than `project_fast` leaves), the hint carried alike: for cameras from inside the model to far away, turned,
+    /// The ARMv6-M vertex kernel's twin gives the integer projection's entry
+    /// (`project_integer` then `CachedVertex::placing`, what the cache's `cache_entry`
+    /// gives on ARMv6-M) where it gives an entry, and gives one wherever `project_fast` does but next to a screen
+    /// coordinate's rounding boundary (4 values in 16,384; its own error bounds, not
+    /// `project_fast`'s, so it places some that `project_fast` leaves), the hint carried
+    /// alike: for cameras from inside the model to far away, turned,
     /// fields of view from narrow to wide, viewports large and small, off the origin,
     /// mesh scales that put w's bits beyond 31 anywhere from 1 to 14.
     #[test]
@@ -931,13 +932,24 @@ mod tests {
                     0 => [r as i16, next() as i16, next() as i16],
                     _ => [(r as i16) >> 2, (next() as i16) >> 2, (next() as i16) >> 2],
                 };
+                let c = fixed.apply(&p);
                 let want = map
-                    .project_fast(&fixed.apply(&p), &mut hint)
+                    .project_fast(&c, &mut hint)
                     .and_then(CachedVertex::placing);
                 let got = place_v6m_portable(&mut block, &p);
-                if got.is_some() || want.is_none() {
-                    assert_eq!(got, want, "{p:?} case {case}");
-                } else {
+                if got.is_some() {
+                    // The entry of the integer projection (which `project_fast` gives
+                    // where it gives one: the cache's other way on ARMv6-M).
+                    let (z, w) = c.zw();
+                    let code = if w < 1 { outcode::W } else { 0 }
+                        | if z < -w { outcode::NEAR } else { 0 }
+                        | if z > w { outcode::FAR } else { 0 };
+                    let exact = map
+                        .project_integer(&c, z, w, code)
+                        .and_then(|(code, v)| (code == 0).then_some(v))
+                        .and_then(CachedVertex::placing);
+                    assert_eq!(got, exact, "{p:?} case {case}");
+                } else if want.is_some() {
                     refused += 1;
                 }
                 placed += u64::from(got.is_some());

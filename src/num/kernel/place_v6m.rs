@@ -1,130 +1,181 @@
 //! The vertex cache's usual vertex on ARMv6-M: the fixed-point transform, the integer
 //! projection and the entry in one Thumb-1 assembly loop, beside its portable twin.
 //!
-//! It computes `ScreenMap::project_fast` of `FixedTransform::apply`, then
-//! `CachedVertex::placing`, step for step: the six rows (x, y, z and w in two partial
-//! sums each), the near, far and w planes on z and w in units of 2¹⁴, w's bits beyond
-//! 31 against the hint the block carries (a four-step search on a miss), w and z + w
-//! normalised, x and y normalised by one shift each, the reciprocal ⌊2⁶²/wn⌋, the
-//! screen coordinates by five 16 × 16-bit products each and the depth by the rounded
-//! high word of four. It refuses one value more next to a screen coordinate's rounding
-//! boundary (4 in 16,384 instead of 3), which a shorter test finds. The reciprocal is
-//! [`recip62_low`] (the integer projection's too), its first step from the 512-entry
-//! table `recip32_small` reads. Any vertex it does not place stops the loop for the
-//! caller's exact path.
+//! It computes `ScreenMap::project_integer`'s entry for the usual vertex, as
+//! `ScreenMap::project_fast` of `FixedTransform::apply` then `CachedVertex::placing`
+//! do, in its own steps: the six rows (x, y, z and w in two partial sums each), the
+//! near, far and w planes on z and w in units of 2¹⁴, w's bits beyond 31 against the
+//! hint the block carries (a four-step search on a miss), w and z + w normalised from
+//! the partial sums, the reciprocal ⌊2⁶²/wn⌋ ([`recip62_low`], the integer
+//! projection's too, its first step from the 512-entry table `recip32_small` reads),
+//! the screen coordinates by five 16 × 16-bit products each in two's complement (x and
+//! y's scale folded into the half extent) and the depth by the rounded high word of
+//! four. Its coordinates have their own error bound (viewports up to 4096 pixels,
+//! centred within ±4096): it leaves 4 values in 16,384 next to a rounding boundary,
+//! not the same ones as `project_fast`, and places some that `project_fast` leaves.
+//! Any vertex it does not place stops the loop for the caller's exact path.
 #![allow(unsafe_code)]
 
 use super::{CachedVertex, XyWord};
-use crate::fixed::MAX_DEPTH;
 use crate::num::armv6m::RECIP16;
 
 /// Whether [`place_run_v6m`] is the assembly loop (ARMv6-M).
 pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m));
 
 /// The operands of [`place_run_v6m`], read by the loop at fixed offsets (`repr(C)`).
+///
+/// x and y in the z/w scale normalised by 2^sh are `v·2^(e − sh)` for the row value v:
+/// for k = sh − e > 0 the loop shifts v right by k; otherwise it takes `v·2^L` (L = −k)
+/// as v times `h·2^L₂` (L₂ the most of L that keeps the factor within 2¹⁵, and at most
+/// 5, which keeps |x|, |y| within 64·w: the guard band) shifted left by the rest L₁.
+/// Where some L₁ > 0 (a slow mode: a large image of a small viewport) the hint is 48 +
+/// sh, so that every vertex takes the search's way, which shifts and range-tests v.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(crate) struct PlaceV6m<'a> {
-    /// y's operands: right shift, overflow shift, left shift (of the normalisation
-    /// by 2^(sh − e)), the half height, 2¹³ + 4, the y origin (1/16 pixel).
-    ys: [u32; 6],
-    /// x's operands, as `ys` with the half width and the x origin.
-    xs: [u32; 6],
-    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
-    rows: &'a [[i32; 4]; 6],
-    /// sh − 1 for w's bits sh beyond 31 at the last vertex that changed it (the hint,
-    /// 0..=13).
+    /// 16 + sh for w's bits sh beyond 31 at the last vertex that changed it (the hint,
+    /// sh in 1..=14), 48 + sh in the slow mode.
     hint: u32,
     /// 14 − sh.
     up: u32,
+    /// The depth's and the coordinates' operands, in the order the loop loads them
+    /// (`D_ROUND` to `X_ORIGIN`): 2¹⁵ and 2¹⁴ − 1, then for y and x v's right shift,
+    /// the half extent times 2^L₂, the origin (1/16 pixel) times 2¹⁴ plus the rounding
+    /// constant, and the bias and limit of a placed coordinate (|c| < 2¹⁴).
+    ops: [u32; 12],
+    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
+    rows: &'a [[i32; 4]; 6],
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
+    /// The half height and width (1/16 pixel, at most 2¹⁵).
+    half: [u32; 2],
+    /// For y and x, the most of L folded into the half extent.
+    fold: [u32; 2],
+    /// For y and x, L₁: the rest of L, v's left shift (0 but in the slow mode).
+    left: [u32; 2],
 }
 
-// The loop reads y's operands at 0, x's at 24, the rows' address at 48, the hint at
-// 52, 14 − sh at 56 and e at 60 (addresses of 32 bits).
+// The loop reads the hint at 0, 14 − sh at 4, the operands at 8, the rows' address at
+// 56, e at 60, the halves at 64, the folds at 72 and L₁ at 80 (addresses of 32 bits).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
-    core::mem::offset_of!(PlaceV6m<'_>, ys) == 0
-        && core::mem::offset_of!(PlaceV6m<'_>, xs) == 24
-        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 48
-        && core::mem::offset_of!(PlaceV6m<'_>, hint) == 52
-        && core::mem::offset_of!(PlaceV6m<'_>, up) == 56
+    core::mem::offset_of!(PlaceV6m<'_>, hint) == 0
+        && core::mem::offset_of!(PlaceV6m<'_>, up) == 4
+        && core::mem::offset_of!(PlaceV6m<'_>, ops) == 8
+        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 56
         && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
-        && core::mem::size_of::<PlaceV6m<'_>>() == 64
+        && core::mem::offset_of!(PlaceV6m<'_>, half) == 64
+        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 72
+        && core::mem::offset_of!(PlaceV6m<'_>, left) == 80
+        && core::mem::size_of::<PlaceV6m<'_>>() == 88
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
-/// Where in `ys` and `xs` the half extent, the rounding constant and the origin go.
-const HALF: usize = 3;
-const ROUND: usize = 4;
-const ORIGIN: usize = 5;
+/// Where in `ops` each operand goes: the depth's two constants (one load), y's right
+/// shift, factor and origin, x's right shift (the same) with y's bias and limit (one
+/// load), x's bias, limit, factor and origin (one load).
+const D_ROUND: usize = 0;
+const D_K: usize = 1;
+const Y_RIGHT: usize = 2;
+const Y_FACTOR: usize = 3;
+const Y_ORIGIN: usize = 4;
+const X_RIGHT: usize = 5;
+const Y_BIAS: usize = 6;
+const Y_LIMIT: usize = 7;
+const X_BIAS: usize = 8;
+const X_LIMIT: usize = 9;
+const X_FACTOR: usize = 10;
+const X_ORIGIN: usize = 11;
 
 impl<'a> PlaceV6m<'a> {
     /// The block of the rows `rows` (x, y, z high, w high, z low, w low, each `[c₀, c₁,
     /// c₂, t]`, as `FixedTransform::with_rows_v6m` gives them), x and y's scale exponent `e`
-    /// (0..=20), the half width and height `half` (1/16 pixel, at most 2¹⁶) and the
-    /// origin `org`, w's bits beyond 31 guessed as `sh` (1..=14).
-    pub(crate) fn new(
-        rows: &'a [[i32; 4]; 6],
-        e: u32,
-        half: [u32; 2],
-        org: [i32; 2],
-        sh: u32,
-    ) -> PlaceV6m<'a> {
-        let operands = |h: u32, o: i32| [0, 31, 0, h, (1 << 13) + 4, o as u32];
-        let mut b = PlaceV6m {
-            ys: operands(half[1], org[1]),
-            xs: operands(half[0], org[0]),
-            rows,
-            hint: 0,
+    /// (0..=20), the half width and height `half` (1/16 pixel, 1 to 2¹⁵) and the
+    /// origin `org` (within ±2¹⁶). Its hint misses (a shift by 31 in the slow mode's
+    /// test), so that the first vertex's search sets the hint and the shifts.
+    pub(crate) fn new(rows: &'a [[i32; 4]; 6], e: u32, half: [u32; 2], org: [i32; 2]) -> Self {
+        let k = (1 << 14) - 1;
+        // G = org·2¹⁴ + 2¹³ + 2 + F for x, org·2¹⁴ + 2¹³ − F for y (see `placed`).
+        let origin = |o: i32, r: u32| ((o << 14) as u32).wrapping_add(r);
+        // The shifts and factors (k until the first search) and the rest.
+        let mut ops = [k; 12];
+        (ops[D_ROUND], ops[D_K]) = (1 << 15, k);
+        ops[Y_ORIGIN] = origin(org[1], 1 << 13);
+        ops[X_ORIGIN] = origin(org[0], (1 << 13) + 2);
+        (ops[Y_LIMIT], ops[X_LIMIT]) = (2 * k, 2 * k);
+        let half = [half[1], half[0]];
+        PlaceV6m {
+            hint: 63,
             up: 0,
+            ops,
+            rows,
             e,
-        };
-        b.set_sh(sh);
-        b
+            half,
+            // The most f with h·2^f ≤ 2¹⁵ (15 − ⌈log₂ h⌉), at most 5.
+            fold: half.map(|h| h.wrapping_sub(1).leading_zeros().saturating_sub(17).min(5)),
+            left: [0; 2],
+        }
     }
 
-    /// The hint for w's bits `sh` beyond 31 (1..=14), and the normalisation's shifts
-    /// for k = sh − e: right by k when k ≥ 0, else left by −k, the magnitude first
-    /// checked below 2^(31 + k).
+    /// The hint for w's bits `sh` beyond 31 (1..=14) and the operands of the
+    /// normalisation by 2^(sh − e) (see [`PlaceV6m`]).
     fn set_sh(&mut self, sh: u32) {
         let k = sh as i32 - self.e as i32;
-        let (right, left) = (k.max(0) as u32, (-k).max(0) as u32);
-        self.hint = sh - 1;
+        let (right, l) = if k > 0 {
+            (k as u32, 0)
+        } else {
+            (0, (-k) as u32)
+        };
         self.up = 14 - sh;
-        for s in [&mut self.ys, &mut self.xs] {
-            s[0] = right;
-            s[1] = 31 - left;
-            s[2] = left;
-        }
+        let [l2y, l2x] = self.fold.map(|f| l.min(f));
+        let [hy, hx] = self.half;
+        let o = &mut self.ops;
+        (o[Y_RIGHT], o[X_RIGHT]) = (right, right);
+        (o[Y_FACTOR], o[X_FACTOR]) = (hy << l2y, hx << l2x);
+        self.left = [l - l2y, l - l2x];
+        self.hint = 16 + sh + if self.left == [0; 2] { 0 } else { 32 };
     }
 }
 
-/// ⌊2³¹/(v + 1)⌋ for 2¹⁵ ≤ v < 2¹⁶: the table's 2²⁵/(513 + i) for v's top nine bits
-/// (at most 2³¹/(v + 1), and within 2⁻⁹ of it), one Newton step (error below 1.3: the
-/// step's square 0.28, the dropped bits 1.01) and a correction by the remainder.
+/// v·2^l where |v| < 2^(31 − l) (the slow mode's left shift of a row value), else
+/// `None`.
+#[inline(always)]
+fn widened(v: i32, l: u32) -> Option<i32> {
+    if l == 0 {
+        return Some(v);
+    }
+    let m = i32::MAX as u32 >> l;
+    ((v as u32).wrapping_add(m) <= 2 * m).then(|| v << l)
+}
+
+/// About 2³¹/(v + 1) for 2¹⁵ ≤ v < 2¹⁶, from below: the table's 2²⁵/(513 + i) for v's
+/// top nine bits (at most 2³¹/(v + 1), and within 2⁻⁹ of it) and one Newton step,
+/// which leaves it in (2³¹/(v + 1) − 1.3, 2³¹/(v + 1)] (the step's square 0.28, the
+/// dropped bits 1.01; a test checks every v).
 #[inline(always)]
 fn recip31_table(v: u32) -> u32 {
     let w = v + 1;
     let i = ((v >> 6) & 0x1ff) as usize;
     let t = u32::from(RECIP16.get(i).copied().unwrap_or(0));
-    // e = 2³¹ − w·t in [0, 2²³): t·⌊e/2⁷⌋ < 2³².
-    let e = (1u32 << 31).wrapping_sub(w.wrapping_mul(t));
-    let y = t.wrapping_add(t.wrapping_mul(e >> 7) >> 24);
-    y + u32::from((1u32 << 31).wrapping_sub(w.wrapping_mul(y)) >= w)
+    // e = 2³¹ − w·t in [0, 2²³) (the low 31 bits of −w·t): t·⌊e/2⁷⌋ < 2³².
+    let e = w.wrapping_neg().wrapping_mul(t) << 1 >> 1;
+    t.wrapping_add(t.wrapping_mul(e >> 7) >> 24)
 }
 
 /// ⌊2⁶²/d⌋ for 2³⁰ < d < 2³¹ in 32-bit multiplies, without a division (on ARMv6-M,
 /// 64-bit products are long): the integer projection's reciprocal, here beside the
 /// vertex loop that does the same. Each step's error is read off the low word of a
-/// product, exact because the step keeps it in `[0, 2³²)`:
+/// product, exact because the step keeps it within 32 bits:
 ///
-/// 1. y = ⌊2³¹/(v + 1)⌋ for d's top 16 bits v ([`recip31_table`]: a test checks every
-///    v). Then y ≤ 2⁴⁶/d and e = 2⁴⁶ − d·y < 2⁴⁶/(v + 1) + v·2¹⁵ ≤ 2³².
-/// 2. With ε = e/2⁴⁶ < 2⁻¹⁴, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the
-///    last term below 2⁻⁹: y' = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋ lies within [2⁴⁹/d − 2, 2⁴⁹/d]
-///    (1 + 2⁻¹⁶ + 2⁻⁹ dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
+/// 1. y ≈ 2³¹/(v + 1) from below, within 1.3, for d's top 16 bits v
+///    ([`recip31_table`]). Then y ≤ 2³¹/(v + 1) ≤ 2⁴⁶/d, and 2⁴⁶/d − y < 2³¹/(v(v +
+///    1)) + 1.3 ≤ 3.3, so e = 2⁴⁶ − d·y is in [0, 3.3·d) and y·e < 3.3·2⁴⁶.
+/// 2. e'' = 2⁴⁵ − ⌈d/2⌉·y = (e − (d mod 2)·y)/2, in (−2¹⁵, 1.65·2⁴⁶/y], is the low
+///    word of −⌈d/2⌉·y as a signed number (−⌈d/2⌉ = (−d) >> 1). With ε = e/2⁴⁶ <
+///    3.3·2⁻¹⁵, 2⁴⁹/d = 8y/(1 − ε) = 8y + y·e/2⁴³ + 8y·ε²/(1 − ε), the last term below
+///    0.006: y' = 8y + ⌊y·⌊e''/2¹⁷⌋/2²⁵⌋ (|y·⌊e''/2¹⁷⌋| < 2³¹) lies within
+///    (2⁴⁹/d − 1.02, 2⁴⁹/d] (y²/2⁴³ < 2⁻¹¹ for the halved remainder, 2⁻⁹ and 1
+///    dropped), so e' = 2⁴⁹ − d·y' is in [0, 2d) ⊂ [0, 2³²).
 /// 3. Likewise 2⁶²/d = 2¹³y' + y'·e'/2³⁶ + t with t = 2¹³y'·ε'²/(1 − ε') < ¼
 ///    (ε' < 2⁻¹⁷, y' < 2¹⁹); x = 2¹³y' + ⌊(y'/8)·e'/2³³⌋ (the product from 16-bit
 ///    halves of e', y'/8 < 2¹⁶) drops below 0.5 + 2⁻¹⁷ + 1, so 2⁶²/d − x ∈ [0, 2).
@@ -134,8 +185,8 @@ pub(crate) fn recip62_low(d: u32) -> u32 {
     // 1.
     let y = recip31_table(d >> 15);
     // 2.
-    let e = d.wrapping_mul(y).wrapping_neg();
-    let y = 8 * y + ((y * (e >> 16)) >> 27);
+    let e = (d.wrapping_neg() as i32 >> 1).wrapping_mul(y as i32);
+    let y = (8 * y).wrapping_add(((y as i32).wrapping_mul(e >> 17) >> 25) as u32);
     // 3.
     let e = d.wrapping_mul(y).wrapping_neg();
     let h = y >> 3;
@@ -143,38 +194,45 @@ pub(crate) fn recip62_low(d: u32) -> u32 {
     x + u32::from(d.wrapping_mul(x).wrapping_neg() >= d)
 }
 
-/// One screen coordinate's offset from its origin: `v·2^e/2^sh · h/wn` rounded (the
-/// operands `s` of [`PlaceV6m`]), through r = ⌊2⁶²/wn⌋ in halves `rh`, `rl`, as
-/// `project::signed_ratio` where it gives one; `None` where that cannot tell (or one
-/// value more) or the normalised v reaches 2³¹.
+/// F = ⌊P·H/2¹⁶⌋ for a = v >> `right`, P ≈ a·r/2³² (r = ⌊2⁶²/wn⌋ in halves `rh`,
+/// `rl`) and the factor H ≤ 2¹⁵: within 2.5 below V = a·H·r/2⁴⁸, the screen
+/// coordinate's offset from its origin in units of 2⁻¹⁴ (v already shifted left by
+/// L₁), |F| ≤ 2³⁰.
+///
+/// In two's complement throughout: with a = a₁·2¹⁶ + a₀ (a₁ signed), P = a₁r₁ +
+/// ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋ lies in (X − 3, X] for X = a·r/2³² (three dropped
+/// fractions; P ≥ −2³¹ as X ≥ −2³¹ + 2 for r ≤ 2³² − 4), F = p₁H + ⌊p₀H/2¹⁶⌋ in
+/// (V − 3H/2¹⁶ − 1, V].
 #[inline(always)]
-fn ratio(v: i32, s: &[u32; 6], rh: u32, rl: u32) -> Option<i32> {
-    let sign = v >> 31;
-    let a = ((v >> s[0]) ^ sign).wrapping_sub(sign) as u32;
-    if a >> s[1] != 0 {
-        return None;
-    }
-    let a = a << s[2];
-    let (a1, a0) = (a >> 16, a & 0xffff);
-    let p = (a1.wrapping_mul(rh))
-        .wrapping_add(a1.wrapping_mul(rl) >> 16)
-        .wrapping_add(a0.wrapping_mul(rh) >> 16);
-    let h = s[HALF];
-    let f = (p >> 16)
-        .wrapping_mul(h)
-        .wrapping_add((p & 0xffff).wrapping_mul(h) >> 16)
-        .wrapping_add(s[ROUND]);
-    // None within 4 of a rounding boundary (project::signed_ratio's 3 and one more).
-    if f & 0x3fff < 4 {
-        return None;
-    }
-    Some(((f >> 14) as i32 ^ sign).wrapping_sub(sign))
+fn scaled(v: i32, right: u32, h: u32, rh: u32, rl: u32) -> i32 {
+    let a = v >> right;
+    let (a1, a0) = (a >> 16, (a & 0xffff) as u32);
+    let p = a1
+        .wrapping_mul(rh as i32)
+        .wrapping_add(a1.wrapping_mul(rl as i32) >> 16)
+        .wrapping_add((a0.wrapping_mul(rh) >> 16) as i32);
+    (p >> 16)
+        .wrapping_mul(h as i32)
+        .wrapping_add((((p & 0xffff) as u32).wrapping_mul(h) >> 16) as i32)
 }
 
-/// |c| < 2¹⁴ (a placed coordinate), as `CachedVertex::placing` tests it.
+/// The placed coordinate ⌊G/2¹⁴⌋ with |c| < 2¹⁴ (c + bias ≤ limit unsigned, as
+/// `CachedVertex::placing` tests it), or `None` there or where G mod 2¹⁴ < 4.
+///
+/// For x, G = org·2¹⁴ + 2¹³ + 2 + F: V + 2¹³ lies in [g − 2, g + ½) for g = G −
+/// org·2¹⁴, so where G mod 2¹⁴ ≥ 4 no multiple of 2¹⁴ is in it and ⌊G/2¹⁴⌋ is org +
+/// ⌊(V + 2¹³)/2¹⁴⌋, no tie: the offset rounded, halves away from zero for either sign.
+/// For y, G = org·2¹⁴ + 2¹³ − F = org·2¹⁴ + 2¹⁴ + X for X = −F − 2¹³, and −V − 2¹³
+/// lies in (X − 2.5, X]: where X mod 2¹⁴ = G mod 2¹⁴ ≥ 3 no multiple of 2¹⁴ is in
+/// [X − 2, X], so ⌊G/2¹⁴⌋ = org + ⌈X/2¹⁴⌉ = org − ⌊(V + 2¹³)/2¹⁴⌋, no tie. (|org| <
+/// 2¹⁶ and |F| ≤ 2³⁰: |G| < 2³¹.)
 #[inline(always)]
-fn fits(c: i32) -> bool {
-    c.wrapping_add((1 << 14) - 1) as u32 <= 2 * ((1 << 14) - 1)
+fn placed(g: i32, bias: u32, limit: u32) -> Option<i32> {
+    if g & 0x3fff < 4 {
+        return None;
+    }
+    let c = g >> 14;
+    ((c as u32).wrapping_add(bias) <= limit).then_some(c)
 }
 
 /// The entry of position `p`, or `None` where the loop stops: the portable twin of one
@@ -187,36 +245,52 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
             .wrapping_add(c2.wrapping_mul(pz))
             .wrapping_add(t)
     };
-    let [x, y, zh, wh, zl, wl] = b.rows.map(row);
+    let [mut x, mut y, zh, wh, zl, wl] = b.rows.map(row);
     let (zt, wt) = (zh.wrapping_add(zl >> 14), wh.wrapping_add(wl >> 14));
-    let (zl, wl) = ((zl & 0x3fff) as u32, (wl & 0x3fff) as u32);
-    // w ≥ 2³¹ and z strictly between −w and w with a unit of room (a negative wt fails
-    // one of the two z tests).
-    if (wt as u32) >> 17 == 0 || i64::from(zt) + i64::from(wt) <= 0 || zt >= wt.wrapping_sub(1) {
+    // z strictly between −w and w with a unit of room, then w ≥ 2³¹ (the hint's test
+    // or the search's; a negative wt fails one of the z tests).
+    if zt >= wt.wrapping_sub(1) || i64::from(zt) + i64::from(wt) <= 0 {
         return None;
     }
-    // wt >> (16 + sh) = 1 for the hint's sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
-    if (wt as u32) >> 17 >> b.hint != 1 {
-        let mut t = (wt as u32) >> 17;
-        let mut sh = 1;
-        for k in [8, 4, 2, 1] {
-            if t >> k != 0 {
-                t >>= k;
-                sh += k;
+    // (wt − 1) >> (16 + sh) = 1 for the hint's sh (a shift by 32 or more gives 0),
+    // else the slow mode's same sh, else sh = 1 + ⌊log₂(wt/2¹⁷)⌋.
+    let (wt, w1) = (wt as u32, wt.wrapping_sub(1) as u32);
+    if w1.checked_shr(b.hint).unwrap_or(0) != 1 {
+        if b.hint < 48 || w1 >> (b.hint - 32) != 1 {
+            let mut t = wt >> 17;
+            if t == 0 {
+                return None;
             }
+            let mut sh = 1;
+            for k in [8, 4, 2, 1] {
+                if t >> k != 0 {
+                    t >>= k;
+                    sh += k;
+                }
+            }
+            b.set_sh(sh);
         }
-        b.set_sh(sh);
+        y = widened(y, b.left[0])?;
+        x = widened(x, b.left[1])?;
+        // wt = 2¹⁶⁺ˢʰ (where wn may be 2³⁰) left.
+        if w1 >> ((b.hint & 31) - 16) >> 16 != 1 {
+            return None;
+        }
     }
-    let (sh, up) = (b.hint + 1, b.up);
-    let wn = ((wt as u32) << up).wrapping_add(wl >> sh);
-    if wn << 2 == 0 {
-        return None; // wn = 2³⁰
+    // wn = ⌊w/2^sh⌋ = (wh << up) + (wl >> sh), un = ⌊(z + w)/2^sh⌋ likewise (the top
+    // parts are multiples of 2^sh), both exact modulo 2³² and below it.
+    let (sh, up) = ((b.hint & 31) - 16, b.up);
+    let wn = ((wh as u32) << up).wrapping_add((wl >> sh) as u32);
+    if wn >> 31 != 0 {
+        return None; // wt = 2¹⁷⁺ˢʰ, from the hint's test
     }
-    let ut = (zt as u32).wrapping_add(wt as u32);
-    let un = (ut << up).wrapping_add((zl + wl) >> sh);
+    let ul = i64::from(zl) + i64::from(wl);
+    let un = ((zh.wrapping_add(wh) as u32) << up).wrapping_add((ul >> sh) as u32);
     let r = recip62_low(wn);
     let (rh, rl) = (r >> 16, r & 0xffff);
     // Depth: the rounded high word of un·r (q30), then 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋.
+    // z < w − 2¹⁴ makes un ≤ 2·wn, so un·r ≤ 2⁶³ and q30 ≤ 2³¹ (where the depth is
+    // MAX_DEPTH): no clamp.
     let (a1, a0) = (un >> 16, un & 0xffff);
     let (m1, m2) = (a1.wrapping_mul(rl), a0.wrapping_mul(rh));
     let low = (a0.wrapping_mul(rl) >> 16)
@@ -228,21 +302,13 @@ pub(crate) fn place_v6m_portable(b: &mut PlaceV6m<'_>, p: &[i16; 3]) -> Option<C
         .wrapping_add(m1 >> 16)
         .wrapping_add(m2 >> 16)
         .wrapping_add(low >> 16);
-    // Above q30 = 2³¹ (where it is MAX_DEPTH) the depth is clamped.
     let d = q30.wrapping_add((1 << 14) - 1) >> 15;
-    let sz = if q30 > 1 << 31 {
-        MAX_DEPTH
-    } else {
-        q30.wrapping_add(q30.wrapping_sub(d))
-    };
-    let sy = (b.ys[ORIGIN] as i32).wrapping_sub(ratio(y, &b.ys, rh, rl)?);
-    if !fits(sy) {
-        return None;
-    }
-    let sx = (b.xs[ORIGIN] as i32).wrapping_add(ratio(x, &b.xs, rh, rl)?);
-    if !fits(sx) {
-        return None;
-    }
+    let sz = q30.wrapping_add(q30.wrapping_sub(d));
+    let o = &b.ops;
+    let fy = scaled(y, o[Y_RIGHT], o[Y_FACTOR], rh, rl);
+    let sy = placed((o[Y_ORIGIN] as i32).wrapping_sub(fy), o[Y_BIAS], o[Y_LIMIT])?;
+    let fx = scaled(x, o[X_RIGHT], o[X_FACTOR], rh, rl);
+    let sx = placed((o[X_ORIGIN] as i32).wrapping_add(fx), o[X_BIAS], o[X_LIMIT])?;
     Some(CachedVertex {
         z: sz,
         xy: XyWord::new(sx as i16, sy as i16),
@@ -266,8 +332,8 @@ pub(crate) fn place_run_v6m(
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
         let start = out.as_mut_ptr().cast::<u32>();
-        // SAFETY: the loop reads the block (`repr(C)`, 64 bytes, 4-aligned) and the rows
-        // it borrows (96 bytes) and writes the block's hint words, reads one position a
+        // SAFETY: the loop reads the block (`repr(C)`, 88 bytes, 4-aligned) and the rows
+        // it borrows (96 bytes) and writes its hint and shift words, reads one position a
         // turn (three halfwords, 2-aligned as `[i16; 3]` is) from `positions`' start and
         // writes one entry a turn (a word and two halfwords, 4-aligned as
         // `CachedVertex` is; any bits are a valid entry) from `out`'s start, and stops
@@ -329,82 +395,102 @@ macro_rules! place_row {
     };
 }
 
-/// One screen coordinate (the twin's `ratio`, then the origin and `fits`): the
-/// operands at r7 (the block for y, plus 24 for x), the coordinate's row value
-/// popped, r's halves in r0 (high) and r1 (low); the coordinate in r3. `$org` is the
-/// origin's operation (`adds r3, r6, r3` for x, `subs r3, r6, r3` for y), `$fail`
-/// where a refusal goes.
+/// y's coordinate (the twin's `scaled` and `placed`): its operands at r7 (advanced
+/// past them, to x's), y's row value popped, r's halves in r0 (high) and r1 (low),
+/// kept; the coordinate written into the entry at r6, x's right shift left in r2.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-macro_rules! place_coordinate {
-    ($org:literal, $fail:literal) => {
-        concat!(
-            "ldm r7!, {{r2, r3, r6}}\n",
-            "pop {{r4}}\n",
-            "asrs r5, r4, #31\n",
-            "asrs r4, r4, r2\n",
-            "eors r4, r4, r5\n",
-            "subs r4, r4, r5\n",
-            "movs r2, r4\n",
-            "lsrs r2, r2, r3\n",
-            "beq 9f\n",
-            "b ",
-            $fail,
-            "\n9:\n",
-            "lsls r4, r4, r6\n",
-            // P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋.
-            "lsrs r2, r4, #16\n",
-            "uxth r4, r4\n",
-            "movs r3, r2\n",
-            "muls r3, r0, r3\n",
-            "muls r2, r1, r2\n",
-            "lsrs r2, r2, #16\n",
-            "muls r4, r0, r4\n",
-            "lsrs r4, r4, #16\n",
-            "adds r3, r3, r2\n",
-            "adds r3, r3, r4\n",
-            // f + 4 = ⌊P·h/2¹⁶⌋ + 2¹³ + 4.
-            "ldm r7!, {{r2, r4, r6}}\n",
-            "uxth r7, r3\n",
-            "lsrs r3, r3, #16\n",
-            "muls r3, r2, r3\n",
-            "muls r7, r2, r7\n",
-            "lsrs r7, r7, #16\n",
-            "adds r3, r3, r7\n",
-            "adds r3, r3, r4\n",
-            "lsls r7, r3, #18\n",
-            "lsrs r7, r7, #20\n",
-            "bne 9f\n",
-            "b ",
-            $fail,
-            "\n9:\n",
-            "lsrs r3, r3, #14\n",
-            "eors r3, r3, r5\n",
-            "subs r3, r3, r5\n",
-            $org,
-            "\n",
-            // |c| < 2¹⁴: c + 16383 ≤ 32766 unsigned.
-            "ldr r4, ={k}\n",
-            "adds r2, r3, r4\n",
-            "lsls r4, r4, #1\n",
-            "cmp r2, r4\n",
-            "bls 9f\n",
-            "b ",
-            $fail,
-            "\n9:"
-        )
+macro_rules! place_y {
+    () => {
+        // a = v >> right; P = a₁r₁ + ⌊a₁r₀/2¹⁶⌋ + ⌊a₀r₁/2¹⁶⌋, a₁ signed.
+        "ldm r7!, {{r2}}
+         pop {{r4}}
+         asrs r4, r4, r2
+         asrs r2, r4, #16
+         uxth r4, r4
+         movs r3, r2
+         muls r3, r0, r3
+         muls r2, r1, r2
+         asrs r2, r2, #16
+         muls r4, r0, r4
+         lsrs r4, r4, #16
+         adds r3, r3, r2
+         adds r3, r3, r4
+         ldm r7!, {{r2, r4}}
+         asrs r5, r3, #16
+         uxth r3, r3
+         muls r5, r2, r5
+         muls r3, r2, r3
+         lsrs r3, r3, #16
+         adds r3, r3, r5
+         subs r3, r4, r3
+         lsls r5, r3, #18
+         lsrs r5, r5, #20
+         bne 9f
+         b 7f
+         9:
+         asrs r3, r3, #14
+         ldm r7!, {{r2, r4, r5}}
+         adds r4, r4, r3
+         cmp r4, r5
+         bls 9f
+         b 7f
+         9:
+         strh r3, [r6, #6]"
     };
 }
 
-// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (64 bytes: the
-// operands at 0..48, the rows' address, the hint, 14 − sh, e) and the rows through
-// r8, that address (96 bytes by LDM), and writes only the block's shifts, hint and
-// 14 − sh (0..12, 24..36, 52, 56) on a search; reads three halfwords at r9
-// and writes the entry at r10 a turn (its depth word, then the halves of y and x), r9
-// advancing 6 and r10 8, and stops when r10 reaches r11 (checked after each entry; the
-// caller passes end > out) or at an entry it does not place (r10 still below r11; that
-// entry may hold its depth and y). It reads RECIP16 at an index below 512. The stack: r4–r7, lr and
-// r8–r11 saved and restored as AAPCS wants; a turn pushes up to five row values and
-// pops them (a refusal drops what is left by the label it takes).
+/// x's coordinate, as [`place_y`] with x's row value, x's right shift in r2 and no
+/// copy of a₁ (r's halves are not needed after it), its bias and limit in r0 and r1;
+/// the coordinate in r3, not written (r6 kept).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! place_x {
+    () => {
+        "pop {{r4}}
+         asrs r4, r4, r2
+         asrs r2, r4, #16
+         uxth r4, r4
+         muls r4, r0, r4
+         lsrs r4, r4, #16
+         muls r1, r2, r1
+         asrs r1, r1, #16
+         muls r2, r0, r2
+         adds r3, r2, r1
+         adds r3, r3, r4
+         ldm r7!, {{r0, r1, r2, r4}}
+         asrs r5, r3, #16
+         uxth r3, r3
+         muls r5, r2, r5
+         muls r3, r2, r3
+         lsrs r3, r3, #16
+         adds r3, r3, r5
+         adds r3, r3, r4
+         lsls r5, r3, #18
+         lsrs r5, r5, #20
+         bne 9f
+         b 6f
+         9:
+         asrs r3, r3, #14
+         adds r4, r3, r0
+         cmp r4, r1
+         bls 9f
+         b 6f
+         9:"
+    };
+}
+
+// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (88 bytes: the
+// hint, 14 − sh, the depth's and coordinates' operands, the rows' address, e, the
+// halves, folds and left shifts) and the rows through r8, that address (96 bytes by
+// LDM), and writes only the block's hint, 14 − sh, right shifts, factors and left
+// shifts (0..8, 16..24, 28, 48, 80..88) on a search; the slow mode reads and writes the two row values it keeps
+// on the stack. A turn reads three halfwords at r9 + 6 and writes the entry at r10
+// (advanced by 8 first: its depth word, then the halves of y and x), r9 advancing 6,
+// and stops after the entry at r11 (end − 8, so r10 returned past it) or at an entry
+// it does not place (r10 returned at it, below end; that entry may hold its depth and
+// y): n turns at most, every access inside the slices. It reads RECIP16 at an index
+// below 512. The stack: r4–r7, lr and r8–r11 saved and restored as AAPCS wants; a turn
+// pushes up to five row values and pops them (a refusal drops what is left by the
+// label it takes), the search four registers it pops.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     ".pushsection .text.zraster_place_v6m,\"ax\",%progbits",
@@ -421,21 +507,26 @@ core::arch::global_asm!(
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
     "mov r12, r0",
-    "ldr r4, [r0, #48]",
+    "ldr r4, [r0, #56]",
     "mov r8, r4",
+    "subs r1, #6",
     "mov r9, r1",
+    "subs r2, #8",
     "mov r10, r2",
+    "subs r3, #8",
     "mov r11, r3",
+    // The position at r9 + 6 (r9 at the last one), r9 advanced by the same 6, r10 by
+    // 8 to this turn's entry (r11 at the last entry's).
     "2:",
     "mov r7, r9",
-    "ldrh r4, [r7, #0]",
-    "sxth r4, r4",
-    "ldrh r5, [r7, #2]",
-    "sxth r5, r5",
-    "ldrh r6, [r7, #4]",
-    "sxth r6, r6",
-    "adds r7, #6",
-    "mov r9, r7",
+    "movs r3, #6",
+    "ldrsh r4, [r7, r3]",
+    "add r9, r3",
+    "movs r3, #8",
+    "ldrsh r5, [r7, r3]",
+    "add r10, r3",
+    "movs r3, #10",
+    "ldrsh r6, [r7, r3]",
     "mov r7, r8",
     // x, y, z high, w high, z low pushed; w low in r0.
     place_row!(),
@@ -450,89 +541,77 @@ core::arch::global_asm!(
     "push {{r0}}",
     place_row!(),
     "pop {{r1, r2, r3}}",
-    // r0 = w low, r1 = z low, r2 = w high, r3 = z high; y, x on the stack. Then
-    // r2 = wt, r3 = zt, r0 and r1 the low 14 bits of w and z.
+    // r0 = w low, r1 = z low, r2 = w high, r3 = z high; y, x on the stack. r4 = wt,
+    // r5 = zt.
     "asrs r4, r0, #14",
-    "adds r2, r2, r4",
-    "lsls r0, r0, #18",
-    "lsrs r0, r0, #18",
-    "asrs r4, r1, #14",
-    "adds r3, r3, r4",
-    "lsls r1, r1, #18",
-    "lsrs r1, r1, #18",
-    // wt ≥ 2¹⁷ (or negative), zt + wt > 0 (the sum's true sign), zt < wt − 1.
-    "lsrs r4, r2, #17",
-    "bne 9f",
-    "b 8f",
-    "9:",
-    "adds r5, r3, r2",
+    "adds r4, r4, r2",
+    "asrs r5, r1, #14",
+    "adds r5, r5, r3",
+    // zt + wt > 0 (the sum's true sign), zt < wt − 1.
+    "adds r6, r5, r4",
     "bgt 9f",
     "b 8f",
     "9:",
-    "subs r6, r2, #1",
-    "cmp r3, r6",
+    "subs r4, r4, #1",
+    "cmp r5, r4",
     "blt 9f",
     "b 8f",
     "9:",
-    // (wt >> 17) >> (sh − 1) = 1 for the hint's sh, else the search.
+    // (wt − 1) >> (16 + sh) = 1 for the hint's sh (so w > 2³⁰⁺ˢʰ, wn > 2³⁰, and w ≥
+    // 2³¹), else the search. r5 = 16 + sh, r6 = up = 14 − sh, r7 at y's operands.
     "mov r7, r12",
-    "ldr r6, [r7, #52]",
-    "lsrs r4, r4, r6",
+    "ldm r7!, {{r5, r6}}",
+    "lsrs r4, r4, r5",
     "cmp r4, #1",
     "beq 3f",
     "b 5f",
-    // un = (ut << up) + ((zl + wl) >> sh), wn = (wt << up) + (wl >> sh).
+    // wn = (wh << up) + (wl >> sh), un = ((zh + wh) << up) + ((zl + wl) >> sh): the
+    // top parts are multiples of 2^sh. Where zl + wl overflows, the exact sum apart.
     "3:",
-    "ldr r3, [r7, #56]",
-    "adds r6, #1",
+    "subs r5, #16",
+    "adds r3, r3, r2",
     "adds r1, r1, r0",
-    "lsrs r1, r1, r6",
-    "lsls r5, r5, r3",
-    "adds r5, r5, r1",
-    "lsls r2, r2, r3",
-    "lsrs r0, r0, r6",
-    "adds r1, r2, r0",
-    "lsls r4, r1, #2",
-    "bne 9f",
-    "b 8f",
+    "bvc 9f",
+    "b 4f",
     "9:",
-    // r1 = wn, r5 = un. The reciprocal: the table, one Newton step, a correction.
-    // The table's entry 512 + d's bits 29..21 less 512, by an address 1,024 bytes
-    // below the table (d < 2³¹).
-    "lsrs r0, r1, #21",
+    "lsls r3, r3, r6",
+    "asrs r1, r1, r5",
+    "lsls r2, r2, r6",
+    "asrs r0, r0, r5",
+    "adds r5, r3, r1",
+    // wn < 2³¹ (wt − 1 < 2¹⁷⁺ˢʰ leaves only wt = 2¹⁷⁺ˢʰ above).
+    "adds r2, r2, r0",
+    "bpl 1f",
+    "b 8f",
+    "1:",
+    // r2 = wn = d, r6 = −d, r5 = un. The reciprocal: the table and one Newton step. The table's entry 512 + d's bits 29..21 less 512, by an address
+    // 1,024 bytes below the table (d < 2³¹).
+    "rsbs r6, r2, #0",
+    "lsrs r0, r2, #21",
     "lsls r0, r0, #1",
-    "ldr r2, ={recip16} - 1024",
-    "ldrh r2, [r2, r0]",
-    "lsrs r0, r1, #15",
-    "adds r0, r0, #1",
-    "ldr r3, =0x80000000",
-    "movs r4, r0",
-    "muls r4, r2, r4",
-    "subs r4, r3, r4",
-    "lsrs r4, r4, #7",
-    "muls r4, r2, r4",
+    "ldr r1, ={recip16} - 1024",
+    "ldrh r1, [r1, r0]",
+    // e = 2³¹ − w·t for w = v + 1 is the low 31 bits of −w·t = ~v·t (w·t ≤ 2³¹).
+    "lsrs r0, r2, #15",
+    "mvns r4, r0",
+    "muls r4, r1, r4",
+    "lsls r4, r4, #1",
+    "lsrs r4, r4, #8",
+    "muls r4, r1, r4",
     "lsrs r4, r4, #24",
-    "adds r2, r2, r4",
-    "movs r4, r0",
-    "muls r4, r2, r4",
-    "subs r4, r3, r4",
-    "cmp r4, r0",
-    "movs r4, #0",
-    "adcs r2, r2, r4",
-    // Step 2: y = 8y + ⌊y·⌊e/2¹⁶⌋/2²⁷⌋, e = −d·y.
-    "movs r4, r1",
-    "muls r4, r2, r4",
-    "rsbs r4, r4, #0",
-    "lsrs r4, r4, #16",
-    "muls r4, r2, r4",
-    "lsrs r4, r4, #27",
-    "lsls r2, r2, #3",
-    "adds r2, r2, r4",
+    "adds r1, r1, r4",
+    // Step 2: y = 8y + ⌊y·⌊e''/2¹⁷⌋/2²⁵⌋, e'' = −⌈d/2⌉·y signed.
+    "asrs r4, r6, #1",
+    "muls r4, r1, r4",
+    "asrs r4, r4, #17",
+    "muls r4, r1, r4",
+    "asrs r4, r4, #25",
+    "lsls r1, r1, #3",
+    "adds r1, r1, r4",
     // Step 3, then the correction by the remainder.
-    "movs r4, r1",
-    "muls r4, r2, r4",
-    "rsbs r4, r4, #0",
-    "lsrs r0, r2, #3",
+    "movs r4, r6",
+    "muls r4, r1, r4",
+    "lsrs r0, r1, #3",
     "lsrs r3, r4, #16",
     "muls r3, r0, r3",
     "uxth r4, r4",
@@ -540,124 +619,215 @@ core::arch::global_asm!(
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
     "lsrs r3, r3, #17",
-    "lsls r2, r2, #13",
-    "adds r2, r2, r3",
-    "movs r4, r1",
-    "muls r4, r2, r4",
-    "rsbs r4, r4, #0",
-    "cmp r4, r1",
+    "lsls r1, r1, #13",
+    "adds r1, r1, r3",
+    "muls r6, r1, r6",
+    "cmp r6, r2",
     "movs r4, #0",
-    "adcs r2, r2, r4",
-    // r in r2: its halves in r0 (high), r1 (low). The depth: q30 = the rounded high
+    "adcs r1, r4",
+    // r in r1: its halves in r0 (high), r1 (low). The depth: q30 = the rounded high
     // word of un·r.
-    "lsrs r0, r2, #16",
-    "uxth r1, r2",
+    "lsrs r0, r1, #16",
+    "uxth r1, r1",
     "lsrs r3, r5, #16",
     "uxth r4, r5",
     "movs r6, r3",
     "muls r6, r1, r6",
-    "movs r7, r4",
-    "muls r7, r0, r7",
+    "movs r5, r4",
+    "muls r5, r0, r5",
     "muls r3, r0, r3",
     "muls r4, r1, r4",
     "lsrs r4, r4, #16",
-    "uxth r5, r6",
-    "adds r4, r4, r5",
-    "uxth r5, r7",
-    "adds r4, r4, r5",
-    "lsrs r5, r6, #16",
+    "uxth r2, r6",
+    "adds r4, r4, r2",
+    "uxth r2, r5",
+    "adds r4, r4, r2",
+    "lsrs r6, r6, #16",
+    "adds r3, r3, r6",
+    "lsrs r5, r5, #16",
     "adds r3, r3, r5",
-    "lsrs r5, r7, #16",
-    "adds r3, r3, r5",
-    "ldr r5, =0x8000",
-    "adds r4, r4, r5",
+    // 2¹⁵ and 2¹⁴ − 1 from the block (r7 to y's operands).
+    "ldm r7!, {{r2, r5}}",
+    "adds r4, r4, r2",
     "lsrs r4, r4, #16",
     "adds r3, r3, r4",
-    // sz = 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋, or MAX_DEPTH where q30 > 2³¹ (sz grows with
-    // q30, and is MAX_DEPTH at 2³¹; q30 ≥ 1 as un·r ≥ 2³¹), into the entry.
-    "subs r4, r3, #1",
-    "bpl 1f",
-    "ldr r3, ={max_depth}",
-    "b 4f",
-    "1:",
-    "ldr r4, ={k}",
-    "adds r4, r4, r3",
+    // sz = 2·q30 − ⌊(q30 + 2¹⁴ − 1)/2¹⁵⌋ (q30 ≤ 2³¹: see the twin), into the entry.
+    "adds r4, r5, r3",
     "lsrs r4, r4, #15",
     "subs r4, r3, r4",
     "adds r3, r3, r4",
-    "4:",
-    "mov r7, r10",
-    "str r3, [r7, #0]",
+    "mov r6, r10",
+    "str r3, [r6, #0]",
     // y, then x, each into its half of the entry's second word.
-    "mov r7, r12",
-    place_coordinate!("subs r3, r6, r3", "7f"),
-    "mov r7, r10",
-    "strh r3, [r7, #6]",
-    "mov r7, r12",
-    "adds r7, #24",
-    place_coordinate!("adds r3, r6, r3", "6f"),
-    "mov r7, r10",
-    "strh r3, [r7, #4]",
-    "adds r7, #8",
-    "mov r10, r7",
-    "cmp r10, r11",
-    "beq 6f",
+    place_y!(),
+    place_x!(),
+    "strh r3, [r6, #4]",
+    "cmp r6, r11",
+    "beq 9f",
     "b 2b",
-    // The search: sh − 1 = ⌊log₂(wt/2¹⁷)⌋ and up = 14 − sh, then the shifts for
-    // k = sh − e.
-    "5:",
-    "lsrs r4, r2, #17",
-    "movs r6, #0",
-    "lsrs r3, r4, #8",
-    "beq 1f",
-    "movs r4, r3",
+    // The last entry written: r10 past it.
+    "9:",
     "adds r6, #8",
-    "1:",
-    "lsrs r3, r4, #4",
-    "beq 1f",
-    "movs r4, r3",
-    "adds r6, #4",
-    "1:",
-    "lsrs r3, r4, #2",
-    "beq 1f",
-    "movs r4, r3",
-    "adds r6, #2",
-    "1:",
-    "lsrs r3, r4, #1",
-    "beq 1f",
-    "adds r6, #1",
-    "1:",
-    "str r6, [r7, #52]",
-    "movs r3, #13",
-    "subs r3, r3, r6",
-    "str r3, [r7, #56]",
-    "ldr r3, [r7, #60]",
-    "subs r4, r6, r3",
-    "adds r4, #1",
+    "mov r10, r6",
+    "b 6f",
+    // zl + wl overflowed: un from zt + wt and the low 14 bits of zl and wl (r0 = wl,
+    // r1 = zl + wl wrapped, r2 = wh, r3 = zh + wh, r5 = sh, r6 = up).
+    "4:",
+    "subs r1, r1, r0",
+    "asrs r4, r1, #14",
+    "adds r3, r3, r4",
+    "asrs r4, r0, #14",
+    "adds r3, r3, r4",
+    "lsls r1, r1, #18",
+    "lsrs r1, r1, #18",
+    "lsls r4, r0, #18",
+    "lsrs r4, r4, #18",
+    "adds r1, r1, r4",
+    "lsrs r1, r1, r5",
+    "lsls r3, r3, r6",
+    "adds r3, r3, r1",
+    "lsls r2, r2, r6",
+    "asrs r0, r0, r5",
+    "movs r5, r3",
+    "adds r2, r2, r0",
+    "bpl 9f",
+    "b 8f",
+    "9:",
+    "b 1b",
+    // The hint missed (r5 = its 16 + sh, or 48 + sh in the slow mode; r6 = up; r7 at
+    // y's operands): in the slow mode with the same sh only y's and x's shifts,
+    // else the search (r0–r3 kept on the stack, y and x above them).
+    "5:",
+    "push {{r0, r1, r2, r3}}",
+    "asrs r4, r0, #14",
+    "adds r4, r4, r2",
+    "subs r5, #32",
     "bmi 1f",
-    // k ≥ 0: right by k, the magnitude below 2³¹, left by 0 (y's at 0, x's at 24).
-    "str r4, [r7, #0]",
-    "str r4, [r7, #24]",
-    "movs r4, #31",
-    "str r4, [r7, #4]",
-    "str r4, [r7, #28]",
-    "movs r4, #0",
-    "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
-    "b 3b",
+    "subs r0, r4, #1",
+    "lsrs r0, r0, r5",
+    "cmp r0, #1",
+    "beq 4f",
+    // The search: t = wt >> 17 ≥ 1 (else w < 2³¹), 16 + sh = 17 + ⌊log₂ t⌋.
     "1:",
-    // k < 0: right by 0, the magnitude below 2^(31 + k), left by −k.
-    "rsbs r4, r4, #0",
-    "str r4, [r7, #8]",
-    "str r4, [r7, #32]",
-    "movs r3, #31",
-    "subs r3, r3, r4",
-    "str r3, [r7, #4]",
-    "str r3, [r7, #28]",
+    "lsrs r4, r4, #17",
+    "bne 9f",
+    "add sp, #16",
+    "b 8f",
+    "9:",
+    "movs r5, #17",
+    "lsrs r3, r4, #8",
+    "beq 9f",
+    "movs r4, r3",
+    "adds r5, #8",
+    "9:",
+    "lsrs r3, r4, #4",
+    "beq 9f",
+    "movs r4, r3",
+    "adds r5, #4",
+    "9:",
+    "lsrs r3, r4, #2",
+    "beq 9f",
+    "movs r4, r3",
+    "adds r5, #2",
+    "9:",
+    "lsrs r3, r4, #1",
+    "beq 9f",
+    "adds r5, #1",
+    "9:",
+    // up = 14 − sh; k = sh − e: right by k (L = 0) for k > 0, else L = −k.
+    "mov r7, r12",
+    "movs r6, #30",
+    "subs r6, r6, r5",
+    "str r6, [r7, #4]",
+    "ldr r4, [r7, #60]",
+    "subs r4, r5, r4",
+    "subs r4, #16",
+    "bgt 9f",
+    "rsbs r3, r4, #0",
     "movs r4, #0",
+    "b 1f",
+    "9:",
+    "movs r3, #0",
+    "1:",
+    "str r4, [r7, #16]",
+    "str r4, [r7, #28]",
+    // Per axis: L₂ = min(L, fold), H = half << L₂, L₁ = L − L₂ (r2: their OR).
+    "ldr r0, [r7, #72]",
+    "cmp r3, r0",
+    "bhs 9f",
+    "movs r0, r3",
+    "9:",
+    "ldr r1, [r7, #64]",
+    "lsls r1, r1, r0",
+    "str r1, [r7, #20]",
+    "subs r0, r3, r0",
+    "str r0, [r7, #80]",
+    "movs r2, r0",
+    "ldr r0, [r7, #76]",
+    "cmp r3, r0",
+    "bhs 9f",
+    "movs r0, r3",
+    "9:",
+    "ldr r1, [r7, #68]",
+    "lsls r1, r1, r0",
+    "str r1, [r7, #48]",
+    "subs r0, r3, r0",
+    "str r0, [r7, #84]",
+    "orrs r2, r0",
+    // The hint: 16 + sh, 48 + sh in the slow mode (some L₁ > 0).
+    "movs r4, r5",
+    "cmp r2, #0",
+    "beq 9f",
+    "adds r4, #32",
+    "9:",
     "str r4, [r7, #0]",
-    "str r4, [r7, #24]",
+    "adds r7, #8",
+    // y and x (at sp + 16 and 20) shifted left by their L₁ where |v| < 2^(31 − L₁),
+    // else refused.
+    "4:",
+    "ldr r0, [r7, #72]",
+    "cmp r0, #0",
+    "beq 9f",
+    "ldr r1, [sp, #16]",
+    "ldr r2, ={imax}",
+    "lsrs r2, r2, r0",
+    "adds r3, r1, r2",
+    "lsls r2, r2, #1",
+    "cmp r3, r2",
+    "bls 1f",
+    "add sp, #16",
+    "b 8f",
+    "1:",
+    "lsls r1, r1, r0",
+    "str r1, [sp, #16]",
+    "9:",
+    "ldr r0, [r7, #76]",
+    "cmp r0, #0",
+    "beq 9f",
+    "ldr r1, [sp, #20]",
+    "ldr r2, ={imax}",
+    "lsrs r2, r2, r0",
+    "adds r3, r1, r2",
+    "lsls r2, r2, #1",
+    "cmp r3, r2",
+    "bls 1f",
+    "add sp, #16",
+    "b 8f",
+    "1:",
+    "lsls r1, r1, r0",
+    "str r1, [sp, #20]",
+    "9:",
+    // (wt − 1) >> (16 + sh) = 1 (wt = 2¹⁶⁺ˢʰ would give wn = 2³⁰), r5 = 16 + sh.
+    "pop {{r0, r1, r2, r3}}",
+    "asrs r4, r0, #14",
+    "adds r4, r4, r2",
+    "subs r4, r4, #1",
+    "lsrs r4, r4, r5",
+    "cmp r4, #1",
+    "bne 9f",
     "b 3b",
+    "9:",
+    "b 8f",
     // Refusals: with y and x on the stack (8), with x (7), with neither (6).
     "8:",
     "add sp, #4",
@@ -675,8 +845,7 @@ core::arch::global_asm!(
     ".size zraster_place_v6m, . - zraster_place_v6m",
     ".popsection",
     recip16 = sym RECIP16,
-    k = const (1 << 14) - 1,
-    max_depth = const MAX_DEPTH,
+    imax = const i32::MAX,
 );
 
 /// The vertex loop (`place_run_v6m`) against its twin on this target: 24 transforms of
@@ -722,7 +891,7 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
             0 => [2560, 1920],
             1 => [1920, 1920],
             2 => [512, 384],
-            _ => [1 << 16, 6144],
+            _ => [1 << 15, 6144],
         };
         let e = match case % 5 {
             0 => 10,
@@ -732,7 +901,7 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
             _ => 16,
         };
         let org = [(case % 3) as i32 * 592 - 640, (case % 5) as i32 * 176];
-        let mut mine = PlaceV6m::new(&rows, e, half, org, 1 + case % 14);
+        let mut mine = PlaceV6m::new(&rows, e, half, org);
         let mut twin = mine;
         for _ in 0..n.div_ceil(8) {
             for p in &mut run {
@@ -765,8 +934,8 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
 mod tests {
     use super::*;
 
-    /// The table's first step is ⌊2³¹/(v + 1)⌋ for every v (its products within
-    /// `u32`), and the reciprocal ⌊2⁶²/d⌋ at every step's edges and 10⁷ random d;
+    /// The table's first step is within 1.3 below 2³¹/(v + 1) for every v (its
+    /// products within `u32`), and the reciprocal ⌊2⁶²/d⌋ at every step's edges and 10⁷ random d;
     /// `ZRASTER_EXHAUSTIVE=1` checks every d (2³⁰ of them; in a release build, some
     /// seconds).
     #[test]
@@ -777,7 +946,13 @@ mod tests {
             assert!(t * u64::from(w) <= 1 << 31, "v {v}");
             let e = (1u64 << 31) - t * u64::from(w);
             assert!(t * (e >> 7) < 1 << 32, "v {v}");
-            assert_eq!(recip31_table(v), (1 << 31) / w, "v {v}");
+            // Within 1.3 below 2³¹/w: 10·(2³¹ − w·y) < 13·w.
+            let y = u64::from(recip31_table(v));
+            assert!(y * u64::from(w) <= 1 << 31, "v {v}");
+            assert!(
+                10 * ((1 << 31) - y * u64::from(w)) < 13 * u64::from(w),
+                "v {v}"
+            );
             for d in [v << 15, (v << 15) + 1, (v << 15) + (1 << 14), (w << 15) - 1] {
                 if d > 1 << 30 && d < 1 << 31 {
                     assert_eq!(u64::from(recip62_low(d)), (1 << 62) / u64::from(d));
