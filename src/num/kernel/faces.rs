@@ -1384,6 +1384,47 @@ pub fn check_band_carry_kernel(buf: &mut [u16], carry: &mut [u32], cases: usize)
     }
 }
 
+/// The band checks' model of the band loop's carry (`ColorCarry`): two halves of eight
+/// colours (ARMv7E-M's [`check_band_faces_kernel`], ARMv6-M's
+/// [`check_band_faces_v6m_kernel`](super::check_band_faces_v6m_kernel)).
+#[derive(Clone, PartialEq)]
+pub(super) struct Carry8 {
+    pub(super) read: [u16; 8],
+    pub(super) keep: [u16; 8],
+    pub(super) filled: usize,
+    pub(super) taken: usize,
+    pub(super) kept: usize,
+}
+impl Carry8 {
+    /// The next colour the band above kept, if it kept one.
+    pub(super) fn take(&mut self) -> Option<u16> {
+        let i = self.taken;
+        self.taken += 1;
+        (i < self.filled)
+            .then(|| self.read.get(i).copied())
+            .flatten()
+    }
+    /// The colour taken last, again (a face the fused loop carried itself).
+    pub(super) fn last_taken(&self) -> Option<u16> {
+        let i = self.taken.checked_sub(1)?;
+        (i < self.filled)
+            .then(|| self.read.get(i).copied())
+            .flatten()
+    }
+    /// Keep colour `c` for the band below, while there is room.
+    pub(super) fn keep(&mut self, c: u16) {
+        if let Some(slot) = self.keep.get_mut(self.kept) {
+            *slot = c;
+            self.kept += 1;
+        }
+    }
+    /// A new band: what this band kept is what the next one takes.
+    pub(super) fn start_band(&mut self) {
+        core::mem::swap(&mut self.read, &mut self.keep);
+        (self.filled, self.taken, self.kept) = (self.kept, 0, 0);
+    }
+}
+
 /// The cases of [`check_band_faces_kernel`] from `seed`, kept set-ups in `scratch`.
 fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u32) -> usize {
     use super::light::lit_565_portable;
@@ -1393,40 +1434,6 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
     const H: usize = 16;
     const N: usize = W * H;
     const END: u16 = u16::MAX;
-    /// The band loop's carry (`ColorCarry`) over two halves of eight.
-    #[derive(Clone, PartialEq)]
-    struct Carry8 {
-        read: [u16; 8],
-        keep: [u16; 8],
-        filled: usize,
-        taken: usize,
-        kept: usize,
-    }
-    impl Carry8 {
-        fn take(&mut self) -> Option<u16> {
-            let i = self.taken;
-            self.taken += 1;
-            (i < self.filled)
-                .then(|| self.read.get(i).copied())
-                .flatten()
-        }
-        fn last_taken(&self) -> Option<u16> {
-            let i = self.taken.checked_sub(1)?;
-            (i < self.filled)
-                .then(|| self.read.get(i).copied())
-                .flatten()
-        }
-        fn keep(&mut self, c: u16) {
-            if let Some(slot) = self.keep.get_mut(self.kept) {
-                *slot = c;
-                self.kept += 1;
-            }
-        }
-        fn start_band(&mut self) {
-            core::mem::swap(&mut self.read, &mut self.keep);
-            (self.filled, self.taken, self.kept) = (self.kept, 0, 0);
-        }
-    }
     let Some(buf) = buf.get_mut(..4 * N) else {
         return usize::MAX;
     };

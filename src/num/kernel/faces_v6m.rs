@@ -1297,7 +1297,7 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
 /// is a failure).
 #[inline(never)]
 pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
-    use super::faces::Raw565;
+    use super::faces::{Carry8, Raw565};
     use super::light::{lit_565_portable, LightBlock};
     use super::rows_v6m::small_walk_portable;
     use super::SmallDone;
@@ -1306,36 +1306,6 @@ pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
     const H: usize = 16;
     const N: usize = W * H;
     const END: u16 = u16::MAX;
-    /// The band loop's carry (`ColorCarry`) over two halves of eight.
-    #[derive(Clone, PartialEq)]
-    struct Carry8 {
-        read: [u16; 8],
-        keep: [u16; 8],
-        filled: usize,
-        taken: usize,
-        kept: usize,
-    }
-    impl Carry8 {
-        fn take(&mut self) -> Option<u16> {
-            let i = self.taken;
-            self.taken += 1;
-            (i < self.filled)
-                .then(|| self.read.get(i).copied())
-                .flatten()
-        }
-        fn last_taken(&self) -> Option<u16> {
-            let i = self.taken.checked_sub(1)?;
-            (i < self.filled)
-                .then(|| self.read.get(i).copied())
-                .flatten()
-        }
-        fn keep(&mut self, c: u16) {
-            if let Some(slot) = self.keep.get_mut(self.kept) {
-                *slot = c;
-                self.kept += 1;
-            }
-        }
-    }
     let Some(buf) = buf.get_mut(..4 * N) else {
         return usize::MAX;
     };
