@@ -432,6 +432,26 @@ pub fn check_place_kernel(n: usize) -> usize {
 #[repr(C, align(4))]
 struct Run([[i16; 3]; 4]);
 
+/// The six rows of a random fixed-point transform for the vertex kernels' checks, as
+/// coefficients and translation: x and y rows with c₀, c₁, c₂ within ±2¹⁴; the z and w
+/// high sums (w about 2²⁸, 2⁴² in all, z a part of it; every fourth `case` a w anywhere
+/// within ±2²⁶); the low sums in [0, 2¹⁴).
+pub(super) fn random_rows(rnd: &mut impl FnMut() -> u32, case: u32) -> [([i32; 3], i32); 6] {
+    // A value within ±2^bits.
+    let mut within = |bits: u32| (rnd() as i32) >> (31 - bits);
+    let mut rows = [([0; 3], 0); 6];
+    for (r, row) in rows.iter_mut().enumerate() {
+        *row = match r {
+            0 | 1 => ([within(14), within(14), within(14)], within(20)),
+            2 => ([within(11), within(11), within(11)], within(27)),
+            3 if case % 4 == 3 => ([within(11), within(11), within(11)], within(26)),
+            3 => ([within(11), within(11), within(11)], (1 << 28) + within(26)),
+            _ => ([0; 3].map(|_| within(14) & 0x3fff), within(14) & 0x3fff),
+        };
+    }
+    rows
+}
+
 /// [`check_place_kernel`]'s cases: the differences, the entries placed and the stops.
 fn place_check(n: usize) -> (usize, usize, usize) {
     let mut rnd = super::xorshift32(0x9e37_79b9_u32);
@@ -441,19 +461,7 @@ fn place_check(n: usize) -> (usize, usize, usize) {
     let mut want = [CachedVertex::EMPTY; 4];
     let mut rows = [[0; 3]; 6];
     for case in 0..24u32 {
-        // A value within ±2^bits.
-        let mut within = |bits: u32| (rnd() as i32) >> (31 - bits);
-        for (r, row) in rows.iter_mut().enumerate() {
-            let (c, t) = match r {
-                0 | 1 => ([within(14), within(14), within(14)], within(20)),
-                // z and w high sums: w about 2²⁸ (2⁴² in all), z a part of it.
-                2 => ([within(11), within(11), within(11)], within(27)),
-                3 if case % 4 == 3 => ([within(11), within(11), within(11)], within(26)),
-                3 => ([within(11), within(11), within(11)], (1 << 28) + within(26)),
-                // The low sums: coefficients and translation in [0, 2¹⁴).
-                _ => ([0; 3].map(|_| within(14) & 0x3fff), within(14) & 0x3fff),
-            };
-            let [c0, c1, c2] = c;
+        for (row, ([c0, c1, c2], t)) in rows.iter_mut().zip(random_rows(&mut rnd, case)) {
             *row = [
                 crate::num::pack_i16(c0 as i16, c1 as i16),
                 c2 as u32,

@@ -395,6 +395,39 @@ macro_rules! place_row {
     };
 }
 
+/// The slow mode's widening of a coordinate's value (the word at `sp + at`): shifted left
+/// by its L₁ (the word at `r7 + shift`) where |v| < 2^(31 − L₁), else the vertex refused
+/// (its four pushed words dropped, to 8); nothing for L₁ = 0. r0–r3 clobbered.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! place_widen {
+    ($shift:literal, $at:literal) => {
+        concat!(
+            "ldr r0, [r7, #",
+            $shift,
+            "]\n",
+            "cmp r0, #0\n",
+            "beq 9f\n",
+            "ldr r1, [sp, #",
+            $at,
+            "]\n",
+            "ldr r2, ={imax}\n",
+            "lsrs r2, r2, r0\n",
+            "adds r3, r1, r2\n",
+            "lsls r2, r2, #1\n",
+            "cmp r3, r2\n",
+            "bls 1f\n",
+            "add sp, #16\n",
+            "b 8f\n",
+            "1:\n",
+            "lsls r1, r1, r0\n",
+            "str r1, [sp, #",
+            $at,
+            "]\n",
+            "9:"
+        )
+    };
+}
+
 /// y's coordinate (the twin's `scaled` and `placed`): its operands at r7 (advanced
 /// past them, to x's), y's row value popped, r's halves in r0 (high) and r1 (low),
 /// kept; the coordinate written into the entry at r6, x's right shift left in r2.
@@ -785,38 +818,8 @@ core::arch::global_asm!(
     // y and x (at sp + 16 and 20) shifted left by their L₁ where |v| < 2^(31 − L₁),
     // else refused.
     "4:",
-    "ldr r0, [r7, #72]",
-    "cmp r0, #0",
-    "beq 9f",
-    "ldr r1, [sp, #16]",
-    "ldr r2, ={imax}",
-    "lsrs r2, r2, r0",
-    "adds r3, r1, r2",
-    "lsls r2, r2, #1",
-    "cmp r3, r2",
-    "bls 1f",
-    "add sp, #16",
-    "b 8f",
-    "1:",
-    "lsls r1, r1, r0",
-    "str r1, [sp, #16]",
-    "9:",
-    "ldr r0, [r7, #76]",
-    "cmp r0, #0",
-    "beq 9f",
-    "ldr r1, [sp, #20]",
-    "ldr r2, ={imax}",
-    "lsrs r2, r2, r0",
-    "adds r3, r1, r2",
-    "lsls r2, r2, #1",
-    "cmp r3, r2",
-    "bls 1f",
-    "add sp, #16",
-    "b 8f",
-    "1:",
-    "lsls r1, r1, r0",
-    "str r1, [sp, #20]",
-    "9:",
+    place_widen!("72", "16"),
+    place_widen!("76", "20"),
     // (wt − 1) >> (16 + sh) = 1 (wt = 2¹⁶⁺ˢʰ would give wn = 2³⁰), r5 = 16 + sh.
     "pop {{r0, r1, r2, r3}}",
     "asrs r4, r0, #14",
@@ -872,19 +875,10 @@ fn place_v6m_check(n: usize) -> (usize, usize, usize) {
     let mut want = [CachedVertex::EMPTY; 8];
     let mut rows = [[0; 4]; 6];
     for case in 0..24u32 {
-        // A value within ±2^bits (c₀, c₁ of x and y within ±16383).
-        let mut within = |bits: u32| (rnd() as i32) >> (31 - bits);
-        for (r, row) in rows.iter_mut().enumerate() {
-            let (c, t) = match r {
-                0 | 1 => ([within(14), within(14), within(14)], within(20)),
-                // z and w high sums: w about 2²⁸ (2⁴² in all), z a part of it.
-                2 => ([within(11), within(11), within(11)], within(27)),
-                3 if case % 4 == 3 => ([within(11), within(11), within(11)], within(26)),
-                3 => ([within(11), within(11), within(11)], (1 << 28) + within(26)),
-                // The low sums: coefficients and translation in [0, 2¹⁴).
-                _ => ([0; 3].map(|_| within(14) & 0x3fff), within(14) & 0x3fff),
-            };
-            let [c0, c1, c2] = c;
+        for (row, ([c0, c1, c2], t)) in rows
+            .iter_mut()
+            .zip(super::place::random_rows(&mut rnd, case))
+        {
             *row = [c0, c1, c2, t];
         }
         let half = match case % 4 {
