@@ -29,7 +29,6 @@ use crate::render::{
 use crate::shade::{Material, Shading};
 mod carry;
 use carry::ColorCarry;
-pub(crate) use carry::CARRY;
 
 use crate::{
     AfterBand, BandBuffers, Bands, ColorBuffer, DepthTarget, DrawError, Error, FrameStats,

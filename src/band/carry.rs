@@ -2,10 +2,7 @@
 //! so that they are not lit again, and where the fused band loop runs, their set-ups,
 //! so that they are not set up again.
 
-use crate::num::kernel::{BandCarry, KeptStates};
-
-/// How many colours [`ColorCarry`] holds; faces beyond it are lit again.
-pub(crate) const CARRY: usize = 64;
+use crate::num::kernel::{BandCarry, KeptStates, CARRY};
 
 /// The colours of the faces that reach into the band below, kept for it. That band
 /// walks them in the same order (the chain of the band above, in face order), so a

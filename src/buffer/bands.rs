@@ -4,8 +4,7 @@
 use embedded_graphics::{pixelcolor::PixelColor, prelude::DrawTarget};
 
 use super::{ColorBuffer, ZBuffer};
-use crate::band::CARRY;
-use crate::num::kernel::STATE_WORDS;
+use crate::num::kernel::{CARRY, STATE_WORDS};
 use crate::{Error, MAX_DIMENSION};
 
 /// Caller memory for banded drawing: a colour band, a depth band and (optionally) bins.

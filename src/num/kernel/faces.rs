@@ -482,6 +482,11 @@ pub(crate) struct BandCarry<'k, 's, C> {
 /// rows before any clip among them), as the band loop's `keep_state` saves them.
 pub(crate) const STATE_WORDS: usize = 21;
 
+/// How many faces a band carries to the next: their colours (the band loop's
+/// `ColorCarry`; faces beyond it are lit again) and, with a caller's scratch, their
+/// set-ups ([`KeptStates`]).
+pub(crate) const CARRY: usize = 64;
+
 /// The set-ups of a band's faces that reach the band below, kept for it by the fused
 /// band loop (ARMv7E-M): the band below resumes their rows where this band stops them
 /// rather than set them up again. Two halves of the caller's scratch, a slot of

@@ -471,8 +471,9 @@ fn all_placed(cache: &[CachedVertex]) -> bool {
 #[cfg(test)]
 std::thread_local! {
     /// Tests only: whether [`FacesX86::new`] refuses every draw (the renderer's own
-    /// loop then draws, the twin), and how many draws it took.
-    static TWIN: core::cell::Cell<(bool, usize)> = const { core::cell::Cell::new((false, 0)) };
+    /// loop then draws, the twin), and how many draws it took (`render::solid`'s test of
+    /// the fused loop).
+    pub(crate) static TWIN: core::cell::Cell<(bool, usize)> = const { core::cell::Cell::new((false, 0)) };
 }
 
 impl<C> FacesX86<'_, C> {
@@ -488,105 +489,5 @@ impl<C> FacesX86<'_, C> {
         });
         #[allow(unreachable_code)]
         false
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::TWIN;
-    use crate::camera::Camera;
-    use crate::math::{radians, Mat4, Vec3};
-    use crate::mesh::{compute_face_normals, Mesh};
-    use crate::shade::Shading;
-    use crate::{CachedVertex, Cull, Frame, FrameStats, RenderOptions, Renderer, Viewport};
-    use embedded_graphics::pixelcolor::{Bgr565, Rgb565, Rgb888};
-    use embedded_graphics::prelude::RgbColor;
-    use std::vec;
-    use std::vec::Vec;
-
-    /// One random mesh drawn into a frame of `C` with the fused loop and with the
-    /// renderer's own loop: colours, depths and counts.
-    fn both<C: crate::shade::DisplayColor + RgbColor>(
-        seed: u32,
-        shading: Shading,
-    ) -> [(Vec<C>, Vec<u16>, FrameStats); 2] {
-        let mut r = crate::num::kernel::xorshift32(seed);
-        let (w, h) = (96 + r() % 200, 64 + r() % 150);
-        let n = 4 + r() as usize % 400;
-        // Small triangles (corners about a centre) anywhere, across the screen's
-        // edges too, and some large (refused by the set-up) joining any corners; some
-        // meshes reach behind the camera (the loop then refuses the draw).
-        let spread = [8000, 16000, 32000][r() as usize % 3];
-        let size = [64, 400, 2000][r() as usize % 3];
-        let mut within = |s: i32| (r() % (2 * s as u32 + 1)) as i32 - s;
-        let positions: Vec<[i16; 3]> = (0..n)
-            .flat_map(|_| {
-                let c = [0; 3].map(|_| within(spread - size));
-                [0; 3].map(|_| [0, 1, 2].map(|k| (c[k] + within(size)) as i16))
-            })
-            .collect();
-        let faces: Vec<[u16; 3]> = (0..n)
-            .map(|k| {
-                if r().is_multiple_of(8) {
-                    [0; 3].map(|_| (r() as usize % (3 * n)) as u16)
-                } else {
-                    [3 * k, 3 * k + 1, 3 * k + 2].map(|i| i as u16)
-                }
-            })
-            .collect();
-        let material = Rgb888::new(r() as u8, r() as u8, r() as u8);
-        let plain = Mesh::triangles(&positions, 1.0 / 16384.0, &faces, material);
-        let mut normals = vec![[0i16; 3]; faces.len()];
-        compute_face_normals(&plain, &mut normals).unwrap();
-        // Now and then no normals (the loop refuses a lit draw).
-        let mesh = plain.with_normals((!r().is_multiple_of(5)).then_some(&normals[..]), None);
-        // Now and then a view wider than the frame: triangles across its right edge (the
-        // rows' columns clamped to the clip's).
-        let view = Viewport::new(w + [0, 0, 40][r() as usize % 3], h).unwrap();
-        let cam = Camera::look_at(Vec3::new(0.0, 0.0, 2.2), Vec3::new(0.0, 0.0, 0.0), Vec3::Y)
-            .unwrap()
-            .perspective(radians(60.0), 0.1, 10.0, view)
-            .unwrap();
-        let turn = (r() % 6283) as f32 / 1000.0;
-        let xf = cam.with_model(Mat4::rotation_y(turn) * Mat4::rotation_x(turn * 0.7));
-        let opts = RenderOptions {
-            shading,
-            cull: [Cull::Back, Cull::Back, Cull::Front, Cull::None][r() as usize % 4],
-            ..Default::default()
-        };
-        [false, true].map(|twin| {
-            TWIN.with(|t| t.set((twin, t.get().1)));
-            let len = (w * h) as usize;
-            let (mut px, mut depth) = (vec![C::BLACK; len], vec![u16::MAX; len]);
-            let mut cache = vec![CachedVertex::default(); positions.len()];
-            let mut frame = Frame::new(&mut px, &mut depth, w, h).unwrap();
-            let mut rd = Renderer::with_cache(&mesh, &xf, opts, &mut cache).unwrap();
-            rd.draw(&mut frame).unwrap();
-            let stats = rd.stats();
-            (px, depth, stats)
-        })
-    }
-
-    #[test]
-    fn the_fused_loop_draws_what_the_renderers_loop_draws() {
-        let mut drawn = 0;
-        for seed in 1..=400u32 {
-            let shading = [Shading::Lambert, Shading::Flat][seed as usize % 2];
-            let ([a, b], [p, q]) = if seed.is_multiple_of(3) {
-                let [a, b] = both::<Bgr565>(seed, shading);
-                ([a.2, b.2], [(a.0 == b.0), (a.1 == b.1)])
-            } else {
-                let [a, b] = both::<Rgb565>(seed, shading);
-                ([a.2, b.2], [(a.0 == b.0), (a.1 == b.1)])
-            };
-            assert!(p, "colours differ, seed {seed}");
-            assert!(q, "depths differ, seed {seed}");
-            assert_eq!(a, b, "counts differ, seed {seed}");
-            drawn += a.drawn;
-        }
-        assert!(drawn > 10_000);
-        // The loop took most draws (on x86-64).
-        let made = TWIN.with(|t| t.get().1);
-        assert!(!super::FACES_X86_KERNEL || made > 200, "{made}");
     }
 }

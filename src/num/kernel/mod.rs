@@ -82,7 +82,7 @@ pub(crate) use cull::{skip_culled, skip_culled_by, CullScan, ScanRegs, XyWord, C
 pub use faces::Raw565;
 pub(crate) use faces::{
     band_faces_less, faces_less, BandCarry, BandStop, FaceColor, FacesCounts, FacesStop,
-    KeptStates, FACES_KERNEL, STATE_WORDS,
+    KeptStates, CARRY, FACES_KERNEL, STATE_WORDS,
 };
 pub use faces::{check_band_carry_kernel, check_band_faces_kernel, check_faces_kernel};
 pub(crate) use faces_v6m::{band_faces_less_v6m, faces_less_v6m, FACES_V6M_KERNEL};
@@ -90,6 +90,8 @@ pub use faces_v6m::{check_band_faces_v6m_kernel, check_faces_v6m_kernel};
 #[cfg(zraster_x86_64)]
 pub(crate) use faces_x86::FacesX86;
 pub(crate) use faces_x86::FACES_X86_KERNEL;
+#[cfg(test)]
+pub(crate) use faces_x86::TWIN as FACES_X86_TWIN;
 pub use fill::check_fill_kernel;
 pub(crate) use fill::fill_as_u16;
 pub use light::check_light_kernel;
