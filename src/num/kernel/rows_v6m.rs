@@ -1,9 +1,10 @@
-//! The rows of a small flat-coloured triangle on ARMv6-M, both halves in one
-//! out-of-line loop: edges in the DDA form of [`EdgeWalk`](crate::raster::EdgeWalk)
-//! (there is no divide), the depth test `Less` with depth writes, a two-byte colour;
-//! and the triangle's set-up before them ([`small_walk_less_as_u16`]: sort, rows,
-//! edges by one unsigned division pair each, depth steps by a reciprocal), which joins
-//! the loop. Thumb-1 assembly beside its portable twins.
+//! A small flat-coloured triangle on ARMv6-M, the depth test `Less` with depth
+//! writes, a two-byte colour: set-up and rows in one call
+//! ([`small_walk_less_as_u16`]), which walks the triangle's bounding box by three
+//! integer edge functions (no sort, no halves, no division but the depth steps', by a
+//! reciprocal); and the rows of a triangle set up in Rust, both halves in one loop,
+//! edges in the DDA form of [`EdgeWalk`](crate::raster::EdgeWalk)
+//! ([`rows_walk_less_as_u16`]). Thumb-1 assembly beside its portable twins.
 #![allow(unsafe_code)]
 
 use super::rows::{as_u16, check_cases, check_place, next, twin_row, CHECK_W};
@@ -623,7 +624,8 @@ fn box_walk_setup(tri: [&ScreenVertex; 3], clip: &Clip) -> Result<BoxWalk, Small
     // The middle corner by y first (a rotation: the same orientation); the deltas
     // from it negated where the area is positive, so that it is negative: inside,
     // every edge function is ≥ 0.
-    let (y0, y1, y2) = (p0.y(), p1.y(), p2.y());
+    let word = |p: &ScreenVertex| (i64::from(p.y()) << 16) | i64::from(p.x() & 0xffff);
+    let (y0, y1, y2) = (word(p0), word(p1), word(p2));
     let middle = if y0 <= y1 {
         if y0 >= y2 {
             0
@@ -995,13 +997,13 @@ extern "C" {
     /// buffers (columns `px0 + cx0 .. px0 + cx1`) are inside them ([`RowsAt::check`]).
     fn zraster_rows_walk_v6m(r: *mut RowsWalk, z: u32, base: u32, n0: u32) -> u32;
 
-    /// The set-up of the small triangle of corners `p0`, `p1`, `p2` (vertex cache
-    /// entries: the depth, then x in the low half of a word and y in the high), in
-    /// block `s`
+    /// The small triangle of corners `p0`, `p1`, `p2` (vertex cache entries: the
+    /// depth, then x in the low half of a word and y in the high) drawn with block `s`
     /// (its rows' `color`, `delta`, `pitch` and `failed` set as
-    /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address), then
-    /// the rows of [`zraster_rows_walk_v6m`] (its frame and registers): the pixels
-    /// tested, or `u32::MAX` (nothing drawn) for a triangle it leaves to the Rust path.
+    /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address): its
+    /// bounding box walked by edge functions, as [`small_walk_portable`] does. The
+    /// pixels tested (the failed ones added to `failed`), or `u32::MAX` (nothing drawn)
+    /// for a triangle it leaves to the Rust path.
     ///
     /// # Safety
     ///
@@ -1027,20 +1029,23 @@ extern "C" {
 // are saved and restored as AAPCS wants; r0–r2 pushed and popped around the longer
 // rows' loop.
 //
-// SAFETY (of the set-up, for `small_walk_less_as_u16`): every row and column of the
-// clip lies inside both buffers (its caller's check). The set-up reads the three
-// corners and the block through r0–r3 and writes only the block and its own 48-byte
-// frame; the rows it hands the loop are start .. end with clip.y0 ≤ start and
-// end ≤ clip.y1 (none when start ≥ end: it returns before the loop), from the depth
-// address of row start − first_row ≥ 0, with columns cx = clip.x − px0 around local
-// column px0; and only when px0 ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1, which holds
-// every row's columns inside the clip's: on a row (centre yc between the ends of both
-// edges), each edge's column ⌈(x(yc) − 8)/16⌉ lies between ⌈(xmin − 8)/16⌉ ≥ px0 and
-// ⌈(xmax − 8)/16⌉ (x(yc) lies between the edge's ends): the loop's contract above. Its divisions have divisors > 0 (16·dy and
-// dy of an edge with rows, |area| ≠ 0) and quotients within the unrolled steps (an
-// edge's columns lie within the triangle's 512, its step below 2¹³). It saves r4–r11
-// and lr as the loop's prologue does, so the loop's epilogue returns for both; BL
-// inside it clobbers only lr, saved.
+// SAFETY (of the box walk, `zraster_small_walk_v6m`, for `small_walk_less_as_u16` and
+// `Buffers::walk_cached`): every row and column of the clip lies inside both buffers
+// (its callers' check). It reads the three corners and the block through r0–r3 and
+// writes only the block's `failed`, its own 72-byte frame and pixels. Its rows are
+// start .. end with clip.y0 ≤ start < end ≤ clip.y1 (none: it returns first), at
+// depth addresses zaddr + (row − first_row)·pitch + 2·column; it goes on only when
+// xmin >> 4 ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1. A pixel is read and written only
+// where all three edge functions are ≥ 0: the left side's (growing to the right) by
+// the walk to the span's start, which moves right only while one is negative, the
+// right side's (falling to the right) by the test before each pixel. Such a pixel is
+// covered, its centre inside the triangle, so its column lies in
+// ⌈(xmin − 8)/16⌉ .. ⌈(xmax − 8)/16⌉, inside the clip's. The walk to the span's start
+// ends by column ⌈(xmax − 8)/16⌉: the left side's functions are ≥ 0 right of the
+// triangle's left boundary on the row, a point of the triangle (x ≤ xmax). The
+// division's divisor is |area| > 0. It saves r4–r11 and lr as AAPCS wants; BL inside
+// it clobbers only lr, saved. A row's state lies above sp only between its POP and
+// PUSH, while it is dead (an exception's frame may overwrite it).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     rows_walk_section!(),
@@ -1218,14 +1223,14 @@ core::arch::global_asm!(
     // The bounding-box walk of a small triangle (see `zraster_small_walk_v6m`, and its
     // twin `box_walk_setup` and `box_walk_rows`). Frame: 72 bytes below the saved
     // registers. In the rows: [sp] the row's depth at the box's first column and its
-    // three edge functions there (long, then the other two), +16 their steps a row,
-    // +32 the row's depth address at the box's first column, +36 rows left, +40 lo
-    // (biased), +44 hi − lo, +48 bytes tested, +52 where the row's span starts, +56 the
-    // block, +60 the pitch; r8–r10 the edges' steps a column, r11 sx, r12 the colour,
-    // lr the colour's offset from the depth. In the set-up the same slots hold: [sp] the
-    // corners (middle one by y first), +12 X = cx − x0, +16 dx1, dx2, dy1, dy2 (from
-    // the middle corner; negated where the area was positive), +32 the first row, +48
-    // |area|, +52 Y = cy − y0, +60 the first corner given then sy, +64 the height then
+    // three edge functions there (long, e01, e20), +16 their steps a row, +36 the
+    // rows' end address, +40 lo (biased), +44 hi − lo, +48 the colour, +52 its offset
+    // from the depth, +56 the block, +60 the pitch; r8–r10 the edges' steps a column,
+    // r11 sx, r12 the row's depth address at the box's first column, lr the bytes
+    // tested. In the set-up the same slots hold: [sp] the corners (the middle one by y
+    // first), +12 X = cx − x0, +16 dx1, dx2, dy1, dy2 (from the middle corner; negated
+    // where the area was positive), +32 the first row, +36 the rows, +48 |area|, +52
+    // Y = cy − y0, +60 the first corner given then sy, +64 the height then
     // max(width, height) then the first row's depth, +68 cx (16·bx0 + 8, bx0 the box's
     // first column).
     ".balign 4",
@@ -1243,14 +1248,12 @@ core::arch::global_asm!(
     "sub sp, #72",
     "str r0, [sp, #56]",
     "str r1, [sp, #60]",
-    // The corners' y in r4–r6; the middle corner by y first (a rotation, which keeps
-    // the orientation), as `box_walk_setup`'s `middle`.
+    // The corners' x and y words in r4–r6 (y in the upper half); the middle corner by
+    // y first (a rotation, which keeps the orientation), the words compared whole as
+    // `box_walk_setup`'s `middle` (ties by x).
     "ldr r4, [r1, #4]",
-    "asrs r4, r4, #16",
     "ldr r5, [r2, #4]",
-    "asrs r5, r5, #16",
     "ldr r6, [r3, #4]",
-    "asrs r6, r6, #16",
     "cmp r4, r5",
     "bgt 1f",
     "cmp r4, r6",
@@ -1287,56 +1290,54 @@ core::arch::global_asm!(
     "4:",
     "mov r7, sp",
     "stm r7!, {{r1, r2, r3}}",
-    // dy1 in r5, dy2 in r6; the height |dy2 − dy1| below SMALL, else the general path;
-    // the least y in r1, the greatest in r2.
-    "subs r5, r5, r4",
-    "subs r6, r6, r4",
-    "movs r1, r5",
-    "subs r2, r6, r5",
-    "bge 5f",
-    "movs r1, r6",
-    "rsbs r2, r2, #0",
-    "5:",
-    "lsrs r3, r2, #13",
-    "bne .Lbw_refuse",
-    "str r2, [sp, #64]",
-    "adds r1, r1, r4",
-    "adds r2, r2, r1",
-    // Rows whose centres may be covered, inside the clip: start in r1, end in r2.
-    "adds r1, #7",
-    "asrs r1, r1, #4",
-    "adds r2, #7",
-    "asrs r2, r2, #4",
-    "ldr r3, [r0, #84]",
-    "cmp r1, r3",
-    "bge 6f",
-    "mov r1, r3",
-    "6:",
-    "ldr r3, [r0, #88]",
-    "cmp r2, r3",
-    "ble 7f",
-    "mov r2, r3",
-    "7:",
+    // x0 in r1, y0 in r4, dx1, dx2, dy1, dy2 in r2, r3, r5, r6 and to the frame.
+    "sxth r1, r4",
+    "sxth r2, r5",
     "subs r2, r2, r1",
-    "str r2, [sp, #36]",
-    "str r1, [sp, #32]",
-    "lsls r1, r1, #4",
-    "adds r1, #8",
-    "subs r1, r1, r4",
-    "str r1, [sp, #52]",
-    // Columns: x0 in r1, dx1 and dx2 in r2 and r3; the deltas to the frame.
-    "mov r7, sp",
-    "ldm r7!, {{r1, r2, r3}}",
-    "ldr r1, [r1, #4]",
-    "sxth r1, r1",
-    "ldr r2, [r2, #4]",
-    "sxth r2, r2",
-    "ldr r3, [r3, #4]",
-    "sxth r3, r3",
-    "subs r2, r2, r1",
+    "sxth r3, r6",
     "subs r3, r3, r1",
+    "asrs r4, r4, #16",
+    "asrs r5, r5, #16",
+    "subs r5, r5, r4",
+    "asrs r6, r6, #16",
+    "subs r6, r6, r4",
     "add r7, sp, #16",
     "stm r7!, {{r2, r3, r5, r6}}",
+    // The height |dy2 − dy1| (the middle corner lies between) below SMALL, else the
+    // general path; the least y in r5, the greatest in r7.
+    "subs r7, r6, r5",
+    "bge 5f",
+    "rsbs r7, r7, #0",
+    "movs r5, r6",
+    "5:",
+    "lsrs r6, r7, #13",
+    "bne .Lbw_refuse",
+    "str r7, [sp, #64]",
+    "adds r5, r5, r4",
+    "adds r7, r7, r5",
+    // Rows whose centres may be covered, inside the clip: start in r5, end in r7;
+    // Y = 16·start + 8 − y0 at [sp, #52], the rows in r7 and at [sp, #36].
+    "adds r5, #7",
+    "asrs r5, r5, #4",
+    "adds r7, #7",
+    "asrs r7, r7, #4",
+    "ldr r6, [r0, #84]",
+    "cmp r5, r6",
+    "bge 6f",
+    "mov r5, r6",
+    "6:",
+    "ldr r6, [r0, #88]",
+    "cmp r7, r6",
+    "ble 7f",
+    "mov r7, r6",
+    "7:",
+    "str r5, [sp, #32]",
+    "subs r7, r7, r5",
+    "str r7, [sp, #36]",
+    "lsls r5, r5, #4",
+    "adds r5, #8",
+    "subs r4, r5, r4",
+    "str r4, [sp, #52]",
     // The least and greatest of 0, dx1 and dx2 in r5 and r6: the width below SMALL,
     // else the general path; no rows, nothing.
     "movs r5, #0",
@@ -1358,9 +1359,8 @@ core::arch::global_asm!(
     "movs r6, r3",
     "4:",
     "subs r6, r6, r5",
-    "lsrs r7, r6, #13",
+    "lsrs r4, r6, #13",
     "bne .Lbw_refuse",
-    "ldr r7, [sp, #36]",
     "cmp r7, #0",
     "ble .Lbw_empty",
     // The larger extent, max(width, height), at [sp, #64] (for the depth's bound).
@@ -1581,10 +1581,9 @@ core::arch::global_asm!(
     // The edge functions at the first pixel centre (cx, cy), from the middle corner:
     // e01 = X·dy1 − Y·dx1 (corner 0 to 1) in r0, e20 = Y·dx2 − X·dy2 (2 to 0) in r7 and
     // the long edge's e12 = |area| − e01 − e20 in r1.
-    "ldr r1, [sp, #12]",
     "ldr r4, [sp, #52]",
-    "add r7, sp, #16",
-    "ldm r7!, {{r2, r3, r5, r6}}",
+    "add r7, sp, #12",
+    "ldm r7!, {{r1, r2, r3, r5, r6}}",
     "movs r0, r5",
     "muls r0, r1",
     "movs r7, r2",
@@ -1694,6 +1693,7 @@ core::arch::global_asm!(
     // line).
     "rsbs r4, r5, #0",
     "add lr, r4",
+    "ldr r1, [sp, #48]",
     "ldr r4, [sp, #40]",
     "subs r6, r0, r4",
     "ldr r4, [sp, #44]",
@@ -1705,8 +1705,7 @@ core::arch::global_asm!(
     "cmp r6, r4",
     "bhs 18f",
     "strh r6, [r5]",
-    "ldr r6, [sp, #48]",
-    "strh r6, [r5, r7]",
+    "strh r1, [r5, r7]",
     "14:",
     "add r0, r11",
     "adds r5, #2",
@@ -1769,6 +1768,7 @@ core::arch::global_asm!(
     "blt 26f",
     "rsbs r4, r5, #0",
     "add lr, r4",
+    "ldr r2, [sp, #48]",
     "ldr r4, [sp, #40]",
     "subs r6, r0, r4",
     "ldr r4, [sp, #44]",
@@ -1780,8 +1780,7 @@ core::arch::global_asm!(
     "cmp r6, r4",
     "bhs 28f",
     "strh r6, [r5]",
-    "ldr r6, [sp, #48]",
-    "strh r6, [r5, r7]",
+    "strh r2, [r5, r7]",
     "24:",
     "add r0, r11",
     "adds r5, #2",
