@@ -1017,6 +1017,52 @@ extern "C" {
     ) -> u32;
 }
 
+/// `zraster_small_walk_v6m`'s quotient, inline (twice): r7 = ⌊r5/r4⌋ (signed r5,
+/// 0 < r4 < 2¹⁶) given r6 = ⌊(2³² − 1)/r4⌋, as `num::armv6m::divrem_by_recip` of |r5|
+/// flipped (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products, then
+/// fixed up by the remainder; r0–r3, r5 and r12 scratch.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! bw_quot {
+    () => {
+        concat!(
+            "asrs r0, r5, #31\n",
+            "mov r12, r0\n",
+            "eors r5, r0\n",
+            "lsrs r0, r6, #16\n",
+            "lsrs r1, r5, #16\n",
+            "uxth r2, r6\n",
+            "uxth r3, r5\n",
+            "movs r7, r0\n",
+            "muls r7, r1\n",
+            "muls r0, r3\n",
+            "muls r1, r2\n",
+            "muls r2, r3\n",
+            "adds r0, r0, r1\n",
+            "bcc 1f\n",
+            "movs r1, #1\n",
+            "lsls r1, r1, #16\n",
+            "adds r7, r7, r1\n",
+            "1:\n",
+            "lsls r1, r0, #16\n",
+            "lsrs r0, r0, #16\n",
+            "adds r2, r2, r1\n",
+            "adcs r7, r0\n",
+            "movs r0, r7\n",
+            "muls r0, r4\n",
+            "subs r5, r5, r0\n",
+            "2:\n",
+            "cmp r5, r4\n",
+            "blo 3f\n",
+            "adds r7, #1\n",
+            "subs r5, r5, r4\n",
+            "b 2b\n",
+            "3:\n",
+            "mov r0, r12\n",
+            "eors r7, r0",
+        )
+    };
+}
+
 // SAFETY (of the loop, for its callers above): rows row0 .. row0 + n0 + n1 of width
 // `width` lie inside both buffers, columns px0 + cx0 .. px0 + cx1 inside 0..width,
 // and every row's columns x .. x' (the left and right edges' columns, when x < x')
@@ -1033,18 +1079,17 @@ extern "C" {
 // `Buffers::walk_cached`): every row and column of the clip lies inside both buffers
 // (its callers' check). It reads the three corners and the block through r0–r3 and
 // writes only the block's `failed`, its own 72-byte frame and pixels. Its rows are
-// start .. end with clip.y0 ≤ start < end ≤ clip.y1 (none: it returns first), at
-// depth addresses zaddr + (row − first_row)·pitch + 2·column; it goes on only when
-// xmin >> 4 ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1. A pixel is read and written only
-// where all three edge functions are ≥ 0: the left side's (growing to the right) by
-// the walk to the span's start, which moves right only while one is negative, the
-// right side's (falling to the right) by the test before each pixel. Such a pixel is
-// covered, its centre inside the triangle, so its column lies in
-// ⌈(xmin − 8)/16⌉ .. ⌈(xmax − 8)/16⌉, inside the clip's. The walk to the span's start
-// ends by column ⌈(xmax − 8)/16⌉: the left side's functions are ≥ 0 right of the
-// triangle's left boundary on the row, a point of the triangle (x ≤ xmax). The
-// division's divisor is |area| > 0. It saves r4–r11 and lr as AAPCS wants; BL inside
-// it clobbers only lr, saved. A row's state lies above sp only between its POP and
+// start .. end with clip.y0 ≤ start < end ≤ clip.y1 (none: it returns first), at depth
+// addresses zaddr + (row − first_row)·pitch + 2·column; it goes on only when xmin >> 4
+// ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1. A pixel is read and written only where all
+// three edge functions are ≥ 0: the left side's (growing to the right) by the walk to
+// the span's start, which moves right only while one is negative, the right side's
+// (falling to the right) by the test before each pixel. Such a pixel is covered, its
+// centre inside the triangle, so its column lies in ⌈(xmin − 8)/16⌉ .. ⌈(xmax − 8)/16⌉,
+// inside the clip's. The walk to the span's start ends by column ⌈(xmax − 8)/16⌉: the
+// left side's functions are ≥ 0 right of the triangle's left boundary on the row, a
+// point of the triangle (x ≤ xmax). The division's divisor is |area| > 0. It saves
+// r4–r11 and lr as AAPCS wants. A row's state lies above sp only between its POP and
 // PUSH, while it is dead (an exception's frame may overwrite it).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
@@ -1547,10 +1592,10 @@ core::arch::global_asm!(
     "lsrs r0, r0, #16",
     "adds r6, r6, r0",
     "ldr r5, [sp]",
-    "bl .Lbw_quot",
+    bw_quot!(),
     "str r7, [sp]",
     "ldr r5, [sp, #4]",
-    "bl .Lbw_quot",
+    bw_quot!(),
     // q in r0, r in r1: sx = 16q in r11, sy = 16r at [sp, #60] (after the first corner
     // given is read from there).
     "movs r1, r7",
@@ -1634,9 +1679,9 @@ core::arch::global_asm!(
     "ldr r1, [sp, #32]",
     "ldr r2, [r0, #100]",
     "subs r1, r1, r2",
-    "ldr r2, [r0, #36]",
-    "str r2, [sp, #60]",
-    "muls r1, r2",
+    "ldr r3, [r0, #36]",
+    "str r3, [sp, #60]",
+    "muls r1, r3",
     "ldr r2, [r0, #104]",
     "adds r1, r1, r2",
     "ldr r2, [sp, #68]",
@@ -1645,7 +1690,6 @@ core::arch::global_asm!(
     "adds r1, r1, r2",
     "mov r12, r1",
     "ldr r2, [sp, #36]",
-    "ldr r3, [sp, #60]",
     "muls r2, r3",
     "adds r2, r2, r1",
     "str r2, [sp, #36]",
@@ -1811,46 +1855,6 @@ core::arch::global_asm!(
     "adds r4, #1",
     "str r4, [r6, #28]",
     "b 24b",
-    // r7 = ⌊r5/r4⌋ (signed r5, 0 < r4 < 2¹⁶) given r6 = ⌊(2³² − 1)/r4⌋, as
-    // `num::armv6m::divrem_by_recip` of |r5| flipped (⌊n/d⌋ = !⌊!n/d⌋); r0–r3, r5 and
-    // r12 scratch.
-    ".Lbw_quot:",
-    "asrs r0, r5, #31",
-    "mov r12, r0",
-    "eors r5, r0",
-    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products.
-    "lsrs r0, r6, #16",
-    "lsrs r1, r5, #16",
-    "uxth r2, r6",
-    "uxth r3, r5",
-    "movs r7, r0",
-    "muls r7, r1",
-    "muls r0, r3",
-    "muls r1, r2",
-    "muls r2, r3",
-    "adds r0, r0, r1",
-    "bcc 1f",
-    "movs r1, #1",
-    "lsls r1, r1, #16",
-    "adds r7, r7, r1",
-    "1:",
-    "lsls r1, r0, #16",
-    "lsrs r0, r0, #16",
-    "adds r2, r2, r1",
-    "adcs r7, r0",
-    "movs r0, r7",
-    "muls r0, r4",
-    "subs r5, r5, r0",
-    "2:",
-    "cmp r5, r4",
-    "blo 3f",
-    "adds r7, #1",
-    "subs r5, r5, r4",
-    "b 2b",
-    "3:",
-    "mov r0, r12",
-    "eors r7, r0",
-    "bx lr",
     ".balign 4",
     ".Lbw_lz8:",
     ".word {lz8}",
