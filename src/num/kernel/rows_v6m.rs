@@ -947,12 +947,13 @@ fn column_from_step((y, x): (i32, i32), (step, rem): (i32, i32), dy: i32) -> (i3
     (u + k, (k * d - w) as u32)
 }
 
-/// The section of [`rows_walk_less_u16`]'s loop: RAM under `zraster_ram_code` (as the
-/// other loops' `.data.zraster`), else its own text section.
+/// The section of [`rows_walk_less_u16`]'s loop: RAM under `zraster_ram_code` (beside
+/// the other loops' `.data.zraster`), else text; its own either way, so that a firmware
+/// which never calls it (the box walk draws its small triangles) drops it.
 #[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
 macro_rules! rows_walk_section {
     () => {
-        ".pushsection .data.zraster,\"awx\",%progbits"
+        ".pushsection .data.zraster_rows_walk_v6m,\"awx\",%progbits"
     };
 }
 #[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
@@ -963,12 +964,12 @@ macro_rules! rows_walk_section {
 }
 
 /// The section of `zraster_small_walk_v6m` (the set-up and rows, run once a
-/// triangle): RAM under `zraster_ram_code`, as the rows loop, else its own text
-/// section (the rows loop's may then go where nothing calls it).
+/// triangle): RAM under `zraster_ram_code` (as the other loops), else its own text
+/// section.
 #[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
 macro_rules! small_walk_section {
     () => {
-        rows_walk_section!()
+        ".pushsection .data.zraster,\"awx\",%progbits"
     };
 }
 #[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
@@ -977,6 +978,7 @@ macro_rules! small_walk_section {
         ".pushsection .text.zraster_small_walk_v6m,\"ax\",%progbits"
     };
 }
+
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
     /// [`rows_walk_less_u16`]'s loop on ARMv6-M, a whole function in `global_asm!`
