@@ -575,10 +575,11 @@ fn small_walk_dda(
 /// horizontal edge bounds only the rows, which the box's rows already do).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct BoxWalk {
-    /// The box's rows (screen) and first column.
+    /// The box's rows (screen) and columns `bx0..bx1`.
     start: i32,
     end: i32,
     bx0: i32,
+    bx1: i32,
     /// Depth at the first row's column `bx0`, its steps a column and a row, the clamp.
     z: u32,
     sx: u32,
@@ -698,6 +699,7 @@ fn box_walk_setup(tri: [&ScreenVertex; 3], clip: &Clip) -> Result<BoxWalk, Small
         start,
         end,
         bx0,
+        bx1: (xmax + 7) >> 4,
         z,
         sx: q << 4,
         sy: r << 4,
@@ -717,8 +719,9 @@ fn box_walk_setup(tri: [&ScreenVertex; 3], clip: &Clip) -> Result<BoxWalk, Small
 /// The rows of `w` as the assembly walks them: each row from the box's first column
 /// until the edges on the left side are all ≥ 0, then pixels while those on the right
 /// are (the span is convex); the first pixel's depth clamped. Pixels outside the
-/// buffers are skipped; a walk that would leave the box stops (it never does: the
-/// left side's edges are ≥ 0 by the box's last column).
+/// buffers are skipped; a walk that would leave the box stops (it never does, which
+/// the tests check: the left side's edges are ≥ 0 by the box's last column, and a
+/// pixel the right side's take is covered).
 fn box_walk_rows(
     w: &BoxWalk,
     first_row: i32,
@@ -742,14 +745,25 @@ fn box_walk_rows(
     for row in w.start..w.end {
         let base = (row.wrapping_sub(first_row) as usize).wrapping_mul(width);
         let (mut x, mut acc, mut f) = (w.bx0, zrow, e);
-        while !left(&f) && x < w.bx0 + SMALL {
+        // The walk to the span's start ends by the box's last column (the assembly
+        // relies on it: it has no bound); the tests check it.
+        while !left(&f) {
+            debug_assert!(x < w.bx1, "{w:?}");
+            if x >= w.bx1 {
+                break;
+            }
             step(&mut f, &w.ax);
             (x, acc) = (x + 1, acc.wrapping_add(w.sx));
         }
         if right(&f) {
             acc = acc.max(w.lo).min(w.hi);
         }
-        while right(&f) && x < w.bx0 + SMALL {
+        while right(&f) {
+            // Only covered pixels, inside the box (the tests check it).
+            debug_assert!(left(&f) && x < w.bx1, "{w:?}");
+            if x >= w.bx1 {
+                break;
+            }
             let i = base.wrapping_add(x as usize);
             if let (Some(zp), Some(cp)) = (z.get_mut(i), c.get_mut(i)) {
                 let d = (acc >> 16) as u16;
@@ -2158,7 +2172,7 @@ mod tests {
     /// what it refuses): of random triangles up to 10 pixels across, of depths a few
     /// units apart, all but the flat ones.
     #[test]
-    fn small_walk_setup_takes_the_usual_triangle() {
+    fn box_walk_takes_the_usual_triangle() {
         let mut seed = 0x1234_5678;
         let clip = Clip {
             x0: 0,
@@ -2177,7 +2191,7 @@ mod tests {
                 ScreenVertex::new(x + 100, y + 100, z).unwrap_or(ScreenVertex::ORIGIN)
             };
             let tri = [vertex(), vertex(), vertex()];
-            if small_walk_setup(tri.each_ref(), &clip, 0, 48).is_ok() {
+            if box_walk_setup(tri.each_ref(), &clip).is_ok() {
                 taken += 1;
             }
         }
