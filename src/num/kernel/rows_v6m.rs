@@ -1737,8 +1737,8 @@ core::arch::global_asm!(
     "blt .Lbw_rowR",
     // The rows with the long edge on the left. A row: its state and the next one's
     // by POP and PUSH (r0 the depth, r1 the long edge, r2 and r3 the others; r5 the
-    // depth address, r7 the colour's offset); from the box's first column while the
-    // long edge is negative, then pixels while the other two are ≥ 0.
+    // depth address); from the box's first column while the long edge is negative,
+    // then pixels while the other two are ≥ 0 (the colour in r1, its offset in r7).
     ".Lbw_rowL:",
     "pop {{r0, r1, r2, r3}}",
     "mov r7, sp",
@@ -1751,7 +1751,6 @@ core::arch::global_asm!(
     "mov r5, r12",
     "ldr r4, [sp, #60]",
     "add r12, r4",
-    "ldr r7, [sp, #52]",
     "cmp r1, #0",
     "bge 12f",
     "11:",
@@ -1771,6 +1770,7 @@ core::arch::global_asm!(
     "rsbs r4, r5, #0",
     "add lr, r4",
     "ldr r1, [sp, #48]",
+    "ldr r7, [sp, #52]",
     "ldr r4, [sp, #40]",
     "subs r6, r0, r4",
     "ldr r4, [sp, #44]",
@@ -1827,7 +1827,6 @@ core::arch::global_asm!(
     "mov r5, r12",
     "ldr r4, [sp, #60]",
     "add r12, r4",
-    "ldr r7, [sp, #52]",
     "movs r4, r2",
     "orrs r4, r3",
     "bpl 22f",
@@ -1846,6 +1845,7 @@ core::arch::global_asm!(
     "rsbs r4, r5, #0",
     "add lr, r4",
     "ldr r2, [sp, #48]",
+    "ldr r7, [sp, #52]",
     "ldr r4, [sp, #40]",
     "subs r6, r0, r4",
     "ldr r4, [sp, #44]",
