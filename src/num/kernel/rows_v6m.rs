@@ -245,22 +245,66 @@ pub(crate) fn rows_walk_less_portable(
     (tested, failed)
 }
 
-/// [`small_walk_less_as_u16`]'s block: the rows' block, then the clip (rows `y0..y1`,
-/// columns `x0..x1`), the buffers' first row and the depth buffer's address.
+/// [`small_walk_less_as_u16`]'s block, as the assembly reads it (byte offsets in the
+/// comments; `color` and `failed` where `faces_v6m`'s loops write and read them): the
+/// depth address of screen row 0's column 0 (wrapping: `zaddr − first_row·pitch`),
+/// the bytes a row, the clip (rows `y0..y1`, columns `x0..x1`), the colour, its
+/// address's offset from the depth's, and the failed pixels' count.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 struct SmallWalk {
-    rows: RowsWalk, // 0
-    clip: [i32; 4], // 84: y0, y1, x0, x1
-    first_row: i32, // 100
-    zaddr: u32,     // 104
+    base: u32,   // 0
+    pitch: u32,  // 4
+    y0: i32,     // 8
+    color: u32,  // 12
+    delta: u32,  // 16: colour address − depth address
+    y1: i32,     // 20
+    x0: i32,     // 24
+    failed: u32, // 28
+    x1: i32,     // 32
+}
+
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+impl SmallWalk {
+    /// Writes the fields that stay the same for buffers (the depth at `zaddr`, the
+    /// colour `delta` bytes on, rows of `width` from screen row `first_row`) drawn
+    /// inside `clip`, through a pointer to a block that may be uninitialised.
+    ///
+    /// # Safety
+    ///
+    /// `p` points to a block, valid for writes.
+    #[inline(always)]
+    unsafe fn write_buffers(
+        p: *mut SmallWalk,
+        zaddr: u32,
+        delta: u32,
+        width: usize,
+        first_row: i32,
+        clip: Clip,
+    ) {
+        let pitch = (width as u32).wrapping_mul(2);
+        // SAFETY: writes to fields of `*p` (the caller's contract), through the
+        // pointer (no reference to uninitialised memory is made).
+        unsafe {
+            (&raw mut (*p).base).write(zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch)));
+            (&raw mut (*p).pitch).write(pitch);
+            (&raw mut (*p).delta).write(delta);
+            (&raw mut (*p).y0).write(clip.y0);
+            (&raw mut (*p).y1).write(clip.y1);
+            (&raw mut (*p).x0).write(clip.x0);
+            (&raw mut (*p).x1).write(clip.x1);
+        }
+    }
 }
 
 const _: () = {
     use core::mem::{offset_of, size_of};
-    assert!(offset_of!(SmallWalk, clip) == 84 && offset_of!(SmallWalk, first_row) == 100);
-    assert!(offset_of!(SmallWalk, zaddr) == 104 && size_of::<SmallWalk>() == 108);
+    assert!(offset_of!(SmallWalk, pitch) == 4 && offset_of!(SmallWalk, y0) == 8);
+    assert!(offset_of!(SmallWalk, color) == 12 && offset_of!(SmallWalk, delta) == 16);
+    assert!(offset_of!(SmallWalk, y1) == 20 && offset_of!(SmallWalk, x0) == 24);
+    assert!(offset_of!(SmallWalk, failed) == 28 && offset_of!(SmallWalk, x1) == 32);
+    assert!(size_of::<SmallWalk>() == 36);
     assert!(SMALL == 8192 && DEPTH_BIAS == 32768);
     // The corners as the cache holds them: the depth, then x (low half) and y.
     assert!(offset_of!(CachedVertex, z) == 0 && offset_of!(CachedVertex, xy) == 4);
@@ -344,18 +388,15 @@ pub(crate) fn small_walk_cached_as_u16<C: Copy>(
         // inside the clip; its comment says what it touches. `failed` is written
         // here, and the assembly only adds to it.
         unsafe {
-            (&raw mut (*p).rows.color).write(u32::from(bits));
-            (&raw mut (*p).rows.delta).write((words.as_mut_ptr() as u32).wrapping_sub(zaddr));
-            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
-            (&raw mut (*p).rows.failed).write(0);
-            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
-            (&raw mut (*p).first_row).write(first_row);
-            (&raw mut (*p).zaddr).write(zaddr);
+            (&raw mut (*p).color).write(u32::from(bits));
+            (&raw mut (*p).failed).write(0);
+            let delta = (words.as_mut_ptr() as u32).wrapping_sub(zaddr);
+            SmallWalk::write_buffers(p, zaddr, delta, width, first_row, clip);
             let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
             if tested == u32::MAX {
                 SmallDone::General
             } else {
-                SmallDone::Drawn(tested, (&raw const (*p).rows.failed).read())
+                SmallDone::Drawn(tested, (&raw const (*p).failed).read())
             }
         }
     }
@@ -485,18 +526,14 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
         // SAFETY: writes to fields of the block, through a pointer to it (no reference
         // to uninitialised memory is made).
         unsafe {
-            (&raw mut (*p).rows.delta).write(caddr.wrapping_sub(zaddr));
-            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
-            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
-            (&raw mut (*p).first_row).write(first_row);
-            (&raw mut (*p).zaddr).write(zaddr);
+            SmallWalk::write_buffers(p, zaddr, caddr.wrapping_sub(zaddr), width, first_row, clip);
         }
         self.walk = true;
     }
 
     /// The set-up block's address where the assembly takes these buffers (its
     /// per-buffer fields written by [`Buffers::start`]), for the ARMv6-M face loop
-    /// (`faces_v6m`), which writes its `rows.color` and `rows.failed` and calls
+    /// (`faces_v6m`), which writes its `color` and `failed` and calls
     /// `zraster_small_walk_v6m` with it as [`walk_cached`](Buffers::walk_cached) does.
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     #[inline(always)]
@@ -526,13 +563,13 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
             // `failed` is written here, and the assembly only adds to it.
             unsafe {
                 let bits = core::mem::transmute_copy::<C, u16>(&color);
-                (&raw mut (*p).rows.color).write(u32::from(bits));
-                (&raw mut (*p).rows.failed).write(0);
+                (&raw mut (*p).color).write(u32::from(bits));
+                (&raw mut (*p).failed).write(0);
                 let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
                 if tested == u32::MAX {
                     SmallDone::General
                 } else {
-                    SmallDone::Drawn(tested, (&raw const (*p).rows.failed).read())
+                    SmallDone::Drawn(tested, (&raw const (*p).failed).read())
                 }
             }
         }
@@ -1015,9 +1052,9 @@ extern "C" {
 
     /// The small triangle of corners `p0`, `p1`, `p2` (vertex cache entries: the
     /// depth, then x in the low half of a word and y in the high) drawn with block `s`
-    /// (its rows' `color`, `delta`, `pitch` and `failed` set as
-    /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address): its
-    /// bounding box walked by edge functions, as [`small_walk_portable`] does. The
+    /// (every field written: the buffers' by [`SmallWalk::write_buffers`], `color` and
+    /// `failed`): its bounding box walked by edge functions, as
+    /// [`small_walk_portable`] does. The
     /// pixels tested (the failed ones added to `failed`), or `u32::MAX` (nothing drawn)
     /// for a triangle it leaves to the Rust path.
     ///
@@ -1399,12 +1436,12 @@ core::arch::global_asm!(
     "asrs r5, r5, #4",
     "adds r7, #7",
     "asrs r7, r7, #4",
-    "ldr r6, [r0, #84]",
+    "ldr r6, [r0, #8]",
     "cmp r5, r6",
     "bge 6f",
     "mov r5, r6",
     "6:",
-    "ldr r6, [r0, #88]",
+    "ldr r6, [r0, #20]",
     "cmp r7, r6",
     "ble 7f",
     "mov r7, r6",
@@ -1452,12 +1489,12 @@ core::arch::global_asm!(
     "adds r5, r5, r1",
     "adds r6, r6, r5",
     "asrs r7, r5, #4",
-    "ldr r3, [r0, #92]",
+    "ldr r3, [r0, #24]",
     "cmp r7, r3",
     "blt .Lbw_refuse",
     "adds r6, #7",
     "asrs r6, r6, #4",
-    "ldr r3, [r0, #96]",
+    "ldr r3, [r0, #32]",
     "cmp r6, r3",
     "bgt .Lbw_refuse",
     // The box's first column bx0 = ⌈(xmin − 8)/16⌉: cx = 16·bx0 + 8, X = cx − x0.
@@ -1705,17 +1742,15 @@ core::arch::global_asm!(
     "lsls r7, r3, #4",
     "ldr r4, [sp, #60]",
     "stm r0!, {{r4, r5, r6, r7}}",
-    // The first row's depth address at column bx0: zaddr + (start − first_row)·pitch
-    // + 2·bx0 (2·bx0 = cx/8 − 1); the pitch at [sp, #60], nothing tested yet, the
-    // colour and its offset.
+    // The first row's depth address at column bx0: base + start·pitch + 2·bx0
+    // (2·bx0 = cx/8 − 1); the pitch at [sp, #60], nothing tested yet, the colour and
+    // its offset.
     "ldr r0, [sp, #56]",
     "ldr r1, [sp, #32]",
-    "ldr r2, [r0, #100]",
-    "subs r1, r1, r2",
-    "ldr r3, [r0, #36]",
+    "ldr r3, [r0, #4]",
     "str r3, [sp, #60]",
     "muls r1, r3",
-    "ldr r2, [r0, #104]",
+    "ldr r2, [r0]",
     "adds r1, r1, r2",
     "ldr r2, [sp, #68]",
     "asrs r2, r2, #3",
