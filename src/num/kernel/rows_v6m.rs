@@ -841,10 +841,11 @@ pub(crate) fn small_walk_portable(
     }
 }
 
-/// The set-up of [`small_walk_less_as_u16`] in the assembly's order: the rows' block
-/// and where they start, or what to do instead. What `fill::small`'s ARMv6-M path
-/// works out (`by_rows`, `small_steps_q` by `steps_narrow`, `small_origin`,
-/// `EdgeWalk::new_small`), each edge's two divisions unsigned.
+/// The DDA walk's set-up (the set-up of [`small_walk_less_as_u16`] before the box
+/// walk, kept as the tests' reference): the rows' block and where they start, or what
+/// to do instead. What `fill::small`'s ARMv6-M path works out (`by_rows`,
+/// `small_steps_q` by `steps_narrow`, `small_origin`, `EdgeWalk::new_small`), each
+/// edge's two divisions unsigned.
 #[cfg(test)]
 fn small_walk_setup(
     tri: [&ScreenVertex; 3],
@@ -951,8 +952,7 @@ fn small_walk_setup(
 /// [`small_walk_setup`]'s edge from corner `v` by (`dx`, `dy` > 0) at row `py`
 /// (`k` = 16·px0 + 8): `t = (16py + 8 − y)·dx + (x − k)·dy`, `x = ⌈t/16dy⌉` and
 /// `err = x·16dy − t`, `step = ⌊dx/dy⌋` and `dx − step·dy`, each pair by one unsigned
-/// division (⌊n/d⌋ = !⌊!n/d⌋ for n < 0). The assembly finds `x` and `err` from the
-/// step when `16py + 8 − y ≤ 16` (`column_from_step`, in the tests).
+/// division (⌊n/d⌋ = !⌊!n/d⌋ for n < 0).
 #[cfg(test)]
 fn setup_edge(v: &ScreenVertex, py: i32, (dx, dy): (i32, i32), k: i32) -> WalkEdge {
     let t = (16 * py + 8 - v.y()) * dx + (v.x() - k) * dy;
@@ -976,26 +976,6 @@ fn setup_edge(v: &ScreenVertex, py: i32, (dx, dy): (i32, i32), k: i32) -> WalkEd
         step: ((step as u32) << 16).wrapping_sub(rem),
         fix: (1 << 16) + dyu,
     }
-}
-
-/// An edge's first column and `err` as the assembly finds them from its step when the
-/// row is near its top corner (`0 ≤ y ≤ 16`, `y` = 16py + 8 − the corner's y, `x` its
-/// column offset, `step`, `rem` = ⌊dx/dy⌋ and its remainder): `N = x + y·step = 16u + v`
-/// and `t = dy·N + y·rem`, so `t/16dy = u + W/16dy` with `W = v·dy + y·rem < 2·16dy`, and
-/// `⌈t/16dy⌉ = u + ⌈W/16dy⌉` by two compares. The tests check it against the division.
-#[cfg(test)]
-fn column_from_step((y, x): (i32, i32), (step, rem): (i32, i32), dy: i32) -> (i32, u32) {
-    let n = x + y * step;
-    let (u, v) = (n >> 4, n & 15);
-    let (w, d) = (v * dy + y * rem, 16 * dy);
-    let k = if w == 0 {
-        0
-    } else if w <= d {
-        1
-    } else {
-        2
-    };
-    (u + k, (k * d - w) as u32)
 }
 
 /// The section of [`rows_walk_less_u16`]'s loop: RAM under `zraster_ram_code` (beside
@@ -2167,28 +2147,6 @@ mod tests {
             drawn > 100_000 && pixels > 150_000,
             "{drawn} drawn, {pixels} pixels"
         );
-    }
-
-    /// `column_from_step` gives `setup_edge`'s first column and `err` for every row
-    /// near the corner (its offset 0 to 16), on random small edges.
-    #[test]
-    fn column_from_step_matches_the_division() {
-        let mut seed = 0x0dd_ba11;
-        for _ in 0..200_000 {
-            let dy = 1 + (next(&mut seed) % 8191) as i32;
-            let dx = (next(&mut seed) % 16383) as i32 - 8191;
-            let (y, x) = (
-                (next(&mut seed) % 17) as i32,
-                (next(&mut seed) % 8200) as i32 - 8,
-            );
-            // The corner at (x + 8, 8 − y) from the origin column 0 (k = 8), row 0.
-            let corner = ScreenVertex::new(x + 8, 8 - y, 0).unwrap_or(ScreenVertex::ORIGIN);
-            let e = setup_edge(&corner, 0, (dx, dy), 8);
-            let (step, rem) = (dx.div_euclid(dy), dx.rem_euclid(dy));
-            let (col, err) = column_from_step((y, x), (step, rem), dy);
-            let at = ((col as u32) << 16).wrapping_add(err >> 4);
-            assert_eq!(at, e.at, "dx {dx} dy {dy} y {y} x {x}");
-        }
     }
 
     /// What the set-up hands the rows loop keeps every row's columns inside the clip's
