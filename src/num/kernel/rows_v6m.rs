@@ -1306,10 +1306,10 @@ core::arch::global_asm!(
     // from the depth, +56 the block, +60 the pitch; r8–r10 the edges' steps a column,
     // r11 sx, r12 the row's depth address at the box's first column, lr the bytes
     // tested. In the set-up the same slots hold: [sp] the corners (the middle one by y
-    // first), +12 X = cx − x0, +16 dx1, dx2, dy1, dy2 (from the middle corner; negated
-    // where the area was positive), +32 the first row, +36 the rows, +48 |area|, +52
-    // Y = cy − y0, +60 the first corner given then sy, +64 the height then
-    // max(width, height) then the first row's depth, +68 cx (16·bx0 + 8, bx0 the box's
+    // first) then the depth steps' numerators, +12 X = cx − x0, +16 dx1, dx2, dy1, dy2
+    // (from the middle corner; negated where the area was positive), +32 the first
+    // row, +36 the rows, +48 |area|, +52 Y = cy − y0, +60 the first corner given then
+    // sy, +64 the height then max(width, height), +68 cx (16·bx0 + 8, bx0 the box's
     // first column).
     ".balign 4",
     ".global zraster_small_walk_v6m",
@@ -1656,7 +1656,7 @@ core::arch::global_asm!(
     "ldr r2, [sp, #60]",
     "str r3, [sp, #60]",
     // The first row's depth at the box's first column, from the first corner given:
-    // z + DEPTH_BIAS + q·(cx − x) + r·(cy − y), at [sp, #64].
+    // z + DEPTH_BIAS + q·(cx − x) + r·(cy − y), at [sp] (the row state's first word).
     "ldm r2!, {{r4, r6}}",
     "ldr r7, [sp, #68]",
     "sxth r5, r6",
@@ -1672,7 +1672,7 @@ core::arch::global_asm!(
     "adds r0, r0, r4",
     "ldr r4, .Lbw_bias",
     "adds r0, r0, r4",
-    "str r0, [sp, #64]",
+    "str r0, [sp]",
     // The edge functions at the first pixel centre (cx, cy), from the middle corner:
     // e01 = X·dy1 − Y·dx1 (corner 0 to 1) in r0, e20 = Y·dx2 − X·dy2 (2 to 0) in r7 and
     // the long edge's e12 = |area| − e01 − e20 in r1.
@@ -1712,9 +1712,8 @@ core::arch::global_asm!(
     // row: sy, −16·dx of each.
     "movs r5, r1",
     "movs r6, r0",
-    "ldr r4, [sp, #64]",
-    "mov r0, sp",
-    "stm r0!, {{r4, r5, r6, r7}}",
+    "add r0, sp, #4",
+    "stm r0!, {{r5, r6, r7}}",
     "subs r5, r2, r3",
     "lsls r5, r5, #4",
     "lsls r6, r2, #4",
