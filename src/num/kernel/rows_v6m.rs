@@ -1,9 +1,10 @@
-//! The rows of a small flat-coloured triangle on ARMv6-M, both halves in one
-//! out-of-line loop: edges in the DDA form of [`EdgeWalk`](crate::raster::EdgeWalk)
-//! (there is no divide), the depth test `Less` with depth writes, a two-byte colour;
-//! and the triangle's set-up before them ([`small_walk_less_as_u16`]: sort, rows,
-//! edges by one unsigned division pair each, depth steps by a reciprocal), which joins
-//! the loop. Thumb-1 assembly beside its portable twins.
+//! A small flat-coloured triangle on ARMv6-M, the depth test `Less` with depth
+//! writes, a two-byte colour: set-up and rows in one call
+//! ([`small_walk_less_as_u16`]), which walks the triangle's bounding box by three
+//! integer edge functions (no sort, no halves, no division but the depth steps', by a
+//! reciprocal); and the rows of a triangle set up in Rust, both halves in one loop,
+//! edges in the DDA form of [`EdgeWalk`](crate::raster::EdgeWalk)
+//! ([`rows_walk_less_as_u16`]). Thumb-1 assembly beside its portable twins.
 #![allow(unsafe_code)]
 
 use super::rows::{as_u16, check_cases, check_place, next, twin_row, CHECK_W};
@@ -244,22 +245,66 @@ pub(crate) fn rows_walk_less_portable(
     (tested, failed)
 }
 
-/// [`small_walk_less_as_u16`]'s block: the rows' block, then the clip (rows `y0..y1`,
-/// columns `x0..x1`), the buffers' first row and the depth buffer's address.
+/// [`small_walk_less_as_u16`]'s block, as the assembly reads it (byte offsets in the
+/// comments; `color` and `failed` where `faces_v6m`'s loops write and read them): the
+/// depth address of screen row 0's column 0 (wrapping: `zaddr − first_row·pitch`),
+/// the bytes a row, the clip (rows `y0..y1`, columns `x0..x1`), the colour, its
+/// address's offset from the depth's, and the failed pixels' count.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 struct SmallWalk {
-    rows: RowsWalk, // 0
-    clip: [i32; 4], // 84: y0, y1, x0, x1
-    first_row: i32, // 100
-    zaddr: u32,     // 104
+    base: u32,   // 0
+    pitch: u32,  // 4
+    y0: i32,     // 8
+    color: u32,  // 12
+    delta: u32,  // 16: colour address − depth address
+    y1: i32,     // 20
+    x0: i32,     // 24
+    failed: u32, // 28
+    x1: i32,     // 32
+}
+
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+impl SmallWalk {
+    /// Writes the fields that stay the same for buffers (the depth at `zaddr`, the
+    /// colour `delta` bytes on, rows of `width` from screen row `first_row`) drawn
+    /// inside `clip`, through a pointer to a block that may be uninitialised.
+    ///
+    /// # Safety
+    ///
+    /// `p` points to a block, valid for writes.
+    #[inline(always)]
+    unsafe fn write_buffers(
+        p: *mut SmallWalk,
+        zaddr: u32,
+        delta: u32,
+        width: usize,
+        first_row: i32,
+        clip: Clip,
+    ) {
+        let pitch = (width as u32).wrapping_mul(2);
+        // SAFETY: writes to fields of `*p` (the caller's contract), through the
+        // pointer (no reference to uninitialised memory is made).
+        unsafe {
+            (&raw mut (*p).base).write(zaddr.wrapping_sub((first_row as u32).wrapping_mul(pitch)));
+            (&raw mut (*p).pitch).write(pitch);
+            (&raw mut (*p).delta).write(delta);
+            (&raw mut (*p).y0).write(clip.y0);
+            (&raw mut (*p).y1).write(clip.y1);
+            (&raw mut (*p).x0).write(clip.x0);
+            (&raw mut (*p).x1).write(clip.x1);
+        }
+    }
 }
 
 const _: () = {
     use core::mem::{offset_of, size_of};
-    assert!(offset_of!(SmallWalk, clip) == 84 && offset_of!(SmallWalk, first_row) == 100);
-    assert!(offset_of!(SmallWalk, zaddr) == 104 && size_of::<SmallWalk>() == 108);
+    assert!(offset_of!(SmallWalk, pitch) == 4 && offset_of!(SmallWalk, y0) == 8);
+    assert!(offset_of!(SmallWalk, color) == 12 && offset_of!(SmallWalk, delta) == 16);
+    assert!(offset_of!(SmallWalk, y1) == 20 && offset_of!(SmallWalk, x0) == 24);
+    assert!(offset_of!(SmallWalk, failed) == 28 && offset_of!(SmallWalk, x1) == 32);
+    assert!(size_of::<SmallWalk>() == 36);
     assert!(SMALL == 8192 && DEPTH_BIAS == 32768);
     // The corners as the cache holds them: the depth, then x (low half) and y.
     assert!(offset_of!(CachedVertex, z) == 0 && offset_of!(CachedVertex, xy) == 4);
@@ -343,18 +388,15 @@ pub(crate) fn small_walk_cached_as_u16<C: Copy>(
         // inside the clip; its comment says what it touches. `failed` is written
         // here, and the assembly only adds to it.
         unsafe {
-            (&raw mut (*p).rows.color).write(u32::from(bits));
-            (&raw mut (*p).rows.delta).write((words.as_mut_ptr() as u32).wrapping_sub(zaddr));
-            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
-            (&raw mut (*p).rows.failed).write(0);
-            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
-            (&raw mut (*p).first_row).write(first_row);
-            (&raw mut (*p).zaddr).write(zaddr);
+            (&raw mut (*p).color).write(u32::from(bits));
+            (&raw mut (*p).failed).write(0);
+            let delta = (words.as_mut_ptr() as u32).wrapping_sub(zaddr);
+            SmallWalk::write_buffers(p, zaddr, delta, width, first_row, clip);
             let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
             if tested == u32::MAX {
                 SmallDone::General
             } else {
-                SmallDone::Drawn(tested, (&raw const (*p).rows.failed).read())
+                SmallDone::Drawn(tested, (&raw const (*p).failed).read())
             }
         }
     }
@@ -484,18 +526,14 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
         // SAFETY: writes to fields of the block, through a pointer to it (no reference
         // to uninitialised memory is made).
         unsafe {
-            (&raw mut (*p).rows.delta).write(caddr.wrapping_sub(zaddr));
-            (&raw mut (*p).rows.pitch).write((width as u32).wrapping_mul(2));
-            (&raw mut (*p).clip).write([clip.y0, clip.y1, clip.x0, clip.x1]);
-            (&raw mut (*p).first_row).write(first_row);
-            (&raw mut (*p).zaddr).write(zaddr);
+            SmallWalk::write_buffers(p, zaddr, caddr.wrapping_sub(zaddr), width, first_row, clip);
         }
         self.walk = true;
     }
 
     /// The set-up block's address where the assembly takes these buffers (its
     /// per-buffer fields written by [`Buffers::start`]), for the ARMv6-M face loop
-    /// (`faces_v6m`), which writes its `rows.color` and `rows.failed` and calls
+    /// (`faces_v6m`), which writes its `color` and `failed` and calls
     /// `zraster_small_walk_v6m` with it as [`walk_cached`](Buffers::walk_cached) does.
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     #[inline(always)]
@@ -525,13 +563,13 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
             // `failed` is written here, and the assembly only adds to it.
             unsafe {
                 let bits = core::mem::transmute_copy::<C, u16>(&color);
-                (&raw mut (*p).rows.color).write(u32::from(bits));
-                (&raw mut (*p).rows.failed).write(0);
+                (&raw mut (*p).color).write(u32::from(bits));
+                (&raw mut (*p).failed).write(0);
                 let tested = zraster_small_walk_v6m(p, tri[0], tri[1], tri[2]);
                 if tested == u32::MAX {
                     SmallDone::General
                 } else {
-                    SmallDone::Drawn(tested, (&raw const (*p).rows.failed).read())
+                    SmallDone::Drawn(tested, (&raw const (*p).failed).read())
                 }
             }
         }
@@ -540,10 +578,12 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
     }
 }
 
-/// The portable twin of `zraster_small_walk_v6m`: [`small_walk_setup`] then
-/// [`rows_walk_less_portable`]. The clip must lie inside the buffers (pixels outside
-/// are skipped).
-pub(crate) fn small_walk_portable(
+/// The DDA's walk of a small triangle, which the bounding-box walk replaced:
+/// [`small_walk_setup`] then [`rows_walk_less_portable`], the reference the tests hold
+/// [`small_walk_portable`] to (the same pixels, depths and counts). The clip must lie
+/// inside the buffers (pixels outside are skipped).
+#[cfg(test)]
+fn small_walk_dda(
     tri: [&ScreenVertex; 3],
     clip: &Clip,
     first_row: i32,
@@ -561,10 +601,252 @@ pub(crate) fn small_walk_portable(
     }
 }
 
-/// The set-up of [`small_walk_less_as_u16`] in the assembly's order: the rows' block
-/// and where they start, or what to do instead. What `fill::small`'s ARMv6-M path
-/// works out (`by_rows`, `small_steps_q` by `steps_narrow`, `small_origin`,
-/// `EdgeWalk::new_small`), each edge's two divisions unsigned.
+/// The set-up of the bounding-box walk (`zraster_small_walk_v6m`) as its portable
+/// twin works it out: the box's rows and first column, the depth plane, and three
+/// edge functions at the box's first pixel centre with their steps a column (`ax`)
+/// and a row (`by`), the long edge first (between the highest and lowest corners,
+/// alone on its side), then the two on the other side. Each edge function is biased
+/// so that a pixel is covered when all three are ≥ 0: the rule of
+/// [`EdgeWalk`](crate::raster::EdgeWalk)'s rows (a pixel whose centre lies on an
+/// edge is covered when the edge runs down the triangle's left, not its right; a
+/// horizontal edge bounds only the rows, which the box's rows already do).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct BoxWalk {
+    /// The box's rows (screen) and columns `bx0..bx1`.
+    start: i32,
+    end: i32,
+    bx0: i32,
+    bx1: i32,
+    /// Depth at the first row's column `bx0`, its steps a column and a row, the clamp.
+    z: u32,
+    sx: u32,
+    sy: u32,
+    lo: u32,
+    hi: u32,
+    /// Edge functions (long, then the other two), their steps a column and a row.
+    e: [i32; 3],
+    ax: [i32; 3],
+    by: [i32; 3],
+    /// Whether the long edge runs down the left (then the rows start at it and end at
+    /// the first of the other two to go negative), else the right.
+    long_left: bool,
+}
+
+/// [`BoxWalk`] for the small triangle `tri` in `clip`, or what to do instead: the same
+/// refusals, in the same order, as [`small_walk_setup`] (the DDA's set-up), so that the
+/// two take the same triangles.
+fn box_walk_setup(tri: [&ScreenVertex; 3], clip: &Clip) -> Result<BoxWalk, SmallDone> {
+    let [p0, p1, p2] = tri;
+    let (ymin, ymax) = (
+        p0.y().min(p1.y()).min(p2.y()),
+        p0.y().max(p1.y()).max(p2.y()),
+    );
+    if ymax - ymin >= SMALL {
+        return Err(SmallDone::General);
+    }
+    let centre = |y: i32| (y + 7) >> 4;
+    let (start, end) = (centre(ymin).max(clip.y0), centre(ymax).min(clip.y1));
+    let (xmin, xmax) = (
+        p0.x().min(p1.x()).min(p2.x()),
+        p0.x().max(p1.x()).max(p2.x()),
+    );
+    if xmax - xmin >= SMALL {
+        return Err(SmallDone::General);
+    }
+    if start >= end {
+        return Err(SmallDone::Drawn(0, 0));
+    }
+    if xmin >> 4 < clip.x0 || (xmax + 7) >> 4 > clip.x1 {
+        return Err(SmallDone::General);
+    }
+    // The middle corner by y first (a rotation: the same orientation); the deltas
+    // from it negated where the area is positive, so that it is negative: inside,
+    // every edge function is ≥ 0.
+    let word = |p: &ScreenVertex| (i64::from(p.y()) << 16) | i64::from(p.x() & 0xffff);
+    let (y0, y1, y2) = (word(p0), word(p1), word(p2));
+    let middle = if y0 <= y1 {
+        if y0 >= y2 {
+            0
+        } else if y1 <= y2 {
+            1
+        } else {
+            2
+        }
+    } else if y0 <= y2 {
+        0
+    } else if y1 >= y2 {
+        1
+    } else {
+        2
+    };
+    let v = match middle {
+        0 => [p0, p1, p2],
+        1 => [p1, p2, p0],
+        _ => [p2, p0, p1],
+    };
+    let (mut dx1, mut dy1, mut dx2, mut dy2) = (
+        v[1].x() - v[0].x(),
+        v[1].y() - v[0].y(),
+        v[2].x() - v[0].x(),
+        v[2].y() - v[0].y(),
+    );
+    let area = dx1 * dy2 - dx2 * dy1;
+    if area == 0 {
+        return Err(SmallDone::Drawn(0, 0));
+    }
+    if area > 0 {
+        (dx1, dy1, dx2, dy2) = (-dx1, -dy1, -dx2, -dy2);
+    }
+    let d = area.unsigned_abs();
+    if d >= 1 << 16 {
+        return Err(SmallDone::General);
+    }
+    let (za, zb, zc) = (v[0].z(), v[1].z(), v[2].z());
+    let (lo, hi) = (za.min(zb).min(zc), za.max(zb).max(zc));
+    let extent = (xmax - xmin).max(ymax - ymin) as u32;
+    if (((hi - lo) >> 15) + 1) * extent >= 1 << 19 {
+        return Err(SmallDone::General);
+    }
+    let (dz1, dz2) = (
+        (zb >> 4) as i32 - (za >> 4) as i32,
+        (zc >> 4) as i32 - (za >> 4) as i32,
+    );
+    let cross = |a: i32, b: i32, c: i32, d: i32| a.wrapping_mul(b).wrapping_sub(c.wrapping_mul(d));
+    let (na, nb) = (cross(dz1, dy2, dz2, dy1), cross(dz2, dx1, dz1, dx2));
+    let within = |n: i32| (n.wrapping_add((1 << 27) - 1) as u32) < (1 << 28) - 1;
+    if !(within(na) && within(nb)) {
+        return Err(SmallDone::General);
+    }
+    // The area (of the deltas as they now are) is negative: the numerators' sign flips.
+    let (q, r) = floor_div32_pair_small(-(na << 4), -(nb << 4), d);
+    let (q, r) = (q as u32, r as u32);
+    let bx0 = (xmin + 7) >> 4;
+    let (cx, cy) = (16 * bx0 + 8, 16 * start + 8);
+    let z = p0
+        .z()
+        .wrapping_add(DEPTH_BIAS)
+        .wrapping_add(q.wrapping_mul((cx - p0.x()) as u32))
+        .wrapping_add(r.wrapping_mul((cy - p0.y()) as u32));
+    // The long edge 1 → 2, then 0 → 1 and 2 → 0, at (cx, cy): the three sum to |area|.
+    let (x, y) = (cx - v[0].x(), cy - v[0].y());
+    let (e01, e20) = (x * dy1 - y * dx1, y * dx2 - x * dy2);
+    let dy = [dy2 - dy1, dy1, -dy2];
+    let e = [d as i32 - e01 - e20, e01, e20];
+    Ok(BoxWalk {
+        start,
+        end,
+        bx0,
+        bx1: (xmax + 7) >> 4,
+        z,
+        sx: q << 4,
+        sy: r << 4,
+        lo: lo + DEPTH_BIAS,
+        hi: hi + DEPTH_BIAS,
+        e: [
+            e[0] - i32::from(dy[0] < 0),
+            e[1] - i32::from(dy[1] < 0),
+            e[2] - i32::from(dy[2] < 0),
+        ],
+        ax: dy.map(|d| 16 * d),
+        by: [16 * (dx1 - dx2), -16 * dx1, 16 * dx2],
+        long_left: dy[0] > 0,
+    })
+}
+
+/// The rows of `w` as the assembly walks them: each row from the box's first column
+/// until the edges on the left side are all ≥ 0, then pixels while those on the right
+/// are (the span is convex); the first pixel's depth clamped. Pixels outside the
+/// buffers are skipped; a walk that would leave the box stops (it never does, which
+/// the tests check: the left side's edges are ≥ 0 by the box's last column, and a
+/// pixel the right side's take is covered).
+fn box_walk_rows(
+    w: &BoxWalk,
+    first_row: i32,
+    width: usize,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> (u32, u32) {
+    let (mut tested, mut failed) = (0u32, 0u32);
+    let (mut zrow, mut e) = (w.z, w.e);
+    let step = |e: &mut [i32; 3], s: &[i32; 3]| {
+        for (e, s) in e.iter_mut().zip(s) {
+            *e = e.wrapping_add(*s);
+        }
+    };
+    // The long edge alone on one side, the other two on the other.
+    let long = |e: &[i32; 3]| e[0] >= 0;
+    let pair = |e: &[i32; 3]| (e[1] | e[2]) >= 0;
+    let left = |e: &[i32; 3]| if w.long_left { long(e) } else { pair(e) };
+    let right = |e: &[i32; 3]| if w.long_left { pair(e) } else { long(e) };
+    for row in w.start..w.end {
+        let base = (row.wrapping_sub(first_row) as usize).wrapping_mul(width);
+        let (mut x, mut acc, mut f) = (w.bx0, zrow, e);
+        // The walk to the span's start ends by the box's last column (the assembly
+        // relies on it: it has no bound); the tests check it.
+        while !left(&f) {
+            debug_assert!(x < w.bx1, "{w:?}");
+            if x >= w.bx1 {
+                break;
+            }
+            step(&mut f, &w.ax);
+            (x, acc) = (x + 1, acc.wrapping_add(w.sx));
+        }
+        if right(&f) {
+            acc = acc.max(w.lo).min(w.hi);
+        }
+        while right(&f) {
+            // Only covered pixels, inside the box (the tests check it).
+            debug_assert!(left(&f) && x < w.bx1, "{w:?}");
+            if x >= w.bx1 {
+                break;
+            }
+            let i = base.wrapping_add(x as usize);
+            if let (Some(zp), Some(cp)) = (z.get_mut(i), c.get_mut(i)) {
+                let d = (acc >> 16) as u16;
+                if d < *zp {
+                    (*zp, *cp) = (d, color);
+                } else {
+                    failed = failed.wrapping_add(1);
+                }
+            }
+            tested = tested.wrapping_add(1);
+            step(&mut f, &w.ax);
+            (x, acc) = (x + 1, acc.wrapping_add(w.sx));
+        }
+        step(&mut e, &w.by);
+        zrow = zrow.wrapping_add(w.sy);
+    }
+    (tested, failed)
+}
+
+/// The portable twin of `zraster_small_walk_v6m` (the bounding-box walk):
+/// [`box_walk_setup`] then [`box_walk_rows`]. The clip must lie inside the buffers
+/// (pixels outside are skipped).
+pub(crate) fn small_walk_portable(
+    tri: [&ScreenVertex; 3],
+    clip: &Clip,
+    first_row: i32,
+    width: usize,
+    z: &mut [u16],
+    c: &mut [u16],
+    color: u16,
+) -> SmallDone {
+    match box_walk_setup(tri, clip) {
+        Ok(w) => {
+            let (tested, failed) = box_walk_rows(&w, first_row, width, z, c, color);
+            SmallDone::Drawn(tested, failed)
+        }
+        Err(done) => done,
+    }
+}
+
+/// The DDA walk's set-up (the set-up of [`small_walk_less_as_u16`] before the box
+/// walk, kept as the tests' reference): the rows' block and where they start, or what
+/// to do instead. What `fill::small`'s ARMv6-M path works out (`by_rows`,
+/// `small_steps_q` by `steps_narrow`, `small_origin`, `EdgeWalk::new_small`), each
+/// edge's two divisions unsigned.
+#[cfg(test)]
 fn small_walk_setup(
     tri: [&ScreenVertex; 3],
     clip: &Clip,
@@ -670,8 +952,8 @@ fn small_walk_setup(
 /// [`small_walk_setup`]'s edge from corner `v` by (`dx`, `dy` > 0) at row `py`
 /// (`k` = 16·px0 + 8): `t = (16py + 8 − y)·dx + (x − k)·dy`, `x = ⌈t/16dy⌉` and
 /// `err = x·16dy − t`, `step = ⌊dx/dy⌋` and `dx − step·dy`, each pair by one unsigned
-/// division (⌊n/d⌋ = !⌊!n/d⌋ for n < 0). The assembly finds `x` and `err` from the
-/// step when `16py + 8 − y ≤ 16` (`column_from_step`, in the tests).
+/// division (⌊n/d⌋ = !⌊!n/d⌋ for n < 0).
+#[cfg(test)]
 fn setup_edge(v: &ScreenVertex, py: i32, (dx, dy): (i32, i32), k: i32) -> WalkEdge {
     let t = (16 * py + 8 - v.y()) * dx + (v.x() - k) * dy;
     let (d, n) = ((16 * dy) as u32, -t);
@@ -696,32 +978,13 @@ fn setup_edge(v: &ScreenVertex, py: i32, (dx, dy): (i32, i32), k: i32) -> WalkEd
     }
 }
 
-/// An edge's first column and `err` as the assembly finds them from its step when the
-/// row is near its top corner (`0 ≤ y ≤ 16`, `y` = 16py + 8 − the corner's y, `x` its
-/// column offset, `step`, `rem` = ⌊dx/dy⌋ and its remainder): `N = x + y·step = 16u + v`
-/// and `t = dy·N + y·rem`, so `t/16dy = u + W/16dy` with `W = v·dy + y·rem < 2·16dy`, and
-/// `⌈t/16dy⌉ = u + ⌈W/16dy⌉` by two compares. The tests check it against the division.
-#[cfg(test)]
-fn column_from_step((y, x): (i32, i32), (step, rem): (i32, i32), dy: i32) -> (i32, u32) {
-    let n = x + y * step;
-    let (u, v) = (n >> 4, n & 15);
-    let (w, d) = (v * dy + y * rem, 16 * dy);
-    let k = if w == 0 {
-        0
-    } else if w <= d {
-        1
-    } else {
-        2
-    };
-    (u + k, (k * d - w) as u32)
-}
-
-/// The section of [`rows_walk_less_u16`]'s loop: RAM under `zraster_ram_code` (as the
-/// other loops' `.data.zraster`), else its own text section.
+/// The section of [`rows_walk_less_u16`]'s loop: RAM under `zraster_ram_code` (beside
+/// the other loops' `.data.zraster`), else text; its own either way, so that a firmware
+/// which never calls it (the box walk draws its small triangles) drops it.
 #[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
 macro_rules! rows_walk_section {
     () => {
-        ".pushsection .data.zraster,\"awx\",%progbits"
+        ".pushsection .data.zraster_rows_walk_v6m,\"awx\",%progbits"
     };
 }
 #[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
@@ -731,15 +994,22 @@ macro_rules! rows_walk_section {
     };
 }
 
-/// The section of `zraster_small_walk_v6m` (the set-up, run once a triangle): the
-/// rows loop's own (RAM under `zraster_ram_code`), so that it joins the loop by a
-/// branch.
-#[cfg(all(zraster_thumb, zraster_armv6m))]
+/// The section of `zraster_small_walk_v6m` (the set-up and rows, run once a
+/// triangle): RAM under `zraster_ram_code` (as the other loops), else its own text
+/// section.
+#[cfg(all(zraster_thumb, zraster_armv6m, zraster_ram_code))]
 macro_rules! small_walk_section {
     () => {
-        rows_walk_section!()
+        ".pushsection .data.zraster,\"awx\",%progbits"
     };
 }
+#[cfg(all(zraster_thumb, zraster_armv6m, not(zraster_ram_code)))]
+macro_rules! small_walk_section {
+    () => {
+        ".pushsection .text.zraster_small_walk_v6m,\"ax\",%progbits"
+    };
+}
+
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
     /// [`rows_walk_less_u16`]'s loop on ARMv6-M, a whole function in `global_asm!`
@@ -760,13 +1030,13 @@ extern "C" {
     /// buffers (columns `px0 + cx0 .. px0 + cx1`) are inside them ([`RowsAt::check`]).
     fn zraster_rows_walk_v6m(r: *mut RowsWalk, z: u32, base: u32, n0: u32) -> u32;
 
-    /// The set-up of the small triangle of corners `p0`, `p1`, `p2` (vertex cache
-    /// entries: the depth, then x in the low half of a word and y in the high), in
-    /// block `s`
-    /// (its rows' `color`, `delta`, `pitch` and `failed` set as
-    /// [`rows_walk_less_u16`] sets them, the clip, first row and depth address), then
-    /// the rows of [`zraster_rows_walk_v6m`] (its frame and registers): the pixels
-    /// tested, or `u32::MAX` (nothing drawn) for a triangle it leaves to the Rust path.
+    /// The small triangle of corners `p0`, `p1`, `p2` (vertex cache entries: the
+    /// depth, then x in the low half of a word and y in the high) drawn with block `s`
+    /// (every field written: the buffers' by [`SmallWalk::write_buffers`], `color` and
+    /// `failed`): its bounding box walked by edge functions, as
+    /// [`small_walk_portable`] does. The
+    /// pixels tested (the failed ones added to `failed`), or `u32::MAX` (nothing drawn)
+    /// for a triangle it leaves to the Rust path.
     ///
     /// # Safety
     ///
@@ -780,22 +1050,48 @@ extern "C" {
     ) -> u32;
 }
 
-/// One step of the set-up's division (`.Lsw_udiv`): quotient bit `k` into r6.
+/// `zraster_small_walk_v6m`'s quotient, inline (twice): r7 = ⌊r5/r4⌋ (signed r5,
+/// 0 < r4 < 2¹⁶) given r6 = ⌊(2³² − 1)/r4⌋, as `num::armv6m::divrem_by_recip` of |r5|
+/// flipped (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products, then
+/// fixed up by the remainder; r0–r3, r5 and r12 scratch.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-macro_rules! udiv_bit {
-    ($k:literal) => {
+macro_rules! bw_quot {
+    () => {
         concat!(
-            "lsrs r7, r4, #",
-            $k,
-            "\n",
-            "cmp r7, r3\n",
-            "blo 1f\n",
-            "lsls r7, r3, #",
-            $k,
-            "\n",
-            "subs r4, r4, r7\n",
+            "asrs r0, r5, #31\n",
+            "mov r12, r0\n",
+            "eors r5, r0\n",
+            "lsrs r0, r6, #16\n",
+            "lsrs r1, r5, #16\n",
+            "uxth r2, r6\n",
+            "uxth r3, r5\n",
+            "movs r7, r0\n",
+            "muls r7, r1\n",
+            "muls r0, r3\n",
+            "muls r1, r2\n",
+            "muls r2, r3\n",
+            "adds r0, r0, r1\n",
+            "bcc 1f\n",
+            "movs r1, #1\n",
+            "lsls r1, r1, #16\n",
+            "adds r7, r7, r1\n",
             "1:\n",
-            "adcs r6, r6"
+            "lsls r1, r0, #16\n",
+            "lsrs r0, r0, #16\n",
+            "adds r2, r2, r1\n",
+            "adcs r7, r0\n",
+            "movs r0, r7\n",
+            "muls r0, r4\n",
+            "subs r5, r5, r0\n",
+            "2:\n",
+            "cmp r5, r4\n",
+            "blo 3f\n",
+            "adds r7, #1\n",
+            "subs r5, r5, r4\n",
+            "b 2b\n",
+            "3:\n",
+            "mov r0, r12\n",
+            "eors r7, r0",
         )
     };
 }
@@ -812,20 +1108,22 @@ macro_rules! udiv_bit {
 // are saved and restored as AAPCS wants; r0–r2 pushed and popped around the longer
 // rows' loop.
 //
-// SAFETY (of the set-up, for `small_walk_less_as_u16`): every row and column of the
-// clip lies inside both buffers (its caller's check). The set-up reads the three
-// corners and the block through r0–r3 and writes only the block and its own 48-byte
-// frame; the rows it hands the loop are start .. end with clip.y0 ≤ start and
-// end ≤ clip.y1 (none when start ≥ end: it returns before the loop), from the depth
-// address of row start − first_row ≥ 0, with columns cx = clip.x − px0 around local
-// column px0; and only when px0 ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1, which holds
-// every row's columns inside the clip's: on a row (centre yc between the ends of both
-// edges), each edge's column ⌈(x(yc) − 8)/16⌉ lies between ⌈(xmin − 8)/16⌉ ≥ px0 and
-// ⌈(xmax − 8)/16⌉ (x(yc) lies between the edge's ends): the loop's contract above. Its divisions have divisors > 0 (16·dy and
-// dy of an edge with rows, |area| ≠ 0) and quotients within the unrolled steps (an
-// edge's columns lie within the triangle's 512, its step below 2¹³). It saves r4–r11
-// and lr as the loop's prologue does, so the loop's epilogue returns for both; BL
-// inside it clobbers only lr, saved.
+// SAFETY (of the box walk, `zraster_small_walk_v6m`, for `small_walk_less_as_u16` and
+// `Buffers::walk_cached`): every row and column of the clip lies inside both buffers
+// (its callers' check). It reads the three corners and the block through r0–r3 and
+// writes only the block's `failed`, its own 72-byte frame and pixels. Its rows are
+// start .. end with clip.y0 ≤ start < end ≤ clip.y1 (none: it returns first), at depth
+// addresses zaddr + (row − first_row)·pitch + 2·column; it goes on only when xmin >> 4
+// ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1. A pixel is read and written only where all
+// three edge functions are ≥ 0: the left side's (growing to the right) by the walk to
+// the span's start, which moves right only while one is negative, the right side's
+// (falling to the right) by the test before each pixel. Such a pixel is covered, its
+// centre inside the triangle, so its column lies in ⌈(xmin − 8)/16⌉ .. ⌈(xmax − 8)/16⌉,
+// inside the clip's. The walk to the span's start ends by column ⌈(xmax − 8)/16⌉: the
+// left side's functions are ≥ 0 right of the triangle's left boundary on the row, a
+// point of the triangle (x ≤ xmax). The division's divisor is |area| > 0. It saves
+// r4–r11 and lr as AAPCS wants. A row's state lies above sp only between its POP and
+// PUSH, while it is dead (an exception's frame may overwrite it).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 core::arch::global_asm!(
     rows_walk_section!(),
@@ -1000,13 +1298,19 @@ core::arch::global_asm!(
     ".size zraster_rows_walk_v6m, . - zraster_rows_walk_v6m",
     ".popsection",
     small_walk_section!(),
-    // The set-up of a small triangle, then the rows above (see `zraster_small_walk_v6m`).
-    // Frame: 48 bytes below the saved registers: [sp] the first corner given, +4 dx1,
-    // +8 dy1, +12 dx2, +16 dy2 (the middle and last corner from the top one), +20 the
-    // block, +24 |area| then the first row's depth, +28 the area's sign, +32 and +36
-    // the top and middle corners, +40 max(width, height) then the folded numerators
-    // then, with +44, the top corner's offsets for its edges. r8 the first row, r9 the middle row (clamped to the
-    // rows), r10 the first half's rows, r11 the local origin's column · 16 + 8.
+    // The bounding-box walk of a small triangle (see `zraster_small_walk_v6m`, and its
+    // twin `box_walk_setup` and `box_walk_rows`). Frame: 72 bytes below the saved
+    // registers. In the rows: [sp] the row's depth at the box's first column and its
+    // three edge functions there (long, e01, e20), +16 their steps a row, +36 the
+    // rows' end address, +40 lo (biased), +44 hi − lo, +48 the colour, +52 its offset
+    // from the depth, +56 the block, +60 the pitch; r8–r10 the edges' steps a column,
+    // r11 sx, r12 the row's depth address at the box's first column, lr the bytes
+    // tested. In the set-up the same slots hold: [sp] the corners (the middle one by y
+    // first) then the depth steps' numerators, +12 X = cx − x0, +16 dx1, dx2, dy1, dy2
+    // (from the middle corner; negated where the area was positive), +32 the first
+    // row, +36 the rows, +48 |area|, +52 Y = cy − y0, +60 the first corner given then
+    // sy, +64 the height then max(width, height), +68 cx (16·bx0 + 8, bx0 the box's
+    // first column).
     ".balign 4",
     ".global zraster_small_walk_v6m",
     ".hidden zraster_small_walk_v6m",
@@ -1019,180 +1323,213 @@ core::arch::global_asm!(
     "mov r6, r10",
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
-    "sub sp, #48",
-    "str r0, [sp, #20]",
-    "str r1, [sp]",
-    // The corners top to bottom (a stable sort by y): r1–r3, their y in r4–r6. A
-    // corner is a cache entry: z at 0, x (low half) and y (high half) at 4.
+    "sub sp, #72",
+    "str r0, [sp, #56]",
+    "str r1, [sp, #60]",
+    // The corners' x and y words in r4–r6 (y in the upper half); the middle corner by
+    // y first (a rotation, which keeps the orientation), the words compared whole as
+    // `box_walk_setup`'s `middle` (ties by x).
     "ldr r4, [r1, #4]",
-    "asrs r4, r4, #16",
     "ldr r5, [r2, #4]",
-    "asrs r5, r5, #16",
-    "cmp r5, r4",
-    "bge .Lsw_sort1",
-    "mov r6, r1",
-    "mov r1, r2",
-    "mov r2, r6",
-    "mov r6, r4",
-    "mov r4, r5",
-    "mov r5, r6",
-    ".Lsw_sort1:",
     "ldr r6, [r3, #4]",
+    "cmp r4, r5",
+    "bgt 1f",
+    "cmp r4, r6",
+    "bge 4f",
+    "cmp r5, r6",
+    "ble 3f",
+    "b 2f",
+    "1:",
+    "cmp r4, r6",
+    "ble 4f",
+    "cmp r5, r6",
+    "bge 3f",
+    // The third the middle one ([p2, p0, p1]: the words w0, w1, w2 in r6, r4, r5).
+    // Each case stores the corners in that order and leaves x0 in r1, y0 in r4, dx1,
+    // dx2, dy1, dy2 in r2, r3, r5, r6.
+    "2:",
+    "str r3, [sp]",
+    "str r1, [sp, #4]",
+    "str r2, [sp, #8]",
+    "sxth r1, r6",
+    "sxth r2, r4",
+    "subs r2, r2, r1",
+    "sxth r3, r5",
+    "subs r3, r3, r1",
+    "asrs r7, r6, #16",
+    "asrs r6, r5, #16",
+    "subs r6, r6, r7",
+    "asrs r5, r4, #16",
+    "subs r5, r5, r7",
+    "movs r4, r7",
+    "b 5f",
+    // The second ([p1, p2, p0]: the words in r5, r6, r4).
+    "3:",
+    "str r2, [sp]",
+    "str r3, [sp, #4]",
+    "str r1, [sp, #8]",
+    "sxth r1, r5",
+    "sxth r2, r6",
+    "subs r2, r2, r1",
+    "sxth r3, r4",
+    "subs r3, r3, r1",
+    "asrs r7, r5, #16",
+    "asrs r5, r6, #16",
+    "subs r5, r5, r7",
+    "asrs r6, r4, #16",
+    "subs r6, r6, r7",
+    "movs r4, r7",
+    "b 5f",
+    // The first.
+    "4:",
+    "mov r7, sp",
+    "stm r7!, {{r1, r2, r3}}",
+    "sxth r1, r4",
+    "sxth r2, r5",
+    "subs r2, r2, r1",
+    "sxth r3, r6",
+    "subs r3, r3, r1",
+    "asrs r4, r4, #16",
+    "asrs r5, r5, #16",
+    "subs r5, r5, r4",
     "asrs r6, r6, #16",
-    "cmp r6, r5",
-    "bge .Lsw_sort2",
-    "mov r7, r2",
-    "mov r2, r3",
-    "mov r3, r7",
-    "mov r7, r5",
-    "mov r5, r6",
-    "mov r6, r7",
-    "cmp r5, r4",
-    "bge .Lsw_sort2",
-    "mov r7, r1",
-    "mov r1, r2",
-    "mov r2, r7",
-    "mov r7, r4",
-    "mov r4, r5",
-    "mov r5, r7",
-    ".Lsw_sort2:",
-    "str r1, [sp, #32]",
-    "str r2, [sp, #36]",
-    // Its height below SMALL, else the general path.
-    "subs r7, r6, r4",
-    "str r7, [sp, #16]",
-    "lsrs r7, r7, #13",
-    "bne .Lsw_refuse",
-    "subs r7, r5, r4",
-    "str r7, [sp, #8]",
-    // Rows whose centres may be covered, inside the clip: start in r4, end in r6, the
-    // middle one clamped between them in r5.
-    "adds r4, #7",
-    "asrs r4, r4, #4",
-    "ldr r7, [r0, #84]",
-    "cmp r4, r7",
-    "bge .Lsw_rows1",
-    "mov r4, r7",
-    ".Lsw_rows1:",
-    "adds r6, #7",
-    "asrs r6, r6, #4",
-    "ldr r7, [r0, #88]",
-    "cmp r6, r7",
-    "ble .Lsw_rows2",
-    "mov r6, r7",
-    ".Lsw_rows2:",
+    "subs r6, r6, r4",
+    // The deltas to the frame.
+    "5:",
+    "add r7, sp, #16",
+    "stm r7!, {{r2, r3, r5, r6}}",
+    // The height |dy2 − dy1| (the middle corner lies between) below SMALL, else the
+    // general path; the least y in r5, the greatest in r7.
+    "subs r7, r6, r5",
+    "bge 5f",
+    "rsbs r7, r7, #0",
+    "movs r5, r6",
+    "5:",
+    "lsrs r6, r7, #13",
+    "bne .Lbw_refuse",
+    "str r7, [sp, #64]",
+    "adds r5, r5, r4",
+    "adds r7, r7, r5",
+    // Rows whose centres may be covered, inside the clip: start in r5, end in r7;
+    // Y = 16·start + 8 − y0 at [sp, #52], the rows in r7 and at [sp, #36].
     "adds r5, #7",
     "asrs r5, r5, #4",
-    "cmp r5, r4",
-    "bge .Lsw_rows3",
-    "mov r5, r4",
-    ".Lsw_rows3:",
-    "cmp r5, r6",
-    "ble .Lsw_rows4",
-    "mov r5, r6",
-    ".Lsw_rows4:",
-    "subs r7, r6, r5",
-    "str r7, [r0, #40]",
-    "mov r8, r4",
-    "mov r9, r5",
-    "subs r7, r5, r4",
-    "mov r10, r7",
-    "subs r6, r6, r4",
-    "mov r12, r6",
-    // Columns: dx1, dx2; its width below SMALL, else the general path; no rows, nothing.
-    "ldr r4, [r1, #4]",
-    "sxth r4, r4",
-    "ldr r5, [r2, #4]",
-    "sxth r5, r5",
-    "ldr r6, [r3, #4]",
-    "sxth r6, r6",
-    "subs r7, r5, r4",
-    "str r7, [sp, #4]",
-    "subs r7, r6, r4",
-    "str r7, [sp, #12]",
-    // The least x in r7, the greatest in r4: the first two ordered, then the third
-    // below the least, else above the greatest.
-    "mov r7, r4",
-    "cmp r5, r4",
-    "bge .Lsw_cols1",
-    "mov r7, r5",
-    "b .Lsw_cols2",
-    ".Lsw_cols1:",
-    "mov r4, r5",
-    ".Lsw_cols2:",
-    "cmp r6, r7",
-    "blt .Lsw_cols3",
-    "cmp r6, r4",
-    "ble .Lsw_cols4",
-    "mov r4, r6",
-    "b .Lsw_cols4",
-    ".Lsw_cols3:",
-    "mov r7, r6",
-    ".Lsw_cols4:",
-    // The last column a row may reach, ⌈(xmax − 8)/16⌉, in r6 (for the clip test).
-    "adds r6, r4, #7",
-    "asrs r6, r6, #4",
-    "subs r4, r4, r7",
-    "lsrs r5, r4, #13",
-    "bne .Lsw_refuse",
-    // The larger extent, max(width, height), at [sp, #40] (for the depth's bound).
-    "ldr r5, [sp, #16]",
-    "cmp r4, r5",
-    "bhs .Lsw_cols5",
-    "movs r4, r5",
-    ".Lsw_cols5:",
-    "str r4, [sp, #40]",
-    "mov r4, r12",
-    "cmp r4, #0",
-    "ble .Lsw_empty",
-    // The local origin's column px0 (of the leftmost corner), and r11 = 16·px0 + 8. A
-    // triangle whose columns px0 ..= ⌈(xmax − 8)/16⌉ leave the clip's goes to the
-    // general path (the rows loop does not clip).
+    "adds r7, #7",
     "asrs r7, r7, #4",
-    "ldr r4, [r0, #92]",
-    "cmp r4, r7",
-    "bgt .Lsw_refuse",
-    "ldr r4, [r0, #96]",
-    "cmp r6, r4",
-    "bgt .Lsw_refuse",
-    "lsls r7, r7, #4",
-    "adds r7, #8",
-    "mov r11, r7",
-    // The area (none: nothing), the side, |area| below 2¹⁶ (else the general path).
-    "add r7, sp, #4",
-    "ldm r7, {{r4, r5, r6, r7}}",
-    "muls r4, r7",
-    "muls r6, r5",
-    "subs r4, r4, r6",
-    "beq .Lsw_empty",
-    "lsrs r5, r4, #31",
-    "str r5, [r0, #44]",
-    "asrs r5, r4, #31",
-    "str r5, [sp, #28]",
-    "eors r4, r5",
-    "subs r4, r4, r5",
-    "lsrs r6, r4, #16",
-    "bne .Lsw_refuse",
-    "str r4, [sp, #24]",
-    "b .Lsw_depths",
+    "ldr r6, [r0, #8]",
+    "cmp r5, r6",
+    "bge 6f",
+    "mov r5, r6",
+    "6:",
+    "ldr r6, [r0, #20]",
+    "cmp r7, r6",
+    "ble 7f",
+    "mov r7, r6",
+    "7:",
+    "str r5, [sp, #32]",
+    "subs r7, r7, r5",
+    "str r7, [sp, #36]",
+    "lsls r5, r5, #4",
+    "adds r5, #8",
+    "subs r4, r5, r4",
+    "str r4, [sp, #52]",
+    // The least and greatest of 0, dx1 and dx2 in r5 and r6: the width below SMALL,
+    // else the general path; no rows, nothing.
+    "movs r5, #0",
+    "movs r6, #0",
+    "cmp r2, #0",
+    "bge 1f",
+    "movs r5, r2",
+    "b 2f",
+    "1:",
+    "movs r6, r2",
+    "2:",
+    "cmp r3, r5",
+    "bge 3f",
+    "movs r5, r3",
+    "b 4f",
+    "3:",
+    "cmp r3, r6",
+    "ble 4f",
+    "movs r6, r3",
+    "4:",
+    "subs r6, r6, r5",
+    "lsrs r4, r6, #13",
+    "bne .Lbw_refuse",
+    "cmp r7, #0",
+    "ble .Lbw_empty",
+    // The larger extent, max(width, height), at [sp, #64] (for the depth's bound).
+    "ldr r7, [sp, #64]",
+    "cmp r6, r7",
+    "bls 5f",
+    "str r6, [sp, #64]",
+    "5:",
+    // Columns xmin >> 4 ..= ⌈(xmax − 8)/16⌉ inside the clip's, else the general path
+    // (the walk does not clip its columns).
+    "adds r5, r5, r1",
+    "adds r6, r6, r5",
+    "asrs r7, r5, #4",
+    "ldr r3, [r0, #24]",
+    "cmp r7, r3",
+    "blt .Lbw_refuse",
+    "adds r6, #7",
+    "asrs r6, r6, #4",
+    "ldr r3, [r0, #32]",
+    "cmp r6, r3",
+    "bgt .Lbw_refuse",
+    // The box's first column bx0 = ⌈(xmin − 8)/16⌉: cx = 16·bx0 + 8, X = cx − x0.
+    "adds r5, #7",
+    "asrs r5, r5, #4",
+    "lsls r5, r5, #4",
+    "adds r5, #8",
+    "str r5, [sp, #68]",
+    "subs r1, r5, r1",
+    "str r1, [sp, #12]",
+    // The area (none: nothing to draw); positive, the deltas negated (the area then
+    // negative: inside, every edge function ≥ 0); |area| below 2¹⁶, else the general
+    // path.
+    "add r7, sp, #16",
+    "ldm r7!, {{r2, r3, r5, r6}}",
+    "movs r7, r2",
+    "muls r7, r6",
+    "movs r0, r3",
+    "muls r0, r5",
+    "subs r7, r7, r0",
+    "beq .Lbw_empty",
+    "bmi 1f",
+    "rsbs r2, r2, #0",
+    "rsbs r3, r3, #0",
+    "rsbs r5, r5, #0",
+    "rsbs r6, r6, #0",
+    "add r0, sp, #16",
+    "stm r0!, {{r2, r3, r5, r6}}",
+    "rsbs r7, r7, #0",
+    "1:",
+    "rsbs r7, r7, #0",
+    "lsrs r0, r7, #16",
+    "bne .Lbw_refuse",
+    "str r7, [sp, #48]",
+    "b .Lbw_depths",
     // Nothing to draw, or a triangle for the Rust path (here, within the conditional
     // branches' reach).
-    ".Lsw_empty:",
+    ".Lbw_empty:",
     "movs r0, #0",
-    "b .Lsw_out",
-    ".Lsw_refuse:",
+    "b .Lbw_out",
+    ".Lbw_refuse:",
     "movs r0, #0",
     "mvns r0, r0",
-    ".Lsw_out:",
-    "add sp, #48",
+    ".Lbw_out:",
+    "add sp, #72",
     "pop {{r4, r5, r6, r7}}",
     "mov r8, r4",
     "mov r9, r5",
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    // The depths' range: lo (biased) and hi − lo.
-    ".Lsw_depths:",
+    // The depths' range: lo (biased) at [sp, #40] and hi − lo at [sp, #44].
+    ".Lbw_depths:",
+    "mov r7, sp",
+    "ldm r7!, {{r1, r2, r3}}",
     "ldr r4, [r1]",
     "ldr r5, [r2]",
     "ldr r6, [r3]",
@@ -1201,85 +1538,83 @@ core::arch::global_asm!(
     "mov r7, r4",
     "mov r1, r5",
     "cmp r4, r5",
-    "bls .Lsw_z1",
+    "bls 1f",
     "mov r7, r5",
     "mov r1, r4",
-    ".Lsw_z1:",
+    "1:",
     "cmp r6, r7",
-    "blo .Lsw_z2",
+    "blo 2f",
     "cmp r6, r1",
-    "bls .Lsw_z3",
+    "bls 3f",
     "mov r1, r6",
-    "b .Lsw_z3",
-    ".Lsw_z2:",
+    "b 3f",
+    "2:",
     "mov r7, r6",
-    ".Lsw_z3:",
+    "3:",
     "subs r1, r1, r7",
-    "str r1, [r0, #8]",
-    "ldr r2, .Lsw_bias",
+    "str r1, [sp, #44]",
+    "ldr r2, .Lbw_bias",
     "adds r7, r7, r2",
-    "str r7, [r0, #4]",
+    "str r7, [sp, #40]",
     // The numerators exact in 32 bits: (⌊(hi − lo)/2¹⁵⌋ + 1)·max(width, height) below
     // 2¹⁹, else the general path (see `small_walk_setup`).
     "lsrs r1, r1, #15",
     "adds r1, #1",
-    "ldr r3, [sp, #40]",
+    "ldr r3, [sp, #64]",
     "muls r1, r3",
     "lsrs r1, r1, #19",
-    "bne .Lsw_refuse",
+    "bne .Lbw_refuse",
     // dz1 in r6, dz2 in r7 (depths over 16).
     "lsrs r4, r4, #4",
     "lsrs r6, r6, #4",
     "subs r7, r6, r4",
     "lsrs r6, r5, #4",
     "subs r6, r6, r4",
-    // The numerators a (r4) and b (r2), modulo 2³², inside ±(2²⁷ − 1).
-    "add r5, sp, #4",
+    // The numerators a = dz1·dy2 − dz2·dy1 (r4) and b = dz2·dx1 − dz1·dx2 (r2), modulo
+    // 2³², inside ±(2²⁷ − 1).
+    "add r5, sp, #16",
     "ldm r5, {{r2, r3, r4, r5}}",
     "muls r2, r7",
-    "muls r4, r6",
-    "subs r2, r2, r4",
+    "muls r3, r6",
+    "subs r2, r2, r3",
     "muls r5, r6",
-    "muls r3, r7",
-    "subs r4, r5, r3",
-    "ldr r3, .Lsw_within",
+    "muls r4, r7",
+    "subs r4, r5, r4",
+    "ldr r3, .Lbw_within",
     "adds r6, r4, r3",
     "adds r7, r2, r3",
-    "ldr r3, .Lsw_range",
+    "ldr r3, .Lbw_range",
     "cmp r6, r3",
-    "bhs .Lsw_refuse",
+    "bhs .Lbw_refuse",
     "cmp r7, r3",
-    "bhs .Lsw_refuse",
-    // The steps ⌊±16a/|area|⌋, ⌊±16b/|area|⌋ (the area's sign folded in), as
-    // `num::floor_div32_pair_small`: the folded numerators at [sp, #40] and [sp, #44],
-    // then x = ⌊(2³² − 1)/d⌋ in r6 (d = |area| in r4) as `num::armv6m::recip32_small`:
+    "bhs .Lbw_refuse",
+    // The steps ⌊−16a/|area|⌋, ⌊−16b/|area|⌋ (the area is negative), as
+    // `num::floor_div32_pair_small`: the numerators at [sp] and [sp, #4], then
+    // x = ⌊(2³² − 1)/d⌋ in r6 (d = |area| in r4) as `num::armv6m::recip32_small`:
     // d normalised to [2¹⁵, 2¹⁶) by s (its leading zeros, from a byte table), a guess
     // from the reciprocal table, two Newton steps (exact for every d: no fix-up).
-    "ldr r3, [sp, #28]",
     "lsls r0, r4, #4",
-    "eors r0, r3",
-    "subs r0, r0, r3",
-    "str r0, [sp, #40]",
+    "rsbs r0, r0, #0",
+    "str r0, [sp]",
     "lsls r1, r2, #4",
-    "eors r1, r3",
-    "subs r1, r1, r3",
-    "str r1, [sp, #44]",
-    "ldr r4, [sp, #24]",
-    "ldr r7, .Lsw_lz8",
+    "rsbs r1, r1, #0",
+    "str r1, [sp, #4]",
+    "ldr r4, [sp, #48]",
+    "ldr r7, .Lbw_lz8",
     "lsrs r5, r4, #8",
-    "beq .Lsw_recip1",
+    "beq 1f",
     "ldrb r5, [r7, r5]",
-    "b .Lsw_recip2",
-    ".Lsw_recip1:",
+    "b 2f",
+    "1:",
     "ldrb r5, [r7, r4]",
     "adds r5, #8",
-    ".Lsw_recip2:",
+    "2:",
     "movs r6, r4",
     "lsls r6, r5",
     "movs r0, r6",
     "lsrs r6, r6, #6",
     "lsls r6, r6, #1",
-    "ldr r7, .Lsw_recip16",
+    "ldr r7, .Lbw_recip16",
     "ldrh r6, [r7, r6]",
     // The first Newton step on t, the table's 16 bits (x = t·2^(s + 1)): e = 2³² −
     // 2·dn·t (dn·t < 2³¹), then x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s), below
@@ -1306,273 +1641,288 @@ core::arch::global_asm!(
     "adds r0, r0, r1",
     "lsrs r0, r0, #16",
     "adds r6, r6, r0",
-    "ldr r5, [sp, #40]",
-    "bl .Lsw_quot",
-    "str r7, [sp, #40]",
-    "ldr r5, [sp, #44]",
-    "bl .Lsw_quot",
+    "ldr r5, [sp]",
+    bw_quot!(),
+    "str r7, [sp]",
+    "ldr r5, [sp, #4]",
+    bw_quot!(),
+    // q in r0, r in r1: sx = 16q in r11, sy = 16r at [sp, #60] (after the first corner
+    // given is read from there).
     "movs r1, r7",
-    "ldr r0, [sp, #40]",
-    "ldr r3, [sp, #20]",
+    "ldr r0, [sp]",
     "lsls r2, r0, #4",
-    "str r2, [r3]",
-    "lsls r2, r1, #4",
-    "str r2, [r3, #32]",
-    // The first row's depth at local column 0, from the first corner given:
-    // z + DEPTH_BIAS + q·(16·px0 + 8 − x) + r·(16·start + 8 − y).
-    // (16·start + 8 in r5 and 16·px0 + 8 in r7 kept for the long edge.)
-    "ldr r2, [sp]",
+    "mov r11, r2",
+    "lsls r3, r1, #4",
+    "ldr r2, [sp, #60]",
+    "str r3, [sp, #60]",
+    // The first row's depth at the box's first column, from the first corner given:
+    // z + DEPTH_BIAS + q·(cx − x) + r·(cy − y), at [sp] (the row state's first word).
     "ldm r2!, {{r4, r6}}",
-    "mov r7, r11",
+    "ldr r7, [sp, #68]",
     "sxth r5, r6",
     "subs r5, r7, r5",
     "muls r0, r5",
     "asrs r6, r6, #16",
-    "mov r5, r8",
+    "ldr r5, [sp, #32]",
     "lsls r5, r5, #4",
     "adds r5, #8",
     "subs r6, r5, r6",
     "muls r1, r6",
     "adds r0, r0, r1",
     "adds r0, r0, r4",
-    "ldr r4, .Lsw_bias",
+    "ldr r4, .Lbw_bias",
     "adds r0, r0, r4",
-    "str r0, [sp, #24]",
-    // The edges: the long one at the first row, the short ones at their halves' first
-    // rows (a half without rows keeps its edge unset). The top corner's offsets
-    // Y = 16·start + 8 − y and X = x − 16·px0 − 8 at [sp, #40] and [sp, #44].
-    "ldr r2, [sp, #32]",
-    "ldr r6, [r2, #4]",
-    "asrs r0, r6, #16",
-    "subs r5, r5, r0",
-    "str r5, [sp, #40]",
-    "sxth r0, r6",
+    "str r0, [sp]",
+    // The edge functions at the first pixel centre (cx, cy), from the middle corner:
+    // e01 = X·dy1 − Y·dx1 (corner 0 to 1) in r0, e20 = Y·dx2 − X·dy2 (2 to 0) in r7 and
+    // the long edge's e12 = |area| − e01 − e20 in r1.
+    "ldr r4, [sp, #52]",
+    "add r7, sp, #12",
+    "ldm r7!, {{r1, r2, r3, r5, r6}}",
+    "movs r0, r5",
+    "muls r0, r1",
+    "movs r7, r2",
+    "muls r7, r4",
     "subs r0, r0, r7",
-    "str r0, [sp, #44]",
-    "movs r1, #48",
-    "adds r1, r1, r3",
-    "ldr r2, [sp, #12]",
-    "ldr r3, [sp, #16]",
-    "bl .Lsw_edge",
-    "mov r4, r10",
-    "cmp r4, #0",
-    "beq .Lsw_short1",
-    "ldr r2, [sp, #4]",
-    "ldr r3, [sp, #8]",
-    "ldr r5, [sp, #40]",
-    "ldr r0, [sp, #44]",
-    "bl .Lsw_edge",
-    ".Lsw_short1:",
-    "ldr r0, [sp, #20]",
-    "ldr r4, [r0, #40]",
-    "cmp r4, #0",
-    "beq .Lsw_rows",
-    "movs r1, #72",
-    "adds r1, r1, r0",
-    "add r7, sp, #4",
-    "ldm r7, {{r2, r3, r4, r7}}",
-    "subs r2, r4, r2",
-    "subs r3, r7, r3",
-    "ldr r6, [sp, #36]",
-    "mov r5, r9",
-    "lsls r5, r5, #4",
-    "adds r5, #8",
-    "ldr r6, [r6, #4]",
-    "asrs r0, r6, #16",
-    "subs r5, r5, r0",
-    "sxth r0, r6",
-    "mov r7, r11",
-    "subs r0, r0, r7",
-    "bl .Lsw_edge",
-    // The rows: the depth address of the first row's local column 0,
-    // zaddr + (start − first_row)·pitch + 2·px0, then the loop above with its frame.
-    ".Lsw_rows:",
-    "ldr r0, [sp, #20]",
-    "mov r2, r8",
-    "ldr r4, [r0, #100]",
-    "subs r2, r2, r4",
-    "ldr r4, [r0, #36]",
-    "muls r2, r4",
-    "ldr r4, [r0, #104]",
-    "adds r2, r2, r4",
-    "mov r4, r11",
-    "asrs r4, r4, #4",
-    "lsls r4, r4, #1",
-    "adds r2, r2, r4",
-    "ldr r1, [sp, #24]",
-    "mov r3, r10",
-    "add sp, #48",
-    "b .Lzraster_rows_walk_body",
-    // An edge as `EdgeWalk::new_small` sets it up, stored as a `WalkEdge` at r1: by
-    // (dx, dy) = (r2, r3 > 0) from a corner (x, y), at row py, with r5 = Y =
-    // 16·py + 8 − y (≥ 0) and r0 = X = x − 16·px0 − 8. First the step ⌊dx/dy⌋ and its
-    // remainder by one unsigned division (a negative dividend n by ⌊n/d⌋ = !⌊!n/d⌋; a
-    // quotient of 0 without the call). Then t = Y·dx + X·dy, the first column ⌈t/16dy⌉
-    // and err = x·16dy − t: with Y ≤ 16 (the triangle's first row in its half, not
-    // clipped) from the step, N = X + Y·step = 16u + v, t = dy·N + Y·rem, so
-    // t/16dy = u + W/16dy with W = v·dy + Y·rem in [0, 2·16dy); else by one more
-    // division (by 16dy, in r3 meanwhile). Keeps r2, r3 and leaves r1 on the next
-    // edge; r0, r4–r7 scratch.
-    ".Lsw_edge:",
-    "push {{lr}}",
-    "movs r6, #0",
-    "movs r4, r2",
-    "bmi .Lsw_edge_negdx",
-    "cmp r4, r3",
-    "blo .Lsw_edge_step",
-    "bl .Lsw_udiv",
-    "b .Lsw_edge_step",
-    ".Lsw_edge_negdx:",
-    "mvns r4, r4",
-    "cmp r4, r3",
-    "blo .Lsw_edge_negdx0",
-    "bl .Lsw_udiv",
-    ".Lsw_edge_negdx0:",
-    "mvns r6, r6",
-    "subs r4, r3, r4",
-    "subs r4, #1",
-    ".Lsw_edge_step:",
-    "lsls r7, r6, #16",
-    "subs r7, r7, r4",
-    "cmp r5, #16",
-    "bhi .Lsw_edge_far",
-    "muls r6, r5",
-    "adds r6, r6, r0",
-    "muls r4, r5",
-    "lsls r5, r6, #28",
-    "lsrs r5, r5, #28",
-    "muls r5, r3",
-    "asrs r6, r6, #4",
-    "adds r4, r4, r5",
-    "beq .Lsw_edge_at",
-    "lsls r5, r3, #4",
-    "adds r6, #1",
-    "subs r4, r5, r4",
-    "bhs .Lsw_edge_at",
-    "adds r6, #1",
-    "adds r4, r4, r5",
-    "b .Lsw_edge_at",
-    ".Lsw_edge_far:",
-    "push {{r7}}",
-    "muls r5, r2",
-    "muls r0, r3",
-    "adds r4, r5, r0",
-    "lsls r3, r3, #4",
-    "movs r6, #0",
+    "movs r7, r3",
+    "muls r7, r4",
+    "muls r1, r6",
+    "subs r7, r7, r1",
+    "ldr r1, [sp, #48]",
+    "subs r1, r1, r0",
+    "subs r1, r1, r7",
+    // Their steps a column, 16·dy (dy from the edge's start to its end), in r9, r10
+    // and r8; each function one less where dy < 0 (an edge running up, on the right:
+    // a centre on it is not covered).
+    "asrs r4, r5, #31",
+    "adds r0, r0, r4",
+    "lsls r4, r5, #4",
+    "mov r9, r4",
+    "lsls r4, r6, #4",
     "rsbs r4, r4, #0",
-    "bmi .Lsw_edge_neg",
-    "cmp r4, r3",
-    "blo .Lsw_edge_far1",
-    "bl .Lsw_udiv",
+    "mov r10, r4",
+    "asrs r4, r4, #31",
+    "adds r7, r7, r4",
+    "subs r4, r6, r5",
+    "lsls r4, r4, #4",
+    "mov r8, r4",
+    "asrs r4, r4, #31",
+    "adds r1, r1, r4",
+    // The first row's state: the depth, the long edge's, e01, e20; then the steps a
+    // row: sy, −16·dx of each.
+    "movs r5, r1",
+    "movs r6, r0",
+    "add r0, sp, #4",
+    "stm r0!, {{r5, r6, r7}}",
+    "subs r5, r2, r3",
+    "lsls r5, r5, #4",
+    "lsls r6, r2, #4",
     "rsbs r6, r6, #0",
-    "b .Lsw_edge_far1",
-    ".Lsw_edge_neg:",
-    "mvns r4, r4",
-    "cmp r4, r3",
-    "blo .Lsw_edge_neg0",
-    "bl .Lsw_udiv",
-    ".Lsw_edge_neg0:",
-    "adds r6, #1",
-    "subs r4, r3, r4",
-    "subs r4, #1",
-    ".Lsw_edge_far1:",
-    "lsrs r3, r3, #4",
-    "pop {{r7}}",
-    // at, fix and step by one STM.
-    ".Lsw_edge_at:",
-    "lsrs r4, r4, #4",
-    "lsls r6, r6, #16",
-    "adds r0, r6, r4",
-    "movs r6, #1",
-    "lsls r6, r6, #16",
-    "adds r6, r6, r3",
-    "stm r1!, {{r0, r6, r7}}",
-    "pop {{pc}}",
-    // r6 = r4 / r3, r4 = r4 % r3 for r3 > 0, r6 = 0 on entry and a quotient below 2¹⁴,
-    // one bit a step from the quotient's top (found below 4, 16, 256 or else 2¹⁴); r7
-    // scratch.
-    ".Lsw_udiv:",
-    "lsrs r7, r4, #2",
-    "cmp r7, r3",
-    "blo .Lsw_udiv2",
-    "lsrs r7, r4, #4",
-    "cmp r7, r3",
-    "blo .Lsw_udiv4",
-    "lsrs r7, r4, #8",
-    "cmp r7, r3",
-    "blo .Lsw_udiv8",
-    udiv_bit!(13),
-    udiv_bit!(12),
-    udiv_bit!(11),
-    udiv_bit!(10),
-    udiv_bit!(9),
-    udiv_bit!(8),
-    ".Lsw_udiv8:",
-    udiv_bit!(7),
-    udiv_bit!(6),
-    udiv_bit!(5),
-    udiv_bit!(4),
-    ".Lsw_udiv4:",
-    udiv_bit!(3),
-    udiv_bit!(2),
-    ".Lsw_udiv2:",
-    udiv_bit!(1),
-    "cmp r4, r3",
-    "blo 1f",
-    "subs r4, r4, r3",
-    "1:",
-    "adcs r6, r6",
-    "bx lr",
-    // r7 = ⌊r5/r4⌋ (signed r5, 0 < r4 < 2¹⁶) given r6 = ⌊(2³² − 1)/r4⌋, as
-    // `num::armv6m::divrem_by_recip` of |r5| flipped (⌊n/d⌋ = !⌊!n/d⌋); r0–r3, r5 and
-    // r12 scratch.
-    ".Lsw_quot:",
-    "asrs r0, r5, #31",
-    "mov r12, r0",
-    "eors r5, r0",
-    // r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products.
-    "lsrs r0, r6, #16",
-    "lsrs r1, r5, #16",
-    "uxth r2, r6",
-    "uxth r3, r5",
-    "movs r7, r0",
-    "muls r7, r1",
-    "muls r0, r3",
-    "muls r1, r2",
+    "lsls r7, r3, #4",
+    "ldr r4, [sp, #60]",
+    "stm r0!, {{r4, r5, r6, r7}}",
+    // The first row's depth address at column bx0: base + start·pitch + 2·bx0
+    // (2·bx0 = cx/8 − 1); the pitch at [sp, #60], nothing tested yet, the colour and
+    // its offset.
+    "ldr r0, [sp, #56]",
+    "ldr r1, [sp, #32]",
+    "ldr r3, [r0, #4]",
+    "str r3, [sp, #60]",
+    "muls r1, r3",
+    "ldr r2, [r0]",
+    "adds r1, r1, r2",
+    "ldr r2, [sp, #68]",
+    "asrs r2, r2, #3",
+    "subs r2, #1",
+    "adds r1, r1, r2",
+    "mov r12, r1",
+    "ldr r2, [sp, #36]",
     "muls r2, r3",
-    "adds r0, r0, r1",
-    "bcc .Lsw_quot0",
-    "movs r1, #1",
-    "lsls r1, r1, #16",
-    "adds r7, r7, r1",
-    ".Lsw_quot0:",
-    "lsls r1, r0, #16",
-    "lsrs r0, r0, #16",
     "adds r2, r2, r1",
-    "adcs r7, r0",
-    "movs r0, r7",
-    "muls r0, r4",
-    "subs r5, r5, r0",
-    ".Lsw_quot1:",
-    "cmp r5, r4",
-    "blo .Lsw_quot2",
-    "adds r7, #1",
-    "subs r5, r5, r4",
-    "b .Lsw_quot1",
-    ".Lsw_quot2:",
-    "mov r0, r12",
-    "eors r7, r0",
-    "bx lr",
+    "str r2, [sp, #36]",
+    "movs r2, #0",
+    "mov lr, r2",
+    "ldr r2, [r0, #12]",
+    "str r2, [sp, #48]",
+    "ldr r2, [r0, #16]",
+    "str r2, [sp, #52]",
+    "mov r2, r8",
+    "cmp r2, #0",
+    "blt .Lbw_rowR",
+    // The rows with the long edge on the left. A row: its state and the next one's
+    // by POP and PUSH (r0 the depth, r1 the long edge, r2 and r3 the others; r5 the
+    // depth address); from the box's first column while the long edge is negative,
+    // then pixels while the other two are ≥ 0 (the colour in r1, its offset in r7).
+    ".Lbw_rowL:",
+    "pop {{r0, r1, r2, r3}}",
+    "mov r7, sp",
+    "ldm r7, {{r4, r5, r6, r7}}",
+    "adds r4, r4, r0",
+    "adds r5, r5, r1",
+    "adds r6, r6, r2",
+    "adds r7, r7, r3",
+    "push {{r4, r5, r6, r7}}",
+    "mov r5, r12",
+    "ldr r4, [sp, #60]",
+    "add r12, r4",
+    "cmp r1, #0",
+    "bge 12f",
+    "11:",
+    "add r0, r11",
+    "adds r5, #2",
+    "add r1, r8",
+    "add r2, r9",
+    "add r3, r10",
+    "cmp r1, #0",
+    "blt 11b",
+    "12:",
+    "movs r4, r2",
+    "orrs r4, r3",
+    "bmi 16f",
+    // The span's first pixel: where it starts, its depth clamped to lo..=hi (out of
+    // line).
+    "rsbs r4, r5, #0",
+    "add lr, r4",
+    "ldr r1, [sp, #48]",
+    "ldr r7, [sp, #52]",
+    "ldr r4, [sp, #40]",
+    "subs r6, r0, r4",
+    "ldr r4, [sp, #44]",
+    "cmp r6, r4",
+    "bhi 17f",
+    "13:",
+    "lsrs r6, r0, #16",
+    "ldrh r4, [r5]",
+    "cmp r6, r4",
+    "bhs 18f",
+    "strh r6, [r5]",
+    "strh r1, [r5, r7]",
+    "14:",
+    "add r0, r11",
+    "adds r5, #2",
+    "add r2, r9",
+    "add r3, r10",
+    "movs r4, r2",
+    "orrs r4, r3",
+    "bpl 13b",
+    "add lr, r5",
+    "16:",
+    "ldr r4, [sp, #36]",
+    "cmp r4, r12",
+    "bne .Lbw_rowL",
+    "b .Lbw_done",
+    // The first depth clamped: below lo to lo, else to lo + (hi − lo).
+    "17:",
+    "ldr r6, [sp, #40]",
+    "cmp r0, r6",
+    "blo 15f",
+    "adds r6, r6, r4",
+    "15:",
+    "mov r0, r6",
+    "b 13b",
+    // A failed pixel.
+    "18:",
+    "ldr r6, [sp, #56]",
+    "ldr r4, [r6, #28]",
+    "adds r4, #1",
+    "str r4, [r6, #28]",
+    "b 14b",
+    // The rows with the long edge on the right: from the box's first column while
+    // one of the other two is negative, then pixels while the long edge is ≥ 0.
+    ".Lbw_rowR:",
+    "pop {{r0, r1, r2, r3}}",
+    "mov r7, sp",
+    "ldm r7, {{r4, r5, r6, r7}}",
+    "adds r4, r4, r0",
+    "adds r5, r5, r1",
+    "adds r6, r6, r2",
+    "adds r7, r7, r3",
+    "push {{r4, r5, r6, r7}}",
+    "mov r5, r12",
+    "ldr r4, [sp, #60]",
+    "add r12, r4",
+    // (One of the two at a time: both grow to the right, so the first stays ≥ 0
+    // while the walk waits for the second.)
+    "cmp r2, #0",
+    "bge 20f",
+    "21:",
+    "add r0, r11",
+    "adds r5, #2",
+    "add r1, r8",
+    "add r2, r9",
+    "add r3, r10",
+    "cmp r2, #0",
+    "blt 21b",
+    "20:",
+    "cmp r3, #0",
+    "bge 22f",
+    "19:",
+    "add r0, r11",
+    "adds r5, #2",
+    "add r1, r8",
+    "add r2, r9",
+    "add r3, r10",
+    "cmp r3, #0",
+    "blt 19b",
+    "22:",
+    "cmp r1, #0",
+    "blt 26f",
+    "rsbs r4, r5, #0",
+    "add lr, r4",
+    "ldr r2, [sp, #48]",
+    "ldr r7, [sp, #52]",
+    "ldr r4, [sp, #40]",
+    "subs r6, r0, r4",
+    "ldr r4, [sp, #44]",
+    "cmp r6, r4",
+    "bhi 27f",
+    "23:",
+    "lsrs r6, r0, #16",
+    "ldrh r4, [r5]",
+    "cmp r6, r4",
+    "bhs 28f",
+    "strh r6, [r5]",
+    "strh r2, [r5, r7]",
+    "24:",
+    "add r0, r11",
+    "adds r5, #2",
+    "add r1, r8",
+    "cmp r1, #0",
+    "bge 23b",
+    "add lr, r5",
+    "26:",
+    "ldr r4, [sp, #36]",
+    "cmp r4, r12",
+    "bne .Lbw_rowR",
+    // Done: the pixels tested (bytes over 2).
+    ".Lbw_done:",
+    "mov r0, lr",
+    "lsrs r0, r0, #1",
+    "b .Lbw_out",
+    "27:",
+    "ldr r6, [sp, #40]",
+    "cmp r0, r6",
+    "blo 25f",
+    "adds r6, r6, r4",
+    "25:",
+    "mov r0, r6",
+    "b 23b",
+    "28:",
+    "ldr r6, [sp, #56]",
+    "ldr r4, [r6, #28]",
+    "adds r4, #1",
+    "str r4, [r6, #28]",
+    "b 24b",
     ".balign 4",
-    ".Lsw_lz8:",
+    ".Lbw_lz8:",
     ".word {lz8}",
-    ".Lsw_recip16:",
+    ".Lbw_recip16:",
     ".word {recip16} - 1024",
-    ".Lsw_bias:",
+    ".Lbw_bias:",
     ".word 32768",
-    ".Lsw_within:",
+    ".Lbw_within:",
     ".word 0x07ffffff",
-    ".Lsw_range:",
+    ".Lbw_range:",
     ".word 0x0fffffff",
     ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
     ".popsection",
@@ -1633,7 +1983,7 @@ fn check_small_walk(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize
     let (z1, c1) = mine.split_at_mut(W * H);
     let (z2, c2) = twin.split_at_mut(W * H);
     let mut bad = 0;
-    for case in 0..1500u32 {
+    for case in 0..3000u32 {
         for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
             (*d, *c) = (next(seed) as u16 | 0x8000 >> (case % 3), next(seed) as u16);
         }
@@ -1668,6 +2018,12 @@ fn check_small_walk(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize
             let far = if case % 29 == 0 && k == 1 { 9000 } else { 0 };
             let x = (next(seed) % span) as i32 + bx - span as i32 / 2 + far;
             let y = (next(seed) % span) as i32 + by - span as i32 / 2;
+            // Corners on pixel centres or corners on some (edges through centres).
+            let (x, y) = match case / 3 % 4 {
+                1 => ((x & !15) + 8, (y & !15) + 8),
+                2 => (x & !15, y & !15),
+                _ => (x, y),
+            };
             let z = z0
                 .saturating_add(next(seed) % spread)
                 .min(crate::fixed::MAX_DEPTH);
@@ -1676,6 +2032,11 @@ fn check_small_walk(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize
         let mut tri = [vertex(0), vertex(1), vertex(2)];
         if case % 7 == 0 {
             tri[2] = tri[1];
+        }
+        if case / 12 % 3 == 1 {
+            // A horizontal edge.
+            let (a, b) = (tri[0], tri[2]);
+            tri[2] = ScreenVertex::new(b.x(), a.y(), b.z()).unwrap_or(b);
         }
         let color = next(seed) as u16;
         let mut t = SmallTarget {
@@ -1705,26 +2066,97 @@ mod tests {
         assert_eq!(check_rows_walk_kernel(&mut buf[..100]), usize::MAX);
     }
 
-    /// `column_from_step` gives `setup_edge`'s first column and `err` for every row
-    /// near the corner (its offset 0 to 16), on random small edges.
+    /// The bounding-box walk's twin draws what the DDA's walk drew: the same outcome,
+    /// pixels, depths and counts, on random small triangles in random clips, corners
+    /// often on pixel centres or grid lines (edges through centres, ties), sharing a
+    /// row or a column (horizontal and vertical edges), some too large or of steep
+    /// depth (refused alike), some flat.
     #[test]
-    fn column_from_step_matches_the_division() {
-        let mut seed = 0x0dd_ba11;
-        for _ in 0..200_000 {
-            let dy = 1 + (next(&mut seed) % 8191) as i32;
-            let dx = (next(&mut seed) % 16383) as i32 - 8191;
-            let (y, x) = (
-                (next(&mut seed) % 17) as i32,
-                (next(&mut seed) % 8200) as i32 - 8,
+    fn box_walk_matches_the_dda_walk() {
+        const W: usize = 40;
+        const H: usize = 24;
+        let mut seed = 0x0b0b_5eed;
+        let (mut zs, mut cs) = ([0u16; W * H], [0u16; W * H]);
+        let (mut drawn, mut pixels) = (0, 0u64);
+        for case in 0..200_000u32 {
+            let n = |seed: &mut u32, m: u32| (next(seed) % m) as i32;
+            for (d, c) in zs.iter_mut().zip(cs.iter_mut()) {
+                (*d, *c) = (next(&mut seed) as u16 | 0x8000 >> (case % 3), 0);
+            }
+            let (mut z2, mut c2) = (zs, cs);
+            let first_row = n(&mut seed, 5) - 2;
+            let clip = if case % 2 == 0 {
+                let (x0, y0) = (n(&mut seed, 20), n(&mut seed, 12));
+                Clip {
+                    x0,
+                    y0: first_row + y0,
+                    x1: x0 + n(&mut seed, (W as u32) - x0 as u32 + 1),
+                    y1: first_row + y0 + n(&mut seed, (H as u32) - y0 as u32 + 1),
+                }
+            } else {
+                Clip {
+                    x0: 0,
+                    y0: first_row,
+                    x1: W as i32,
+                    y1: first_row + H as i32,
+                }
+            };
+            let span = [24, 48, 96, 200, 400, 9000][(case % 6) as usize];
+            let (bx, by) = (
+                n(&mut seed, W as u32 * 16) - 40,
+                n(&mut seed, H as u32 * 16) - 40 + first_row * 16,
             );
-            // The corner at (x + 8, 8 − y) from the origin column 0 (k = 8), row 0.
-            let corner = ScreenVertex::new(x + 8, 8 - y, 0).unwrap_or(ScreenVertex::ORIGIN);
-            let e = setup_edge(&corner, 0, (dx, dy), 8);
-            let (step, rem) = (dx.div_euclid(dy), dx.rem_euclid(dy));
-            let (col, err) = column_from_step((y, x), (step, rem), dy);
-            let at = ((col as u32) << 16).wrapping_add(err >> 4);
-            assert_eq!(at, e.at, "dx {dx} dy {dy} y {y} x {x}");
+            let grid = case / 6 % 4; // 0: free, 1: pixel centres, 2: pixel corners, 3: half
+            let z0 = next(&mut seed) >> 2;
+            let spread = 1u32 << (8 + case / 24 % 4 * 7);
+            let mut pts = [(0i32, 0i32, 0u32); 3];
+            for p in pts.iter_mut() {
+                let mut x = n(&mut seed, span) + bx - span as i32 / 2;
+                let mut y = n(&mut seed, span) + by - span as i32 / 2;
+                match grid {
+                    1 => (x, y) = ((x & !15) + 8, (y & !15) + 8),
+                    2 => (x, y) = (x & !15, y & !15),
+                    3 => (x, y) = (x & !7, y & !7),
+                    _ => {}
+                }
+                let z = z0.saturating_add(next(&mut seed) % spread);
+                *p = (x, y, z.min(crate::fixed::MAX_DEPTH));
+            }
+            match case / 96 % 8 {
+                0 => pts[1].1 = pts[0].1, // a horizontal edge
+                1 => pts[2].1 = pts[1].1,
+                2 => pts[2].0 = pts[0].0, // a vertical edge
+                3 => {
+                    // Two corners in a row and one in a column.
+                    pts[1].1 = pts[0].1;
+                    pts[2].0 = pts[1].0;
+                }
+                4 => pts[2] = pts[1],
+                _ => {}
+            }
+            let tri =
+                pts.map(|(x, y, z)| ScreenVertex::new(x, y, z).unwrap_or(ScreenVertex::ORIGIN));
+            let col = next(&mut seed) as u16;
+            let got =
+                small_walk_portable(tri.each_ref(), &clip, first_row, W, &mut zs, &mut cs, col);
+            let want = small_walk_dda(tri.each_ref(), &clip, first_row, W, &mut z2, &mut c2, col);
+            assert_eq!(
+                got, want,
+                "case {case}: {tri:?} in {clip:?} from row {first_row}"
+            );
+            assert!(
+                zs == z2 && cs == c2,
+                "case {case}: {tri:?} in {clip:?} from row {first_row}"
+            );
+            if let SmallDone::Drawn(t, _) = got {
+                drawn += 1;
+                pixels += u64::from(t);
+            }
         }
+        assert!(
+            drawn > 100_000 && pixels > 150_000,
+            "{drawn} drawn, {pixels} pixels"
+        );
     }
 
     /// What the set-up hands the rows loop keeps every row's columns inside the clip's
@@ -1760,7 +2192,7 @@ mod tests {
     /// what it refuses): of random triangles up to 10 pixels across, of depths a few
     /// units apart, all but the flat ones.
     #[test]
-    fn small_walk_setup_takes_the_usual_triangle() {
+    fn box_walk_takes_the_usual_triangle() {
         let mut seed = 0x1234_5678;
         let clip = Clip {
             x0: 0,
@@ -1779,7 +2211,7 @@ mod tests {
                 ScreenVertex::new(x + 100, y + 100, z).unwrap_or(ScreenVertex::ORIGIN)
             };
             let tri = [vertex(), vertex(), vertex()];
-            if small_walk_setup(tri.each_ref(), &clip, 0, 48).is_ok() {
+            if box_walk_setup(tri.each_ref(), &clip).is_ok() {
                 taken += 1;
             }
         }
