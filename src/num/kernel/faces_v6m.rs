@@ -117,6 +117,41 @@ macro_rules! v6m_term {
     };
 }
 
+/// The scan's test of a face's corners (x/y words in r2, r3, r0; r5 written): `checked`
+/// stops the scan (to `3f`) at one not placed (x's bits 15 and 14 differ: |x| ≥ 2¹⁴, the
+/// mark among them); `proven`, for a cache with no such entry, nothing.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_placed {
+    (checked) => {
+        concat!(
+            "lsls r5, r2, #16\n",
+            "adds r5, r5, r5\n",
+            "bvs 3f\n",
+            "lsls r5, r3, #16\n",
+            "adds r5, r5, r5\n",
+            "bvs 3f\n",
+            "lsls r5, r0, #16\n",
+            "adds r5, r5, r5\n",
+            "bvs 3f\n",
+        )
+    };
+    (proven) => {
+        ""
+    };
+}
+
+/// After a drawn face (the flags r4 against the end): on to the scan (`2b`), at the end
+/// to the stop (`3b`); the `proven` loop is short enough for a conditional branch back.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_next {
+    (checked) => {
+        "bhs 3b\nb 2b\n"
+    };
+    (proven) => {
+        "blo 2b\nb 3b\n"
+    };
+}
+
 /// The Lambert colour of the face at r4 (its address; the block in r7) into r2, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
 /// on to `$none`; n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
@@ -250,6 +285,19 @@ extern "C" {
     ///
     /// As [`zraster_faces_v6m`].
     fn zraster_faces_v6m_narrow(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m`] without the test of each corner's x (`v6m_placed`'s
+    /// `proven`).
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`], and no entry of the cache with |x| ≥ 2¹⁴.
+    fn zraster_faces_v6m_placed(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m_narrow`] without the test of each corner's x.
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m_placed`].
+    fn zraster_faces_v6m_narrow_placed(b: *mut FacesV6m) -> u32;
 }
 
 // SAFETY (for `faces_less_v6m`): the scan is `skip_culled_v6m`'s turn for turn
@@ -261,15 +309,18 @@ extern "C" {
 // to the set-up block's `color` (a word), the corners as entries + 8 · index for the
 // three indices found below `len`; `zraster_small_walk_v6m`'s contract: a block
 // started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
+// The `proven` loops skip the corners' x test, which decides which faces go to the
+// caller, not what is read or written (the set-up clips whatever the corners are).
 // r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
 // r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
 // set-up lies out of reach (in RAM under `ram-code`). The block is read and written
 // through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
 // and lr saved and restored.
-/// The whole frame's loop as the function `$name`, its colour's term `$term`.
+/// The whole frame's loop as the function `$name`, its colour's term `$term`, the
+/// corners' test `$placed` (`v6m_placed`).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! faces_v6m_fn {
-    ($name:literal, $term:ident) => {
+    ($name:literal, $term:ident, $placed:ident) => {
 core::arch::global_asm!(
     concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
     ".balign 4",
@@ -317,15 +368,7 @@ core::arch::global_asm!(
     "ldr r2, [r1, r2]",
     "ldr r3, [r1, r3]",
     "ldr r0, [r1, r0]",
-    "lsls r5, r2, #16",
-    "adds r5, r5, r5",
-    "bvs 3f",
-    "lsls r5, r3, #16",
-    "adds r5, r5, r5",
-    "bvs 3f",
-    "lsls r5, r0, #16",
-    "adds r5, r5, r5",
-    "bvs 3f",
+    v6m_placed!($placed),
     "subs r5, r3, r2",
     "sxth r5, r5",
     "subs r6, r0, r2",
@@ -384,10 +427,7 @@ core::arch::global_asm!(
     "str r2, [r7, #92]",
     "beq 10f",
     "cmp r4, r9",
-    "bhs 12f",
-    "b 2b",
-    "12:",
-    "b 3b",
+    v6m_next!($placed),
     // No normal: the flat colour (one for all), else the caller's.
     "5:",
     "ldr r2, [r7, #84]",
@@ -422,9 +462,13 @@ core::arch::global_asm!(
 }
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-faces_v6m_fn!("zraster_faces_v6m", general);
+faces_v6m_fn!("zraster_faces_v6m", general, checked);
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-faces_v6m_fn!("zraster_faces_v6m_narrow", narrow);
+faces_v6m_fn!("zraster_faces_v6m_narrow", narrow, checked);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_placed", general, proven);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_narrow_placed", narrow, proven);
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
@@ -530,21 +574,25 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
 /// scan past the dropped faces, each drawn face coloured by `color` (one colour, or
 /// lit into 5-6-5 written as it is: `Raw565`) and drawn by the small triangles' set-up
 /// and rows (`Less` with depth writes, a two-byte colour), its counts into `counts`.
-/// Returns where it stopped ([`FacesStop`], as `faces_less`). On ARMv6-M one assembly
-/// loop; elsewhere it leaves every face to the caller ([`FacesStop::Refused`]).
+/// Returns where it stopped ([`FacesStop`], as `faces_less`). `placed`: no entry of
+/// the cache is marked or otherwise has |x| ≥ 2¹⁴ (the renderer's `placed`), so that
+/// the scan need not test the corners (a wrong `true` gives a wrong picture, nothing
+/// unsafe). On ARMv6-M one assembly loop; elsewhere it leaves every face to the caller
+/// ([`FacesStop::Refused`]).
 #[inline(always)]
 pub(crate) fn faces_less_v6m<'a, C: Copy>(
     pos: &mut usize,
     scan: (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    placed: bool,
     color: &FaceColor<'_, C>,
     b: &mut Buffers<'_, '_, C>,
     counts: &mut FacesCounts,
 ) -> FacesStop<'a> {
     #[cfg(all(zraster_thumb, zraster_armv6m))]
-    return faces_v6m(pos, scan, color, b, counts);
+    return faces_v6m(pos, scan, placed, color, b, counts);
     #[allow(unreachable_code)]
     {
-        let _ = (pos, scan, color, b, counts);
+        let _ = (pos, scan, placed, color, b, counts);
         FacesStop::Refused
     }
 }
@@ -556,6 +604,7 @@ pub(crate) fn faces_less_v6m<'a, C: Copy>(
 fn faces_v6m<'a, C: Copy>(
     pos: &mut usize,
     (regs, faces, cache): (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    placed: bool,
     color: &FaceColor<'_, C>,
     b: &mut Buffers<'_, '_, C>,
     counts: &mut FacesCounts,
@@ -623,10 +672,11 @@ fn faces_v6m<'a, C: Copy>(
         // the block as built above (see the assembly's SAFETY comment).
         let (status, failed) = unsafe {
             failed.write(0);
-            let status = if narrow(block.diffuse) {
-                zraster_faces_v6m_narrow(&mut block)
-            } else {
-                zraster_faces_v6m(&mut block)
+            let status = match (narrow(block.diffuse), placed) {
+                (true, false) => zraster_faces_v6m_narrow(&mut block),
+                (false, false) => zraster_faces_v6m(&mut block),
+                (true, true) => zraster_faces_v6m_narrow_placed(&mut block),
+                (false, true) => zraster_faces_v6m_placed(&mut block),
             };
             (status, failed.read())
         };
@@ -1100,7 +1150,8 @@ fn band_faces_v6m<C: Copy>(
 /// unplaced or far apart, indices out of range; normals for some faces only; lit or
 /// one colour; the three cull modes) drawn into copies of the same random 48 × 16
 /// buffers (the colour rows at both alignments to the depth rows, clips of the whole
-/// or part), the faces the loop leaves drawn by the twin as the renderer would. `buf`
+/// or part; the loop without the corners' test where no entry is unplaced, on half the
+/// cases), the faces the loop leaves drawn by the twin as the renderer would. `buf`
 /// holds four 48 × 16 buffers (a shorter one is a failure). Returns the number of
 /// cases whose buffers, pixel counts or drawn faces differ, or where the loop refuses
 /// on ARMv6-M (elsewhere it leaves every face to the twin).
@@ -1171,6 +1222,9 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
             }
         }
         let cache = cache.get(..len).unwrap_or(&[]);
+        // The loop without the corners' test where none is unplaced, on half the
+        // cases (with it on the others).
+        let placed = case / 8 % 2 == 0 && cache.iter().all(|e| e.xy().0.unsigned_abs() < 1 << 14);
         let mut faces = [[0u16; 3]; 16];
         for t in faces.iter_mut() {
             for i in t.iter_mut() {
@@ -1229,7 +1283,14 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         let mut pos = 0;
         let mut refused = false;
         while pos < faces.len() {
-            match faces_less_v6m(&mut pos, (&regs, faces, cache), &color, &mut b, &mut mine) {
+            match faces_less_v6m(
+                &mut pos,
+                (&regs, faces, cache),
+                placed,
+                &color,
+                &mut b,
+                &mut mine,
+            ) {
                 FacesStop::Scan => pos += 1,
                 FacesStop::Face(k, tri) => {
                     let [p, q, r] = corners(tri);
