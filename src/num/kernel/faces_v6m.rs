@@ -117,9 +117,25 @@ macro_rules! v6m_term {
     };
 }
 
+/// The whole frame's loop's parts by mode: `checked`, any cache and cull mode; `back`,
+/// for a cache with no entry unplaced (|x| ≥ 2¹⁴) and back faces dropped.
+///
+/// `regs`: r10 and r11 from the block: `checked` the scan's −lo and span, `back` the
+/// tested and drawn sums (`back` tests the sign alone, and the caller bounds a call to
+/// `FLUSH` faces, so that the sums are kept in registers and do not wrap).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_regs {
+    (checked) => {
+        "ldr r1, [r0, #68]\nmov r10, r1\nldr r1, [r0, #72]\nmov r11, r1\n"
+    };
+    (back) => {
+        "ldr r1, [r0, #88]\nmov r10, r1\nldr r1, [r0, #92]\nmov r11, r1\n"
+    };
+}
+
 /// The scan's test of a face's corners (x/y words in r2, r3, r0; r5 written): `checked`
 /// stops the scan (to `3f`) at one not placed (x's bits 15 and 14 differ: |x| ≥ 2¹⁴, the
-/// mark among them); `proven`, for a cache with no such entry, nothing.
+/// mark among them); `back` has none.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_placed {
     (checked) => {
@@ -135,20 +151,73 @@ macro_rules! v6m_placed {
             "bvs 3f\n",
         )
     };
-    (proven) => {
+    (back) => {
         ""
     };
 }
 
-/// After a drawn face (the flags r4 against the end): on to the scan (`2b`), at the end
-/// to the stop (`3b`); the `proven` loop is short enough for a conditional branch back.
+/// The cull test of the cross product (r5, just subtracted: the flags its own) to the
+/// drawn face (`4f`): `checked` the scan's range test (r5 − lo ≤ span unsigned drops
+/// it), `back` its case lo = 0, span = 2³¹ − 1: the product's sign bit.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-macro_rules! v6m_next {
+macro_rules! v6m_cull {
     (checked) => {
-        "bhs 3b\nb 2b\n"
+        "add r5, r10\ncmp r5, r11\nbhi 4f\n"
     };
-    (proven) => {
-        "blo 2b\nb 3b\n"
+    (back) => {
+        "bmi 4f\n"
+    };
+}
+
+/// After the set-up's call (r0 its result, the block in r7): refused (u32::MAX) the
+/// caller's (`67f`); else the tested pixels into the sum and the face into the drawn
+/// count (`checked`: through the block, back to the caller after `FLUSH` faces, `10f`;
+/// `back`: in r10 and r11), then on from the next face (`2b`), or to the stop at the
+/// end (`3b`, r1 reloaded).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_after {
+    (checked) => {
+        concat!(
+            "adds r1, r0, #1\n",
+            "beq 67f\n",
+            "ldr r1, [r7, #88]\n",
+            "adds r1, r1, r0\n",
+            "str r1, [r7, #88]\n",
+            "adds r4, #6\n",
+            "ldr r1, [r7, #56]\n",
+            "ldr r2, [r7, #92]\n",
+            "subs r2, #1\n",
+            "str r2, [r7, #92]\n",
+            "beq 10f\n",
+            "cmp r4, r9\n",
+            "bhs 3b\n",
+            "b 2b\n",
+        )
+    };
+    (back) => {
+        concat!(
+            "adds r1, r0, #1\n",
+            "beq 67f\n",
+            "add r10, r0\n",
+            "movs r1, #1\n",
+            "add r11, r1\n",
+            "adds r4, #6\n",
+            "ldr r1, [r7, #56]\n",
+            "cmp r4, r9\n",
+            "blo 2b\n",
+            "b 3b\n",
+        )
+    };
+}
+
+/// At the return (the block in r7): `back` stores its sums (r10, r11) into the block.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_sums {
+    (checked) => {
+        ""
+    };
+    (back) => {
+        "mov r1, r10\nstr r1, [r7, #88]\nmov r1, r11\nstr r1, [r7, #92]\n"
     };
 }
 
@@ -285,19 +354,23 @@ extern "C" {
     ///
     /// As [`zraster_faces_v6m`].
     fn zraster_faces_v6m_narrow(b: *mut FacesV6m) -> u32;
-    /// [`zraster_faces_v6m`] without the test of each corner's x (`v6m_placed`'s
-    /// `proven`).
+    /// [`zraster_faces_v6m`] in mode `back` (`v6m_regs`): no test of the corners'
+    /// places, back faces dropped by the cross product's sign, the sums in the block's
+    /// `tested` and `drawn` (counted up from theirs), no return after `FLUSH` faces;
+    /// 2 is not returned. For a cache with no entry unplaced (else a wrong picture,
+    /// nothing unsafe), the scan's lo 0 and span 2³¹ − 1, at most `FLUSH` faces to
+    /// `end`.
     ///
     /// # Safety
     ///
-    /// As [`zraster_faces_v6m`], and no entry of the cache with |x| ≥ 2¹⁴.
-    fn zraster_faces_v6m_placed(b: *mut FacesV6m) -> u32;
-    /// [`zraster_faces_v6m_narrow`] without the test of each corner's x.
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_back(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m_narrow`] in mode `back`.
     ///
     /// # Safety
     ///
-    /// As [`zraster_faces_v6m_placed`].
-    fn zraster_faces_v6m_narrow_placed(b: *mut FacesV6m) -> u32;
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_narrow_back(b: *mut FacesV6m) -> u32;
 }
 
 // SAFETY (for `faces_less_v6m`): the scan is `skip_culled_v6m`'s turn for turn
@@ -309,18 +382,19 @@ extern "C" {
 // to the set-up block's `color` (a word), the corners as entries + 8 · index for the
 // three indices found below `len`; `zraster_small_walk_v6m`'s contract: a block
 // started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
-// The `proven` loops skip the corners' x test, which decides which faces go to the
-// caller, not what is read or written (the set-up clips whatever the corners are).
+// The `back` loops skip the corners' x test, which decides which faces go to the
+// caller, not what is read or written (the set-up clips whatever the corners are);
+// `end` there is the wrapper's, at most the faces' end.
 // r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
 // r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
 // set-up lies out of reach (in RAM under `ram-code`). The block is read and written
 // through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
 // and lr saved and restored.
-/// The whole frame's loop as the function `$name`, its colour's term `$term`, the
-/// corners' test `$placed` (`v6m_placed`).
+/// The whole frame's loop as the function `$name`, its colour's term `$term`, its
+/// mode `$mode` (`v6m_regs`).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! faces_v6m_fn {
-    ($name:literal, $term:ident, $placed:ident) => {
+    ($name:literal, $term:ident, $mode:ident) => {
 core::arch::global_asm!(
     concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
     ".balign 4",
@@ -337,15 +411,12 @@ core::arch::global_asm!(
     "push {{r4, r5, r6, r7}}",
     "sub sp, #4",
     "str r0, [sp]",
-    // The scan's operands: entries in r8, end in r9, −lo in r10, span in r11.
+    // The scan's operands: entries in r8, end in r9; r10, r11 by the mode.
     "ldr r1, [r0, #60]",
     "mov r8, r1",
     "ldr r1, [r0, #64]",
     "mov r9, r1",
-    "ldr r1, [r0, #68]",
-    "mov r10, r1",
-    "ldr r1, [r0, #72]",
-    "mov r11, r1",
+    v6m_regs!($mode),
     "mov r7, r0",
     "ldr r1, [r0, #56]",
     "ldr r4, [r0, #52]",
@@ -368,7 +439,7 @@ core::arch::global_asm!(
     "ldr r2, [r1, r2]",
     "ldr r3, [r1, r3]",
     "ldr r0, [r1, r0]",
-    v6m_placed!($placed),
+    v6m_placed!($mode),
     "subs r5, r3, r2",
     "sxth r5, r5",
     "subs r6, r0, r2",
@@ -381,9 +452,7 @@ core::arch::global_asm!(
     "muls r5, r0, r5",
     "muls r6, r3, r6",
     "subs r5, r5, r6",
-    "add r5, r10",
-    "cmp r5, r11",
-    "bhi 4f",
+    v6m_cull!($mode),
     "adds r4, #6",
     "cmp r4, r9",
     "bne 2b",
@@ -412,22 +481,8 @@ core::arch::global_asm!(
     "lsls r3, r3, #3",
     "adds r3, r3, r6",
     "bl zraster_small_walk_v6m",
-    // Refused (u32::MAX): the caller's. Else (the block still in r7, which the set-up
-    // keeps) tested into the sum, one face fewer to the next return, and on from the
-    // next face.
-    "adds r1, r0, #1",
-    "beq 67f",
-    "ldr r1, [r7, #88]",
-    "adds r1, r1, r0",
-    "str r1, [r7, #88]",
-    "adds r4, #6",
-    "ldr r1, [r7, #56]",
-    "ldr r2, [r7, #92]",
-    "subs r2, #1",
-    "str r2, [r7, #92]",
-    "beq 10f",
-    "cmp r4, r9",
-    v6m_next!($placed),
+    // The counts and on (the set-up keeps r7, the block).
+    v6m_after!($mode),
     // No normal: the flat colour (one for all), else the caller's.
     "5:",
     "ldr r2, [r7, #84]",
@@ -446,6 +501,7 @@ core::arch::global_asm!(
     "str r4, [r7, #52]",
     "movs r0, #2",
     "9:",
+    v6m_sums!($mode),
     "add sp, #4",
     "pop {{r4, r5, r6, r7}}",
     "mov r8, r4",
@@ -466,9 +522,9 @@ faces_v6m_fn!("zraster_faces_v6m", general, checked);
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 faces_v6m_fn!("zraster_faces_v6m_narrow", narrow, checked);
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-faces_v6m_fn!("zraster_faces_v6m_placed", general, proven);
+faces_v6m_fn!("zraster_faces_v6m_back", general, back);
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-faces_v6m_fn!("zraster_faces_v6m_narrow_placed", narrow, proven);
+faces_v6m_fn!("zraster_faces_v6m_narrow_back", narrow, back);
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
@@ -589,7 +645,7 @@ pub(crate) fn faces_less_v6m<'a, C: Copy>(
     counts: &mut FacesCounts,
 ) -> FacesStop<'a> {
     #[cfg(all(zraster_thumb, zraster_armv6m))]
-    return faces_v6m(pos, scan, placed, color, b, counts);
+    return faces_v6m(pos, scan, placed, FLUSH, color, b, counts);
     #[allow(unreachable_code)]
     {
         let _ = (pos, scan, placed, color, b, counts);
@@ -597,14 +653,16 @@ pub(crate) fn faces_less_v6m<'a, C: Copy>(
     }
 }
 
-/// [`faces_less_v6m`] on ARMv6-M. Out of line (it runs once for a run of faces): its
-/// block is not stacked on the caller's frame.
+/// [`faces_less_v6m`] on ARMv6-M, a call of the `back` loop covering at most `chunk`
+/// faces (`FLUSH`; the check's fewer test its resumption). Out of line (it runs once
+/// for a run of faces): its block is not stacked on the caller's frame.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 #[inline(never)]
 fn faces_v6m<'a, C: Copy>(
     pos: &mut usize,
     (regs, faces, cache): (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
     placed: bool,
+    chunk: u32,
     color: &FaceColor<'_, C>,
     b: &mut Buffers<'_, '_, C>,
     counts: &mut FacesCounts,
@@ -665,28 +723,52 @@ fn faces_v6m<'a, C: Copy>(
         }
         FaceColor::Lit(_, _, None) => return FacesStop::Refused,
     }
+    // Mode `back` for a cache with no entry unplaced and back faces dropped, at most
+    // `chunk` faces a call (its sums do not wrap); else `checked`.
+    let back = placed && regs.neg_lo == 0 && regs.span == i32::MAX as u32;
+    let (end, chunk) = (block.end, 6 * chunk.clamp(1, FLUSH));
+    let first = if back { 0 } else { FLUSH };
+    block.drawn = first;
     let status = loop {
+        if back {
+            block.end = if end - block.face > chunk {
+                block.face + chunk
+            } else {
+                end
+            };
+        }
         let failed = walk.wrapping_add(WALK_FAILED).cast::<u32>();
         // SAFETY: `walk` is the started set-up block of `b` (`Buffers::walk_block`),
         // whose `failed` word (at 28, aligned) the loop's calls only add to; the call:
-        // the block as built above (see the assembly's SAFETY comment).
+        // the block as built above (see the assembly's SAFETY comment), its `end` at
+        // most the faces' end.
         let (status, failed) = unsafe {
             failed.write(0);
-            let status = match (narrow(block.diffuse), placed) {
+            let status = match (narrow(block.diffuse), back) {
                 (true, false) => zraster_faces_v6m_narrow(&mut block),
                 (false, false) => zraster_faces_v6m(&mut block),
-                (true, true) => zraster_faces_v6m_narrow_placed(&mut block),
-                (false, true) => zraster_faces_v6m_placed(&mut block),
+                (true, true) => zraster_faces_v6m_narrow_back(&mut block),
+                (false, true) => zraster_faces_v6m_back(&mut block),
             };
             (status, failed.read())
         };
         counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
         counts.failed = counts.failed.wrapping_add(u64::from(failed));
-        counts.drawn = counts.drawn.wrapping_add(FLUSH - block.drawn);
-        if status != 2 {
+        counts.drawn = counts.drawn.wrapping_add(if back {
+            block.drawn
+        } else {
+            FLUSH - block.drawn
+        });
+        // On after `FLUSH` faces drawn, or (`back`) at the end of a call's faces.
+        let more = if back {
+            status == 0 && block.face == block.end && block.end != end
+        } else {
+            status == 2
+        };
+        if !more {
             break status;
         }
-        (block.tested, block.drawn) = (0, FLUSH);
+        (block.tested, block.drawn) = (0, first);
     };
     // The place: the bytes from the first face over 6, exactly (as `skip_culled_v6m`).
     let k = ((block.face.wrapping_sub(at) >> 1).wrapping_mul(0xAAAA_AAAB)) as usize;
@@ -1151,7 +1233,8 @@ fn band_faces_v6m<C: Copy>(
 /// one colour; the three cull modes) drawn into copies of the same random 48 × 16
 /// buffers (the colour rows at both alignments to the depth rows, clips of the whole
 /// or part; the loop without the corners' test where no entry is unplaced, on half the
-/// cases), the faces the loop leaves drawn by the twin as the renderer would. `buf`
+/// cases, its calls over a few faces on some), the faces the loop leaves drawn by the
+/// twin as the renderer would. `buf`
 /// holds four 48 × 16 buffers (a shorter one is a failure). Returns the number of
 /// cases whose buffers, pixel counts or drawn faces differ, or where the loop refuses
 /// on ARMv6-M (elsewhere it leaves every face to the twin).
@@ -1225,6 +1308,12 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         // The loop without the corners' test where none is unplaced, on half the
         // cases (with it on the others).
         let placed = case / 8 % 2 == 0 && cache.iter().all(|e| e.xy().0.unsigned_abs() < 1 << 14);
+        // The `back` loop's calls over all the faces or a few at a time.
+        let chunk = match case / 16 % 4 {
+            0 => FLUSH,
+            k => 2 * k as u32 - 1,
+        };
+        let _ = chunk;
         let mut faces = [[0u16; 3]; 16];
         for t in faces.iter_mut() {
             for i in t.iter_mut() {
@@ -1283,14 +1372,12 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         let mut pos = 0;
         let mut refused = false;
         while pos < faces.len() {
-            match faces_less_v6m(
-                &mut pos,
-                (&regs, faces, cache),
-                placed,
-                &color,
-                &mut b,
-                &mut mine,
-            ) {
+            let scan = (&regs, faces, cache);
+            #[cfg(all(zraster_thumb, zraster_armv6m))]
+            let stop = faces_v6m(&mut pos, scan, placed, chunk, &color, &mut b, &mut mine);
+            #[cfg(not(all(zraster_thumb, zraster_armv6m)))]
+            let stop = faces_less_v6m(&mut pos, scan, placed, &color, &mut b, &mut mine);
+            match stop {
                 FacesStop::Scan => pos += 1,
                 FacesStop::Face(k, tri) => {
                     let [p, q, r] = corners(tri);
