@@ -121,8 +121,9 @@ macro_rules! v6m_term {
 /// for a cache with no entry unplaced (|x| ≥ 2¹⁴) and back faces dropped.
 ///
 /// `regs`: r10 and r11 from the block: `checked` the scan's −lo and span, `back` the
-/// tested and drawn sums (`back` tests the sign alone, and the caller bounds a call to
-/// `FLUSH` faces, so that the sums are kept in registers and do not wrap).
+/// sums of tested pixels and of tested pixels + 1 a drawn face, from `tested` and
+/// `drawn` (`back` tests the sign alone, and the caller bounds a call to `FLUSH` faces,
+/// so that the sums are kept in registers and do not wrap).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_regs {
     (checked) => {
@@ -172,8 +173,9 @@ macro_rules! v6m_cull {
 /// After the set-up's call (r0 its result, the block in r7): refused (u32::MAX) the
 /// caller's (`67f`); else the tested pixels into the sum and the face into the drawn
 /// count (`checked`: through the block, back to the caller after `FLUSH` faces, `10f`;
-/// `back`: in r10 and r11), then on from the next face (`2b`), or to the stop at the
-/// end (`3b`, r1 reloaded).
+/// `back`: r10 the tested sum, r11 that of tested + 1, the drawn faces the
+/// difference), then on from the next face (`2b`), or to the stop at the end (`3b`, r1
+/// reloaded).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_after {
     (checked) => {
@@ -199,7 +201,6 @@ macro_rules! v6m_after {
             "adds r1, r0, #1\n",
             "beq 67f\n",
             "add r10, r0\n",
-            "movs r1, #1\n",
             "add r11, r1\n",
             "adds r4, #6\n",
             "ldr r1, [r7, #56]\n",
@@ -356,7 +357,8 @@ extern "C" {
     fn zraster_faces_v6m_narrow(b: *mut FacesV6m) -> u32;
     /// [`zraster_faces_v6m`] in mode `back` (`v6m_regs`): no test of the corners'
     /// places, back faces dropped by the cross product's sign, the sums in the block's
-    /// `tested` and `drawn` (counted up from theirs), no return after `FLUSH` faces;
+    /// `tested` and `drawn` (added to theirs; `drawn` sums tested + 1 a drawn face:
+    /// the faces are its difference to `tested`), no return after `FLUSH` faces;
     /// 2 is not returned. For a cache with no entry unplaced (else a wrong picture,
     /// nothing unsafe), the scan's lo 0 and span 2³¹ − 1, at most `FLUSH` faces to
     /// `end`.
@@ -755,7 +757,7 @@ fn faces_v6m<'a, C: Copy>(
         counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
         counts.failed = counts.failed.wrapping_add(u64::from(failed));
         counts.drawn = counts.drawn.wrapping_add(if back {
-            block.drawn
+            block.drawn.wrapping_sub(block.tested)
         } else {
             FLUSH - block.drawn
         });
