@@ -211,6 +211,33 @@ macro_rules! v6m_after {
     };
 }
 
+/// A drawn face's colour into r2 (`v6m_colour`, its term `$term`): `checked` to `5f`
+/// for a face without a normal; `back`, whose faces all have one, or `flat`: the one
+/// colour (the wrapper picks these only then).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_face_colour {
+    (checked, $term:ident) => {
+        v6m_colour!("5f", $term)
+    };
+    (back, flat) => {
+        "ldr r2, [r7, #84]\nuxth r2, r2\n"
+    };
+    (back, $term:ident) => {
+        v6m_colour!(all, $term)
+    };
+}
+
+/// [`v6m_colour_cold`] where the loop has [`v6m_colour`] (not for `flat`).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_face_cold {
+    (flat) => {
+        ""
+    };
+    ($term:ident) => {
+        v6m_colour_cold!()
+    };
+}
+
 /// At the return (the block in r7): `back` stores its sums (r10, r11) into the block.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! v6m_sums {
@@ -224,7 +251,7 @@ macro_rules! v6m_sums {
 
 /// The Lambert colour of the face at r4 (its address; the block in r7) into r2, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
-/// on to `$none`; n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
+/// on to `$none` (`all` in its place: no test, for faces all below `nend`); n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
 /// rounded: + 2¹², >> 13) plus ambient; for an intensity in 0..2¹⁵ each channel
 /// ((i·v + half) >> 15) · 32897 >> 23, packed 5-6-5 (any other intensity by
 /// `v6m_colour_cold`, which the caller places after its loop: the intensity clamped to
@@ -238,6 +265,12 @@ macro_rules! v6m_colour {
             "bhs ",
             $none,
             "\n",
+            v6m_colour!(all, $term),
+        )
+    };
+    // Every face with a normal (no test).
+    (all, $term:ident) => {
+        concat!(
             "ldr r2, [r7, #48]\n",
             "ldrsh r3, [r4, r2]\n",
             "adds r2, #2\n",
@@ -361,7 +394,7 @@ extern "C" {
     /// the faces are its difference to `tested`), no return after `FLUSH` faces;
     /// 2 is not returned. For a cache with no entry unplaced (else a wrong picture,
     /// nothing unsafe), the scan's lo 0 and span 2³¹ − 1, at most `FLUSH` faces to
-    /// `end`.
+    /// `end`, and `nend` at `end` or past it (every face's normal read unasked).
     ///
     /// # Safety
     ///
@@ -373,6 +406,12 @@ extern "C" {
     ///
     /// As [`zraster_faces_v6m`].
     fn zraster_faces_v6m_narrow_back(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m_back`] with the one colour `flat` (set) for every face.
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_flat_back(b: *mut FacesV6m) -> u32;
 }
 
 // SAFETY (for `faces_less_v6m`): the scan is `skip_culled_v6m`'s turn for turn
@@ -386,7 +425,9 @@ extern "C" {
 // started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
 // The `back` loops skip the corners' x test, which decides which faces go to the
 // caller, not what is read or written (the set-up clips whatever the corners are);
-// `end` there is the wrapper's, at most the faces' end.
+// `end` there is the wrapper's, at most the faces' end, and the lit ones read a drawn
+// face's normal without the `nend` test, which the wrapper takes them for only where
+// `nend` is the faces' end (a normal for every face).
 // r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
 // r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
 // set-up lies out of reach (in RAM under `ram-code`). The block is read and written
@@ -466,7 +507,7 @@ core::arch::global_asm!(
     "b 9f",
     // Drawn (the face in r4): its colour, else the flat colour or the caller's.
     "4:",
-    v6m_colour!("5f", $term),
+    v6m_face_colour!($mode, $term),
     // The colour (r2) into the set-up's block, the corners' entries, the call.
     "8:",
     "ldr r7, [sp]",
@@ -511,7 +552,7 @@ core::arch::global_asm!(
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    v6m_colour_cold!(),
+    v6m_face_cold!($term),
     concat!(".size ", $name, ", . - ", $name),
     ".popsection",
     color = const WALK_COLOR,
@@ -527,6 +568,8 @@ faces_v6m_fn!("zraster_faces_v6m_narrow", narrow, checked);
 faces_v6m_fn!("zraster_faces_v6m_back", general, back);
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 faces_v6m_fn!("zraster_faces_v6m_narrow_back", narrow, back);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_flat_back", flat, back);
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
@@ -725,9 +768,12 @@ fn faces_v6m<'a, C: Copy>(
         }
         FaceColor::Lit(_, _, None) => return FacesStop::Refused,
     }
-    // Mode `back` for a cache with no entry unplaced and back faces dropped, at most
-    // `chunk` faces a call (its sums do not wrap); else `checked`.
-    let back = placed && regs.neg_lo == 0 && regs.span == i32::MAX as u32;
+    // Mode `back` for a cache with no entry unplaced, back faces dropped and every
+    // face's colour known to the loop (a normal, or one colour), at most `chunk` faces
+    // a call (its sums do not wrap); else `checked`.
+    let flat = block.flat != 0;
+    let coloured = flat || block.nend == block.end;
+    let back = placed && coloured && regs.neg_lo == 0 && regs.span == i32::MAX as u32;
     let (end, chunk) = (block.end, 6 * chunk.clamp(1, FLUSH));
     let first = if back { 0 } else { FLUSH };
     block.drawn = first;
@@ -746,11 +792,12 @@ fn faces_v6m<'a, C: Copy>(
         // most the faces' end.
         let (status, failed) = unsafe {
             failed.write(0);
-            let status = match (narrow(block.diffuse), back) {
-                (true, false) => zraster_faces_v6m_narrow(&mut block),
-                (false, false) => zraster_faces_v6m(&mut block),
-                (true, true) => zraster_faces_v6m_narrow_back(&mut block),
-                (false, true) => zraster_faces_v6m_back(&mut block),
+            let status = match (narrow(block.diffuse), back, flat) {
+                (true, false, _) => zraster_faces_v6m_narrow(&mut block),
+                (false, false, _) => zraster_faces_v6m(&mut block),
+                (_, true, true) => zraster_faces_v6m_flat_back(&mut block),
+                (true, true, false) => zraster_faces_v6m_narrow_back(&mut block),
+                (false, true, false) => zraster_faces_v6m_back(&mut block),
             };
             (status, failed.read())
         };
@@ -1339,7 +1386,11 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         let ambient = (rnd() % 131_073) as i32 - 65536;
         let diffuse = (rnd() % 131_073) as i32 - 65536;
         let channels = [0; 3].map(|_| rnd() as u8);
-        let count = rnd() as usize % (faces.len() + 2);
+        // A normal for every face on a third of the cases (the back loop's lit case).
+        let count = match rnd() as usize % (faces.len() + 2) {
+            _ if case % 3 == 1 => faces.len(),
+            n => n,
+        };
         let block = LightBlock::new(
             light,
             ambient,
