@@ -251,8 +251,9 @@ macro_rules! v6m_sums {
 
 /// The Lambert colour of the face at r4 (its address; the block in r7) into r2, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
-/// on to `$none` (`all` in its place: no test, for faces all below `nend`); n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
-/// rounded: + 2¹², >> 13) plus ambient; for an intensity in 0..2¹⁵ each channel
+/// on to `$none` (`all` in its place: no test, for faces all below `nend`); n·L
+/// (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`, rounded: + 2¹², >>
+/// 13) plus ambient; for an intensity in 0..2¹⁵ each channel
 /// ((i·v + half) >> 15) · 32897 >> 23, packed 5-6-5 (any other intensity by
 /// `v6m_colour_cold`, which the caller places after its loop: the intensity clamped to
 /// 0..=65535, each channel to its maximum). Writes r0–r3, r5–r7 and the flags.
@@ -422,17 +423,17 @@ extern "C" {
 // there are (at most the faces'), so only inside the normals' slice. The colour goes
 // to the set-up block's `color` (a word), the corners as entries + 8 · index for the
 // three indices found below `len`; `zraster_small_walk_v6m`'s contract: a block
-// started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
-// The `back` loops skip the corners' x test, which decides which faces go to the
-// caller, not what is read or written (the set-up clips whatever the corners are);
-// `end` there is the wrapper's, at most the faces' end, and the lit ones read a drawn
-// face's normal without the `nend` test, which the wrapper takes them for only where
-// `nend` is the faces' end (a normal for every face).
-// r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
-// r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
-// set-up lies out of reach (in RAM under `ram-code`). The block is read and written
-// through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
-// and lr saved and restored.
+// started for buffers whose clip lies inside both (`Buffers::walk_block`). The `back`
+// loops skip the corners' x test, which decides which faces go to the caller, not what
+// is read or written (the set-up clips whatever the corners are); `end` there is the
+// wrapper's, at most the faces' end, and the lit ones read a drawn face's normal
+// without the `nend` test, which the wrapper takes them for only where `nend` is the
+// faces' end (a normal for every face). The call keeps r4–r11 (AAPCS): the scan's
+// operands in r8–r11 and the face in r4 live across it; r1 is reloaded. The call is a
+// BL, which the linker gives a long-branch thunk where the set-up lies out of reach
+// (in RAM under `ram-code`). The block is read and written through its address at
+// [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11 and lr saved and
+// restored.
 /// The whole frame's loop as the function `$name`, its colour's term `$term`, its
 /// mode `$mode` (`v6m_regs`).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
