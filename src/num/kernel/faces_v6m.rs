@@ -284,8 +284,10 @@ macro_rules! v6m_colour {
             "muls r6, r2, r6\n",
             "adds r3, r3, r5\n",
             "adds r3, r3, r6\n",
-            "asrs r0, r3, #31\n",
-            "bics r3, r0\n",
+            // At least 0 (the sum's sign bit).
+            "bpl 1f\n",
+            "movs r3, #0\n",
+            "1:\n",
             "ldm r7!, {{r0, r1, r2}}\n",
             v6m_term!($term),
             "adds r3, r3, r2\n",
