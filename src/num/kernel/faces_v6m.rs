@@ -69,10 +69,36 @@ const _: () = {
     assert!(offset_of!(B, drawn) == 92);
 };
 
-/// Whether a diffuse weight takes `v6m_term`'s `narrow` form (|w| < 2¹⁵).
+/// Whether a diffuse weight `w` and ambient weight `a` take `v6m_term`'s `narrow` form
+/// (|w| < 2¹⁵) and its rounding with the ambient weight in it (|a| ≤ 2¹⁶).
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
-fn narrow(w: i32) -> bool {
-    w.unsigned_abs() < 1 << 15
+fn narrow(w: i32, a: i32) -> bool {
+    w.unsigned_abs() < 1 << 15 && a.unsigned_abs() <= 1 << 16
+}
+
+/// The colour's rounding word (`round`) for ambient weight `a` and diffuse weight `w`:
+/// 2¹², and for `narrow` also a·2¹³ (`v6m_round`).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+fn round_of(a: i32, w: i32) -> i32 {
+    if narrow(w, a) {
+        (1 << 12) + (a << 13)
+    } else {
+        1 << 12
+    }
+}
+
+/// The diffuse term's numerator (r3) rounded and the ambient weight (r0) added, with
+/// the rounding word in r2: `general` (x + 2¹²) >> 13 + a; `narrow`, whose word holds
+/// 2¹² + a·2¹³, (x + that) >> 13, the same (a·2¹³ a multiple of 2¹³; |x| < 2³⁰ as |w| <
+/// 2¹⁵ and 0 ≤ dot < 2³¹, |a·2¹³| ≤ 2²⁹: no wrap).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_round {
+    (general) => {
+        "adds r3, r3, r2\nasrs r3, r3, #13\nadds r3, r3, r0\n"
+    };
+    (narrow) => {
+        "adds r3, r3, r2\nasrs r3, r3, #13\n"
+    };
 }
 
 /// The set-up block's fields the loop writes and reads (`RowsWalk`'s `color` and
@@ -253,7 +279,7 @@ macro_rules! v6m_sums {
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
 /// on to `$none` (`all` in its place: no test, for faces all below `nend`); n·L
 /// (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`, rounded: + 2¹², >>
-/// 13) plus ambient; for an intensity in 0..2¹⁵ each channel
+/// 13) plus ambient (`v6m_round`); for an intensity in 0..2¹⁵ each channel
 /// ((i·v + half) >> 15) · 32897 >> 23, packed 5-6-5 (any other intensity by
 /// `v6m_colour_cold`, which the caller places after its loop: the intensity clamped to
 /// 0..=65535, each channel to its maximum). Writes r0–r3, r5–r7 and the flags.
@@ -290,9 +316,7 @@ macro_rules! v6m_colour {
             "1:\n",
             "ldm r7!, {{r0, r1, r2}}\n",
             v6m_term!($term),
-            "adds r3, r3, r2\n",
-            "asrs r3, r3, #13\n",
-            "adds r3, r3, r0\n",
+            v6m_round!($term),
             "ldm r7!, {{r0, r1, r2}}\n",
             "ldm r7!, {{r5, r6}}\n",
             // From 0 to below full light (0 ≤ i < 2¹⁵) no channel passes its maximum:
@@ -640,7 +664,7 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
             light: l.light,
             ambient: l.ambient,
             diffuse: l.diffuse,
-            round: 1 << 12,
+            round: round_of(l.ambient, l.diffuse),
             channels: l.channels,
             half: l.half,
             k: 32_897,
@@ -662,7 +686,7 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
         let face = at.wrapping_add(6 * f.min(normals.len()) as u32);
         // SAFETY: the normals' slice bounds what it reads (`nend`, `ndelta` 0).
         let c = unsafe {
-            if narrow(l.diffuse) {
+            if narrow(l.diffuse, l.ambient) {
                 zraster_colour_v6m_narrow(&block, face)
             } else {
                 zraster_colour_v6m(&block, face)
@@ -764,6 +788,7 @@ fn faces_v6m<'a, C: Copy>(
             block.light = l.light;
             block.ambient = l.ambient;
             block.diffuse = l.diffuse;
+            block.round = round_of(l.ambient, l.diffuse);
             block.channels = l.channels;
             block.half = l.half;
             block.nend = at.wrapping_add(6 * n as u32);
@@ -795,7 +820,7 @@ fn faces_v6m<'a, C: Copy>(
         // most the faces' end.
         let (status, failed) = unsafe {
             failed.write(0);
-            let status = match (narrow(block.diffuse), back, flat) {
+            let status = match (narrow(block.diffuse, block.ambient), back, flat) {
                 (true, false, _) => zraster_faces_v6m_narrow(&mut block),
                 (false, false, _) => zraster_faces_v6m(&mut block),
                 (_, true, true) => zraster_faces_v6m_flat_back(&mut block),
