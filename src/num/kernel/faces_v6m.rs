@@ -317,8 +317,8 @@ macro_rules! v6m_colour {
             "ldm r7!, {{r0, r1, r2}}\n",
             v6m_term!($term),
             v6m_round!($term),
-            "ldm r7!, {{r0, r1, r2}}\n",
-            "ldm r7!, {{r5, r6}}\n",
+            // The channels, half and k (r0–r2, r5, r6: five words in a row).
+            "ldm r7!, {{r0, r1, r2, r5, r6}}\n",
             // From 0 to below full light (0 ≤ i < 2¹⁵) no channel passes its maximum:
             // no clamps.
             "lsrs r7, r3, #15\n",
