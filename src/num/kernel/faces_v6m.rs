@@ -939,7 +939,7 @@ extern "C" {
 /// The band loop's set-up call (the colour in r2, the face's address in r4): the
 /// corners' indices below the cache's length, the colour into the set-up's block,
 /// their entries, the call; a corner past the cache or refused to `67f`, else the
-/// tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
+/// tested pixels into the sum (r1, the flags its sign; the block in r7). Keeps r6.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! band_call {
     () => {
@@ -1078,17 +1078,17 @@ core::arch::global_asm!(
     "bl 30f",
     "mov r6, r2",
     band_call!(),
-    "ldr r1, [r7, #104]",
+    // (r1 the tested sum, kept for its sign.)
+    "ldr r3, [r7, #104]",
     "ldr r2, [r7, #108]",
-    "cmp r1, r2",
+    "cmp r3, r2",
     "bhs 1f",
     "ldr r2, [r7, #72]",
-    "lsls r3, r1, #1",
-    "strh r6, [r2, r3]",
-    "adds r1, #1",
-    "str r1, [r7, #104]",
+    "lsls r0, r3, #1",
+    "strh r6, [r2, r0]",
+    "adds r3, #1",
+    "str r3, [r7, #104]",
     "1:",
-    "ldr r1, [r7, #88]",
     "cmp r1, #0",
     "bge 60b",
     "10:",
