@@ -253,6 +253,9 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     /// weight in Q15 shifted up by [`LAMBERT_SCALE`].
     pub(crate) light_q: ([i32; 3], i64, i64),
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
+    /// Whether no entry of `cache` is marked (each placed: |x|, |y| < 2¹⁴), known where
+    /// ARMv6-M's vertex kernel filled it: its face loop then skips that test.
+    pub(crate) placed: bool,
     pub(crate) stats: FrameStats,
     pub(crate) counted: bool,
     /// Whether the mesh has see-through faces, once a see-through pass has looked.
@@ -355,6 +358,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 )) << LAMBERT_SCALE,
             ),
             cache: None,
+            placed: false,
             stats: FrameStats::default(),
             counted: false,
             see_through: None,
@@ -381,29 +385,32 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mut made = Self::new(mesh, xf, options);
         if let Ok(r) = &mut made {
             let cache = crate::error::prefix_mut(cache, mesh.positions.len())?;
-            r.fill_cache(cache);
+            r.placed = r.fill_cache(cache);
             r.cache = Some(cache);
         }
         made
     }
 
-    /// Fills `cache` with the entries of the mesh's positions (as many as it holds).
-    fn fill_cache(&self, cache: &mut [CachedVertex]) {
+    /// Fills `cache` with the entries of the mesh's positions (as many as it holds);
+    /// whether it knows that none is marked (where a vertex kernel filled it).
+    fn fill_cache(&self, cache: &mut [CachedVertex]) -> bool {
         let positions = self.mesh.positions;
-        // The usual vertex by the vertex kernel, any other out of line (on ARMv6-M
-        // always: the loop below is not built there).
-        if self
-            .map
-            .place_all(&self.fixed, positions, cache, |p| self.cache_entry(p))
-            || crate::num::kernel::PLACE_V6M_KERNEL
-        {
-            return;
+        // The usual vertex by the vertex kernel (which only places), any other out of
+        // line (on ARMv6-M always: the loop below is not built there).
+        let mut placed = true;
+        let kernel = self.map.place_all(&self.fixed, positions, cache, |p| {
+            let e = self.cache_entry(p);
+            placed &= !e.marked();
+            e
+        });
+        if kernel || crate::num::kernel::PLACE_V6M_KERNEL {
+            return crate::num::kernel::PLACE_V6M_KERNEL && kernel && placed;
         }
         // x86-64: the usual vertex four at a time in SSE2, any other out of line.
         if PLACE4_KERNEL {
             if let Some(block) = self.map.place_block(&self.fixed) {
                 place_quads(&block, positions, cache, |p| self.cache_entry(p));
-                return;
+                return false;
             }
         }
         // w's bits beyond 31 at the previous vertex, for the next (project_fast).
@@ -423,6 +430,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 None => self.cache_entry(p),
             };
         }
+        false
     }
 
     /// This renderer with the render state `T` fixed at compile time: a firmware that
@@ -466,6 +474,7 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             light_model: self.light_model,
             light_q: self.light_q,
             cache: self.cache,
+            placed: self.placed,
             stats: self.stats,
             counted: self.counted,
             see_through: self.see_through,

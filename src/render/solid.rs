@@ -344,6 +344,8 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
             _ => None,
         };
         let mut fused = fused.filter(|_| FUSED_FACES && rows.is_none());
+        // ARMv6-M: whether the loop may skip the test of each corner's place.
+        let placed = self.placed;
         let mut fused_counts = FacesCounts::default();
         // The target of the fills is a local never borrowed beyond them (a face to clip
         // ends the run and gets a target of its own), so that what the fills work out
@@ -371,7 +373,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
                     let (mut pos, faces, cache) = walk.fused();
                     let scan = (&operands, faces, cache);
                     let stop = if FACES_V6M_KERNEL {
-                        faces_less_v6m(&mut pos, scan, color, b, &mut fused_counts)
+                        faces_less_v6m(&mut pos, scan, placed, color, b, &mut fused_counts)
                     } else {
                         let mut t = b.target();
                         faces_less(&mut pos, scan, color, &mut t, &mut fused_counts)

@@ -69,10 +69,36 @@ const _: () = {
     assert!(offset_of!(B, drawn) == 92);
 };
 
-/// Whether a diffuse weight takes `v6m_term`'s `narrow` form (|w| < 2¹⁵).
+/// Whether a diffuse weight `w` and ambient weight `a` take `v6m_term`'s `narrow` form
+/// (|w| < 2¹⁵) and its rounding with the ambient weight in it (|a| ≤ 2¹⁶).
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
-fn narrow(w: i32) -> bool {
-    w.unsigned_abs() < 1 << 15
+fn narrow(w: i32, a: i32) -> bool {
+    w.unsigned_abs() < 1 << 15 && a.unsigned_abs() <= 1 << 16
+}
+
+/// The colour's rounding word (`round`) for ambient weight `a` and diffuse weight `w`:
+/// 2¹², and for `narrow` also a·2¹³ (`v6m_round`).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+fn round_of(a: i32, w: i32) -> i32 {
+    if narrow(w, a) {
+        (1 << 12) + (a << 13)
+    } else {
+        1 << 12
+    }
+}
+
+/// The diffuse term's numerator (r3) rounded and the ambient weight (r0) added, with
+/// the rounding word in r2: `general` (x + 2¹²) >> 13 + a; `narrow`, whose word holds
+/// 2¹² + a·2¹³, (x + that) >> 13, the same (a·2¹³ a multiple of 2¹³; |x| < 2³⁰ as |w| <
+/// 2¹⁵ and 0 ≤ dot < 2³¹, |a·2¹³| ≤ 2²⁹: no wrap).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_round {
+    (general) => {
+        "adds r3, r3, r2\nasrs r3, r3, #13\nadds r3, r3, r0\n"
+    };
+    (narrow) => {
+        "adds r3, r3, r2\nasrs r3, r3, #13\n"
+    };
 }
 
 /// The set-up block's fields the loop writes and reads (`RowsWalk`'s `color` and
@@ -117,10 +143,143 @@ macro_rules! v6m_term {
     };
 }
 
+/// The whole frame's loop's parts by mode: `checked`, any cache and cull mode; `back`,
+/// for a cache with no entry unplaced (|x| ≥ 2¹⁴) and back faces dropped.
+///
+/// `regs`: r10 and r11 from the block: `checked` the scan's −lo and span, `back` the
+/// sums of tested pixels and of tested pixels + 1 a drawn face, from `tested` and
+/// `drawn` (`back` tests the sign alone, and the caller bounds a call to `FLUSH` faces,
+/// so that the sums are kept in registers and do not wrap).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_regs {
+    (checked) => {
+        "ldr r1, [r0, #68]\nmov r10, r1\nldr r1, [r0, #72]\nmov r11, r1\n"
+    };
+    (back) => {
+        "ldr r1, [r0, #88]\nmov r10, r1\nldr r1, [r0, #92]\nmov r11, r1\n"
+    };
+}
+
+/// The scan's test of a face's corners (x/y words in r2, r3, r0; r5 written): `checked`
+/// stops the scan (to `3f`) at one not placed (x's bits 15 and 14 differ: |x| ≥ 2¹⁴, the
+/// mark among them); `back` has none.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_placed {
+    (checked) => {
+        concat!(
+            "lsls r5, r2, #16\n",
+            "adds r5, r5, r5\n",
+            "bvs 3f\n",
+            "lsls r5, r3, #16\n",
+            "adds r5, r5, r5\n",
+            "bvs 3f\n",
+            "lsls r5, r0, #16\n",
+            "adds r5, r5, r5\n",
+            "bvs 3f\n",
+        )
+    };
+    (back) => {
+        ""
+    };
+}
+
+/// The cull test of the cross product (r5, just subtracted: the flags its own) to the
+/// drawn face (`4f`): `checked` the scan's range test (r5 − lo ≤ span unsigned drops
+/// it), `back` its case lo = 0, span = 2³¹ − 1: the product's sign bit.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_cull {
+    (checked) => {
+        "add r5, r10\ncmp r5, r11\nbhi 4f\n"
+    };
+    (back) => {
+        "bmi 4f\n"
+    };
+}
+
+/// After the set-up's call (r0 its result, the block in r7): refused (u32::MAX) the
+/// caller's (`67f`); else the tested pixels into the sum and the face into the drawn
+/// count (`checked`: through the block, back to the caller after `FLUSH` faces, `10f`;
+/// `back`: r10 the tested sum, r11 that of tested + 1, the drawn faces the
+/// difference), then on from the next face (`2b`), or to the stop at the end (`3b`, r1
+/// reloaded).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_after {
+    (checked) => {
+        concat!(
+            "adds r1, r0, #1\n",
+            "beq 67f\n",
+            "ldr r1, [r7, #88]\n",
+            "adds r1, r1, r0\n",
+            "str r1, [r7, #88]\n",
+            "adds r4, #6\n",
+            "ldr r1, [r7, #56]\n",
+            "ldr r2, [r7, #92]\n",
+            "subs r2, #1\n",
+            "str r2, [r7, #92]\n",
+            "beq 10f\n",
+            "cmp r4, r9\n",
+            "bhs 3b\n",
+            "b 2b\n",
+        )
+    };
+    (back) => {
+        concat!(
+            "adds r1, r0, #1\n",
+            "beq 67f\n",
+            "add r10, r0\n",
+            "add r11, r1\n",
+            "adds r4, #6\n",
+            "ldr r1, [r7, #56]\n",
+            "cmp r4, r9\n",
+            "blo 2b\n",
+            "b 3b\n",
+        )
+    };
+}
+
+/// A drawn face's colour into r2 (`v6m_colour`, its term `$term`): `checked` to `5f`
+/// for a face without a normal; `back`, whose faces all have one, or `flat`: the one
+/// colour (the wrapper picks these only then).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_face_colour {
+    (checked, $term:ident) => {
+        v6m_colour!("5f", $term)
+    };
+    (back, flat) => {
+        "ldr r2, [r7, #84]\nuxth r2, r2\n"
+    };
+    (back, $term:ident) => {
+        v6m_colour!(all, $term)
+    };
+}
+
+/// [`v6m_colour_cold`] where the loop has [`v6m_colour`] (not for `flat`).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_face_cold {
+    (flat) => {
+        ""
+    };
+    ($term:ident) => {
+        v6m_colour_cold!()
+    };
+}
+
+/// At the return (the block in r7): `back` stores its sums (r10, r11) into the block.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_sums {
+    (checked) => {
+        ""
+    };
+    (back) => {
+        "mov r1, r10\nstr r1, [r7, #88]\nmov r1, r11\nstr r1, [r7, #92]\n"
+    };
+}
+
 /// The Lambert colour of the face at r4 (its address; the block in r7) into r2, as
 /// `lit_565_portable` step for step: its normal at r4 + `ndelta` when r4 < `nend`, else
-/// on to `$none`; n·L (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`,
-/// rounded: + 2¹², >> 13) plus ambient; for an intensity in 0..2¹⁵ each channel
+/// on to `$none` (`all` in its place: no test, for faces all below `nend`); n·L
+/// (wrapping), at least 0; the diffuse term (`v6m_term`'s `$term`, rounded: + 2¹², >>
+/// 13) plus ambient (`v6m_round`); for an intensity in 0..2¹⁵ each channel
 /// ((i·v + half) >> 15) · 32897 >> 23, packed 5-6-5 (any other intensity by
 /// `v6m_colour_cold`, which the caller places after its loop: the intensity clamped to
 /// 0..=65535, each channel to its maximum). Writes r0–r3, r5–r7 and the flags.
@@ -133,6 +292,12 @@ macro_rules! v6m_colour {
             "bhs ",
             $none,
             "\n",
+            v6m_colour!(all, $term),
+        )
+    };
+    // Every face with a normal (no test).
+    (all, $term:ident) => {
+        concat!(
             "ldr r2, [r7, #48]\n",
             "ldrsh r3, [r4, r2]\n",
             "adds r2, #2\n",
@@ -145,15 +310,15 @@ macro_rules! v6m_colour {
             "muls r6, r2, r6\n",
             "adds r3, r3, r5\n",
             "adds r3, r3, r6\n",
-            "asrs r0, r3, #31\n",
-            "bics r3, r0\n",
+            // At least 0 (the sum's sign bit).
+            "bpl 1f\n",
+            "movs r3, #0\n",
+            "1:\n",
             "ldm r7!, {{r0, r1, r2}}\n",
             v6m_term!($term),
-            "adds r3, r3, r2\n",
-            "asrs r3, r3, #13\n",
-            "adds r3, r3, r0\n",
-            "ldm r7!, {{r0, r1, r2}}\n",
-            "ldm r7!, {{r5, r6}}\n",
+            v6m_round!($term),
+            // The channels, half and k (r0–r2, r5, r6: five words in a row).
+            "ldm r7!, {{r0, r1, r2, r5, r6}}\n",
             // From 0 to below full light (0 ≤ i < 2¹⁵) no channel passes its maximum:
             // no clamps.
             "lsrs r7, r3, #15\n",
@@ -250,6 +415,30 @@ extern "C" {
     ///
     /// As [`zraster_faces_v6m`].
     fn zraster_faces_v6m_narrow(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m`] in mode `back` (`v6m_regs`): no test of the corners'
+    /// places, back faces dropped by the cross product's sign, the sums in the block's
+    /// `tested` and `drawn` (added to theirs; `drawn` sums tested + 1 a drawn face:
+    /// the faces are its difference to `tested`), no return after `FLUSH` faces;
+    /// 2 is not returned. For a cache with no entry unplaced (else a wrong picture,
+    /// nothing unsafe), the scan's lo 0 and span 2³¹ − 1, at most `FLUSH` faces to
+    /// `end`, and `nend` at `end` or past it (every face's normal read unasked).
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_back(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m_narrow`] in mode `back`.
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_narrow_back(b: *mut FacesV6m) -> u32;
+    /// [`zraster_faces_v6m_back`] with the one colour `flat` (set) for every face.
+    ///
+    /// # Safety
+    ///
+    /// As [`zraster_faces_v6m`].
+    fn zraster_faces_v6m_flat_back(b: *mut FacesV6m) -> u32;
 }
 
 // SAFETY (for `faces_less_v6m`): the scan is `skip_culled_v6m`'s turn for turn
@@ -260,16 +449,22 @@ extern "C" {
 // there are (at most the faces'), so only inside the normals' slice. The colour goes
 // to the set-up block's `color` (a word), the corners as entries + 8 · index for the
 // three indices found below `len`; `zraster_small_walk_v6m`'s contract: a block
-// started for buffers whose clip lies inside both (`Buffers::walk_block`). It keeps
-// r4–r11 (AAPCS): the scan's operands in r8–r11 and the face in r4 live across it;
-// r1 is reloaded. The call is a BL, which the linker gives a long-branch thunk where the
-// set-up lies out of reach (in RAM under `ram-code`). The block is read and written
-// through its address at [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11
-// and lr saved and restored.
-/// The whole frame's loop as the function `$name`, its colour's term `$term`.
+// started for buffers whose clip lies inside both (`Buffers::walk_block`). The `back`
+// loops skip the corners' x test, which decides which faces go to the caller, not what
+// is read or written (the set-up clips whatever the corners are); `end` there is the
+// wrapper's, at most the faces' end, and the lit ones read a drawn face's normal
+// without the `nend` test, which the wrapper takes them for only where `nend` is the
+// faces' end (a normal for every face). The call keeps r4–r11 (AAPCS): the scan's
+// operands in r8–r11 and the face in r4 live across it; r1 is reloaded. The call is a
+// BL, which the linker gives a long-branch thunk where the set-up lies out of reach
+// (in RAM under `ram-code`). The block is read and written through its address at
+// [sp]; the frame is 40 bytes (8-aligned at the call); r4–r11 and lr saved and
+// restored.
+/// The whole frame's loop as the function `$name`, its colour's term `$term`, its
+/// mode `$mode` (`v6m_regs`).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! faces_v6m_fn {
-    ($name:literal, $term:ident) => {
+    ($name:literal, $term:ident, $mode:ident) => {
 core::arch::global_asm!(
     concat!(".pushsection .text.", $name, ",\"ax\",%progbits"),
     ".balign 4",
@@ -286,15 +481,12 @@ core::arch::global_asm!(
     "push {{r4, r5, r6, r7}}",
     "sub sp, #4",
     "str r0, [sp]",
-    // The scan's operands: entries in r8, end in r9, −lo in r10, span in r11.
+    // The scan's operands: entries in r8, end in r9; r10, r11 by the mode.
     "ldr r1, [r0, #60]",
     "mov r8, r1",
     "ldr r1, [r0, #64]",
     "mov r9, r1",
-    "ldr r1, [r0, #68]",
-    "mov r10, r1",
-    "ldr r1, [r0, #72]",
-    "mov r11, r1",
+    v6m_regs!($mode),
     "mov r7, r0",
     "ldr r1, [r0, #56]",
     "ldr r4, [r0, #52]",
@@ -317,15 +509,7 @@ core::arch::global_asm!(
     "ldr r2, [r1, r2]",
     "ldr r3, [r1, r3]",
     "ldr r0, [r1, r0]",
-    "lsls r5, r2, #16",
-    "adds r5, r5, r5",
-    "bvs 3f",
-    "lsls r5, r3, #16",
-    "adds r5, r5, r5",
-    "bvs 3f",
-    "lsls r5, r0, #16",
-    "adds r5, r5, r5",
-    "bvs 3f",
+    v6m_placed!($mode),
     "subs r5, r3, r2",
     "sxth r5, r5",
     "subs r6, r0, r2",
@@ -338,9 +522,7 @@ core::arch::global_asm!(
     "muls r5, r0, r5",
     "muls r6, r3, r6",
     "subs r5, r5, r6",
-    "add r5, r10",
-    "cmp r5, r11",
-    "bhi 4f",
+    v6m_cull!($mode),
     "adds r4, #6",
     "cmp r4, r9",
     "bne 2b",
@@ -352,7 +534,7 @@ core::arch::global_asm!(
     "b 9f",
     // Drawn (the face in r4): its colour, else the flat colour or the caller's.
     "4:",
-    v6m_colour!("5f", $term),
+    v6m_face_colour!($mode, $term),
     // The colour (r2) into the set-up's block, the corners' entries, the call.
     "8:",
     "ldr r7, [sp]",
@@ -369,25 +551,8 @@ core::arch::global_asm!(
     "lsls r3, r3, #3",
     "adds r3, r3, r6",
     "bl zraster_small_walk_v6m",
-    // Refused (u32::MAX): the caller's. Else (the block still in r7, which the set-up
-    // keeps) tested into the sum, one face fewer to the next return, and on from the
-    // next face.
-    "adds r1, r0, #1",
-    "beq 67f",
-    "ldr r1, [r7, #88]",
-    "adds r1, r1, r0",
-    "str r1, [r7, #88]",
-    "adds r4, #6",
-    "ldr r1, [r7, #56]",
-    "ldr r2, [r7, #92]",
-    "subs r2, #1",
-    "str r2, [r7, #92]",
-    "beq 10f",
-    "cmp r4, r9",
-    "bhs 12f",
-    "b 2b",
-    "12:",
-    "b 3b",
+    // The counts and on (the set-up keeps r7, the block).
+    v6m_after!($mode),
     // No normal: the flat colour (one for all), else the caller's.
     "5:",
     "ldr r2, [r7, #84]",
@@ -406,6 +571,7 @@ core::arch::global_asm!(
     "str r4, [r7, #52]",
     "movs r0, #2",
     "9:",
+    v6m_sums!($mode),
     "add sp, #4",
     "pop {{r4, r5, r6, r7}}",
     "mov r8, r4",
@@ -413,7 +579,7 @@ core::arch::global_asm!(
     "mov r10, r6",
     "mov r11, r7",
     "pop {{r4, r5, r6, r7, pc}}",
-    v6m_colour_cold!(),
+    v6m_face_cold!($term),
     concat!(".size ", $name, ", . - ", $name),
     ".popsection",
     color = const WALK_COLOR,
@@ -422,9 +588,15 @@ core::arch::global_asm!(
 }
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-faces_v6m_fn!("zraster_faces_v6m", general);
+faces_v6m_fn!("zraster_faces_v6m", general, checked);
 #[cfg(all(zraster_thumb, zraster_armv6m))]
-faces_v6m_fn!("zraster_faces_v6m_narrow", narrow);
+faces_v6m_fn!("zraster_faces_v6m_narrow", narrow, checked);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_back", general, back);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_narrow_back", narrow, back);
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+faces_v6m_fn!("zraster_faces_v6m_flat_back", flat, back);
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 extern "C" {
@@ -492,7 +664,7 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
             light: l.light,
             ambient: l.ambient,
             diffuse: l.diffuse,
-            round: 1 << 12,
+            round: round_of(l.ambient, l.diffuse),
             channels: l.channels,
             half: l.half,
             k: 32_897,
@@ -514,7 +686,7 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
         let face = at.wrapping_add(6 * f.min(normals.len()) as u32);
         // SAFETY: the normals' slice bounds what it reads (`nend`, `ndelta` 0).
         let c = unsafe {
-            if narrow(l.diffuse) {
+            if narrow(l.diffuse, l.ambient) {
                 zraster_colour_v6m_narrow(&block, face)
             } else {
                 zraster_colour_v6m(&block, face)
@@ -530,32 +702,39 @@ pub(super) fn lit_565_v6m(f: usize, l: &super::LightBlock<'_>) -> Option<u16> {
 /// scan past the dropped faces, each drawn face coloured by `color` (one colour, or
 /// lit into 5-6-5 written as it is: `Raw565`) and drawn by the small triangles' set-up
 /// and rows (`Less` with depth writes, a two-byte colour), its counts into `counts`.
-/// Returns where it stopped ([`FacesStop`], as `faces_less`). On ARMv6-M one assembly
-/// loop; elsewhere it leaves every face to the caller ([`FacesStop::Refused`]).
+/// Returns where it stopped ([`FacesStop`], as `faces_less`). `placed`: no entry of
+/// the cache is marked or otherwise has |x| ≥ 2¹⁴ (the renderer's `placed`), so that
+/// the scan need not test the corners (a wrong `true` gives a wrong picture, nothing
+/// unsafe). On ARMv6-M one assembly loop; elsewhere it leaves every face to the caller
+/// ([`FacesStop::Refused`]).
 #[inline(always)]
 pub(crate) fn faces_less_v6m<'a, C: Copy>(
     pos: &mut usize,
     scan: (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    placed: bool,
     color: &FaceColor<'_, C>,
     b: &mut Buffers<'_, '_, C>,
     counts: &mut FacesCounts,
 ) -> FacesStop<'a> {
     #[cfg(all(zraster_thumb, zraster_armv6m))]
-    return faces_v6m(pos, scan, color, b, counts);
+    return faces_v6m(pos, scan, placed, FLUSH, color, b, counts);
     #[allow(unreachable_code)]
     {
-        let _ = (pos, scan, color, b, counts);
+        let _ = (pos, scan, placed, color, b, counts);
         FacesStop::Refused
     }
 }
 
-/// [`faces_less_v6m`] on ARMv6-M. Out of line (it runs once for a run of faces): its
-/// block is not stacked on the caller's frame.
+/// [`faces_less_v6m`] on ARMv6-M, a call of the `back` loop covering at most `chunk`
+/// faces (`FLUSH`; the check's fewer test its resumption). Out of line (it runs once
+/// for a run of faces): its block is not stacked on the caller's frame.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 #[inline(never)]
 fn faces_v6m<'a, C: Copy>(
     pos: &mut usize,
     (regs, faces, cache): (&ScanRegs<'_>, &'a [[u16; 3]], &'a [CachedVertex]),
+    placed: bool,
+    chunk: u32,
     color: &FaceColor<'_, C>,
     b: &mut Buffers<'_, '_, C>,
     counts: &mut FacesCounts,
@@ -609,6 +788,7 @@ fn faces_v6m<'a, C: Copy>(
             block.light = l.light;
             block.ambient = l.ambient;
             block.diffuse = l.diffuse;
+            block.round = round_of(l.ambient, l.diffuse);
             block.channels = l.channels;
             block.half = l.half;
             block.nend = at.wrapping_add(6 * n as u32);
@@ -616,27 +796,56 @@ fn faces_v6m<'a, C: Copy>(
         }
         FaceColor::Lit(_, _, None) => return FacesStop::Refused,
     }
+    // Mode `back` for a cache with no entry unplaced, back faces dropped and every
+    // face's colour known to the loop (a normal, or one colour), at most `chunk` faces
+    // a call (its sums do not wrap); else `checked`.
+    let flat = block.flat != 0;
+    let coloured = flat || block.nend == block.end;
+    let back = placed && coloured && regs.neg_lo == 0 && regs.span == i32::MAX as u32;
+    let (end, chunk) = (block.end, 6 * chunk.clamp(1, FLUSH));
+    let first = if back { 0 } else { FLUSH };
+    block.drawn = first;
     let status = loop {
+        if back {
+            block.end = if end - block.face > chunk {
+                block.face + chunk
+            } else {
+                end
+            };
+        }
         let failed = walk.wrapping_add(WALK_FAILED).cast::<u32>();
         // SAFETY: `walk` is the started set-up block of `b` (`Buffers::walk_block`),
         // whose `failed` word (at 28, aligned) the loop's calls only add to; the call:
-        // the block as built above (see the assembly's SAFETY comment).
+        // the block as built above (see the assembly's SAFETY comment), its `end` at
+        // most the faces' end.
         let (status, failed) = unsafe {
             failed.write(0);
-            let status = if narrow(block.diffuse) {
-                zraster_faces_v6m_narrow(&mut block)
-            } else {
-                zraster_faces_v6m(&mut block)
+            let status = match (narrow(block.diffuse, block.ambient), back, flat) {
+                (true, false, _) => zraster_faces_v6m_narrow(&mut block),
+                (false, false, _) => zraster_faces_v6m(&mut block),
+                (_, true, true) => zraster_faces_v6m_flat_back(&mut block),
+                (true, true, false) => zraster_faces_v6m_narrow_back(&mut block),
+                (false, true, false) => zraster_faces_v6m_back(&mut block),
             };
             (status, failed.read())
         };
         counts.tested = counts.tested.wrapping_add(u64::from(block.tested));
         counts.failed = counts.failed.wrapping_add(u64::from(failed));
-        counts.drawn = counts.drawn.wrapping_add(FLUSH - block.drawn);
-        if status != 2 {
+        counts.drawn = counts.drawn.wrapping_add(if back {
+            block.drawn.wrapping_sub(block.tested)
+        } else {
+            FLUSH - block.drawn
+        });
+        // On after `FLUSH` faces drawn, or (`back`) at the end of a call's faces.
+        let more = if back {
+            status == 0 && block.face == block.end && block.end != end
+        } else {
+            status == 2
+        };
+        if !more {
             break status;
         }
-        (block.tested, block.drawn) = (0, FLUSH);
+        (block.tested, block.drawn) = (0, first);
     };
     // The place: the bytes from the first face over 6, exactly (as `skip_culled_v6m`).
     let k = ((block.face.wrapping_sub(at) >> 1).wrapping_mul(0xAAAA_AAAB)) as usize;
@@ -730,7 +939,7 @@ extern "C" {
 /// The band loop's set-up call (the colour in r2, the face's address in r4): the
 /// corners' indices below the cache's length, the colour into the set-up's block,
 /// their entries, the call; a corner past the cache or refused to `67f`, else the
-/// tested pixels into the sum (the flags its sign; the block in r7). Keeps r6.
+/// tested pixels into the sum (r1, the flags its sign; the block in r7). Keeps r6.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! band_call {
     () => {
@@ -869,17 +1078,17 @@ core::arch::global_asm!(
     "bl 30f",
     "mov r6, r2",
     band_call!(),
-    "ldr r1, [r7, #104]",
+    // (r1 the tested sum, kept for its sign.)
+    "ldr r3, [r7, #104]",
     "ldr r2, [r7, #108]",
-    "cmp r1, r2",
+    "cmp r3, r2",
     "bhs 1f",
     "ldr r2, [r7, #72]",
-    "lsls r3, r1, #1",
-    "strh r6, [r2, r3]",
-    "adds r1, #1",
-    "str r1, [r7, #104]",
+    "lsls r0, r3, #1",
+    "strh r6, [r2, r0]",
+    "adds r3, #1",
+    "str r3, [r7, #104]",
     "1:",
-    "ldr r1, [r7, #88]",
     "cmp r1, #0",
     "bge 60b",
     "10:",
@@ -1100,7 +1309,9 @@ fn band_faces_v6m<C: Copy>(
 /// unplaced or far apart, indices out of range; normals for some faces only; lit or
 /// one colour; the three cull modes) drawn into copies of the same random 48 × 16
 /// buffers (the colour rows at both alignments to the depth rows, clips of the whole
-/// or part), the faces the loop leaves drawn by the twin as the renderer would. `buf`
+/// or part; the loop without the corners' test where no entry is unplaced, on half the
+/// cases, its calls over a few faces on some), the faces the loop leaves drawn by the
+/// twin as the renderer would. `buf`
 /// holds four 48 × 16 buffers (a shorter one is a failure). Returns the number of
 /// cases whose buffers, pixel counts or drawn faces differ, or where the loop refuses
 /// on ARMv6-M (elsewhere it leaves every face to the twin).
@@ -1171,6 +1382,15 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
             }
         }
         let cache = cache.get(..len).unwrap_or(&[]);
+        // The loop without the corners' test where none is unplaced, on half the
+        // cases (with it on the others).
+        let placed = case / 8 % 2 == 0 && cache.iter().all(|e| e.xy().0.unsigned_abs() < 1 << 14);
+        // The `back` loop's calls over all the faces or a few at a time.
+        let chunk = match case / 16 % 4 {
+            0 => FLUSH,
+            k => 2 * k as u32 - 1,
+        };
+        let _ = chunk;
         let mut faces = [[0u16; 3]; 16];
         for t in faces.iter_mut() {
             for i in t.iter_mut() {
@@ -1194,7 +1414,11 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         let ambient = (rnd() % 131_073) as i32 - 65536;
         let diffuse = (rnd() % 131_073) as i32 - 65536;
         let channels = [0; 3].map(|_| rnd() as u8);
-        let count = rnd() as usize % (faces.len() + 2);
+        // A normal for every face on a third of the cases (the back loop's lit case).
+        let count = match rnd() as usize % (faces.len() + 2) {
+            _ if case % 3 == 1 => faces.len(),
+            n => n,
+        };
         let block = LightBlock::new(
             light,
             ambient,
@@ -1229,7 +1453,12 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
         let mut pos = 0;
         let mut refused = false;
         while pos < faces.len() {
-            match faces_less_v6m(&mut pos, (&regs, faces, cache), &color, &mut b, &mut mine) {
+            let scan = (&regs, faces, cache);
+            #[cfg(all(zraster_thumb, zraster_armv6m))]
+            let stop = faces_v6m(&mut pos, scan, placed, chunk, &color, &mut b, &mut mine);
+            #[cfg(not(all(zraster_thumb, zraster_armv6m)))]
+            let stop = faces_less_v6m(&mut pos, scan, placed, &color, &mut b, &mut mine);
+            match stop {
                 FacesStop::Scan => pos += 1,
                 FacesStop::Face(k, tri) => {
                     let [p, q, r] = corners(tri);
