@@ -21,26 +21,28 @@ pub(crate) const SMALL_X86_KERNEL: bool = cfg!(zraster_x86_64);
 const ORIGIN: i32 = -1024;
 
 /// The block the assembly reads and writes, at the offsets in the comments: the rows'
-/// operands (as [`rows_x86`](super::rows_x86)'s), the buffers and the clip, the lower
-/// half's short edge, and the set-up's values kept for later.
+/// operands, the buffers and the clip, and the set-up's values kept for later.
 #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
 #[derive(Clone, Default)]
 #[repr(C)]
 pub(super) struct Block {
-    rows: [u32; 14], // 0: sx, sy, lo, hi, cx0, cx1, dtl, dtr, spare, spare, n, dl, dr, color
-    pitch: usize,    // 56
+    /// sx, sy, lo, hi, cx0, cx1, spare, spare, start, spare, spare, spare, spare, color.
+    rows: [u32; 14], // 0
+    pitch: usize, // 56
     /// The depth's address of screen column `ORIGIN` of screen row 0 (wrapping).
     zbase: usize, // 64
-    delta: isize,    // 72
-    width: isize,    // 80
-    /// First row, clip x0, y0, x1, y1, lower rows, the inside test's xmin and xmax,
-    /// spare.
+    delta: isize, // 72
+    width: isize, // 80
+    /// First row, clip x0, y0, x1, y1, spare, the inside test's xmin and xmax, spare.
     at: [i32; 10], // 88
-    /// dxl, dyl, dxs, dys, area, start, mid, n0, spare, ya, ym, xa', q, r.
+    /// The edges' steps of `t` and divisors (16·dx, 16·dy): the long one, the upper and
+    /// the lower short one; the lower one's `t` at its first row, the lower rows; the
+    /// depth's step a pixel rotated (two words: `(sx >> 16) | (sx << 48)`); the upper
+    /// rows, 16·start + 8, s0 and s1.
     set: [i32; 14], // 128
     /// Pixels tested and failed, summed.
     tested: u64, // 184
-    failed: u64,     // 192
+    failed: u64,  // 192
 }
 
 impl Block {
@@ -135,18 +137,204 @@ macro_rules! small_x86_clamp {
     };
 }
 
+/// The x extents' test (xmin in r10d, xmax in r11d: 512 pixels or more refused) where
+/// the copy needs it (`clamp`); inside the clip's columns `SmallRun::new` has made
+/// them below 512 pixels (a clip of at most 514 columns).
+#[cfg(zraster_x86_64)]
+macro_rules! small_x86_extents {
+    (inside) => {
+        ""
+    };
+    (clamp) => {
+        concat!("sub r11d, r10d\n", "cmp r11d, 8191\n", "jg 91f\n")
+    };
+}
+
+/// One half's rows (`ecx` of them, at least 1): the left edge's `t` in `$lt` divided by
+/// `[rdi + $ld]`, the right one's in `$rt` by `[rdi + $rd]`, each stepped by its
+/// `[rdi + …dt]` (the long edge r8 by 128, the short r9 by `$sdt`); the columns clamped
+/// or not (`$clamp`); the labels `$a`–`$e` the copy's own (the pixel's failure at `$e`,
+/// placed by the caller after the copy). A row's pixels run by a negative index up to
+/// the row's end, the depth in rdx rotated (the integer in bits 0–15, the fraction in
+/// 48–63: one add and the fraction's carry a pixel, as `acc >> 16` of the 32-bit sum).
+#[cfg(zraster_x86_64)]
+#[rustfmt::skip]
+macro_rules! small_x86_rows {
+    ($clamp:ident, $lt:literal, $ld:literal, $rt:literal, $rd:literal, $sdt:literal,
+     $a:literal, $b:literal, $c:literal, $d:literal, $e:literal) => {
+        concat!(
+            $a, ":\n",
+            "mov eax, ", $lt, "\n",
+            "xor edx, edx\n",
+            "div dword ptr [rdi + ", $ld, "]\n",
+            small_x86_clamp!($clamp, "cmovl", 16),
+            "mov r12d, eax\n",
+            "mov eax, ", $rt, "\n",
+            "xor edx, edx\n",
+            "div dword ptr [rdi + ", $rd, "]\n",
+            small_x86_clamp!($clamp, "cmovg", 20),
+            "add r8d, dword ptr [rdi + 128]\n",
+            "add r9d, dword ptr [rdi + ", $sdt, "]\n",
+            // r12 = left − right: the span's negative length (none from 0 on).
+            "sub r12, rax\n",
+            "jge ", $d, "f\n",
+            "lea rsi, [r11 + rax * 2]\n",
+            "sub qword ptr [rdi + 184], r12\n",
+            "lea edx, [rax + r12]\n",
+            "imul edx, dword ptr [rdi]\n",
+            "add edx, r10d\n",
+            "cmp edx, dword ptr [rdi + 8]\n",
+            "cmovb edx, dword ptr [rdi + 8]\n",
+            "cmp edx, dword ptr [rdi + 12]\n",
+            "cmova edx, dword ptr [rdi + 12]\n",
+            "ror rdx, 16\n",
+            "lea r13, [rsi + r15]\n",
+            $b, ":\n",
+            "cmp dx, word ptr [rsi + r12 * 2]\n",
+            "jae ", $e, "f\n",
+            "mov word ptr [rsi + r12 * 2], dx\n",
+            "mov word ptr [r13 + r12 * 2], r14w\n",
+            $c, ":\n",
+            "add rdx, qword ptr [rdi + 160]\n",
+            "adc rdx, 0\n",
+            "inc r12\n",
+            "jnz ", $b, "b\n",
+            $d, ":\n",
+            "add r10d, dword ptr [rdi + 4]\n",
+            "add r11, qword ptr [rdi + 56]\n",
+            "dec ecx\n",
+            "jnz ", $a, "b\n",
+        )
+    };
+}
+
+/// [`small_x86_rest`] after the area's sign (`pos`: the middle corner right of the long
+/// edge, which is then the left one; `neg`: left of it), the dividend's factor `$k`
+/// (±16) and the rows' copies for that side: the depth steps, the edges, the first
+/// row's depth and address, then both halves' rows, on to `90`.
+#[cfg(zraster_x86_64)]
+#[rustfmt::skip]
+macro_rules! small_x86_side {
+    ($clamp:ident, pos) => {
+        small_x86_side!(@ $clamp, "", "shl rax, 4\n", "imul rax, r13, 16\n",
+            "r8d", "132", "r9d", "140", "r8d", "132", "r9d", "148")
+    };
+    ($clamp:ident, neg) => {
+        small_x86_side!(@ $clamp, "neg rcx\n", "imul rax, rax, -16\n", "imul rax, r13, -16\n",
+            "r9d", "140", "r8d", "132", "r9d", "148", "r8d", "132")
+    };
+    (@ $clamp:ident, $neg:literal, $ka:literal, $kb:literal,
+     $ul:literal, $uld:literal, $ur:literal, $urd:literal,
+     $ll:literal, $lld:literal, $lr:literal, $lrd:literal) => {
+        concat!(
+            // q = ⌊16·na/area⌋, r = ⌊16·nb/area⌋: the dividends times 16 with the
+            // area's sign over |area|, IDIV's quotient less 1 where the remainder
+            // is negative.
+            "mov r14, rdx\n",
+            $neg,
+            $ka,
+            "cqo\n",
+            "idiv rcx\n",
+            "sar rdx, 63\n",
+            "add rax, rdx\n",
+            "mov r12d, eax\n",
+            "shl eax, 4\n",
+            "mov dword ptr [rdi], eax\n",
+            "ror rax, 16\n",
+            "mov qword ptr [rdi + 160], rax\n",
+            $kb,
+            "cqo\n",
+            "idiv rcx\n",
+            "sar rdx, 63\n",
+            "add rax, rdx\n",
+            "mov r13d, eax\n",
+            "shl eax, 4\n",
+            "mov dword ptr [rdi + 4], eax\n",
+            // The lower half's short edge at row mid: s1 = 16·mid + 8 − ym, from
+            // xa' + dxs, by (dxl − dxs, dy2): t, its step and divisor.
+            "mov eax, r14d\n",
+            "sub eax, esi\n",
+            "mov edx, eax\n",
+            "imul edx, dword ptr [rdi + 180]\n",
+            "lea ecx, [r10 + rsi]\n",
+            "imul ecx, r9d\n",
+            "lea edx, [rdx + rcx - 1]\n",
+            "mov dword ptr [rdi + 152], edx\n",
+            "shl eax, 4\n",
+            "mov dword ptr [rdi + 144], eax\n",
+            "shl r9d, 4\n",
+            "mov dword ptr [rdi + 148], r9d\n",
+            // The upper short edge into r9: s0·dxs + xa'·dys − 1.
+            "mov r9d, esi\n",
+            "imul r9d, dword ptr [rdi + 176]\n",
+            "mov eax, r10d\n",
+            "imul eax, r8d\n",
+            "lea r9d, [r9 + rax - 1]\n",
+            "shl esi, 4\n",
+            "mov dword ptr [rdi + 136], esi\n",
+            "shl r8d, 4\n",
+            "mov dword ptr [rdi + 140], r8d\n",
+            // The long edge into r8: s0·dxl + xa'·dyl − 1.
+            "mov r8d, r14d\n",
+            "imul r8d, dword ptr [rdi + 176]\n",
+            "imul r10d, r11d\n",
+            "lea r8d, [r8 + r10 - 1]\n",
+            "shl r14d, 4\n",
+            "mov dword ptr [rdi + 128], r14d\n",
+            "shl r11d, 4\n",
+            "mov dword ptr [rdi + 132], r11d\n",
+            // The first row's depth at local column 0 (screen column ORIGIN), from
+            // p0: z + bias + q·(8 − (x − 16·ORIGIN)) + r·(16·start + 8 − y).
+            "movsx ecx, word ptr [r15 + 4]\n",
+            "add ecx, 16376\n",
+            "imul ecx, r12d\n",
+            "movsx eax, word ptr [r15 + 6]\n",
+            "mov r10d, dword ptr [rdi + 172]\n",
+            "sub r10d, eax\n",
+            "imul r10d, r13d\n",
+            "sub r10d, ecx\n",
+            "add r10d, dword ptr [r15]\n",
+            "add r10d, 32768\n",
+            // The first row's address: local column 0 of screen row `start`.
+            "movsxd r11, dword ptr [rdi + 32]\n",
+            "imul r11, qword ptr [rdi + 56]\n",
+            "add r11, qword ptr [rdi + 64]\n",
+            "mov r14d, dword ptr [rdi + 52]\n",
+            "mov r15, qword ptr [rdi + 72]\n",
+            // The upper half, then the lower one with its short edge.
+            "mov ecx, dword ptr [rdi + 168]\n",
+            "test ecx, ecx\n",
+            "jle 40f\n",
+            small_x86_rows!($clamp, $ul, $uld, $ur, $urd, "136", "2", "3", "4", "5", "6"),
+            "40:\n",
+            "mov ecx, dword ptr [rdi + 156]\n",
+            "test ecx, ecx\n",
+            "jle 90f\n",
+            "mov r9d, dword ptr [rdi + 152]\n",
+            small_x86_rows!($clamp, $ll, $lld, $lr, $lrd, "144", "12", "13", "14", "15", "16"),
+            "jmp 90f\n",
+            "6:\n",
+            "inc qword ptr [rdi + 192]\n",
+            "jmp 4b\n",
+            "16:\n",
+            "inc qword ptr [rdi + 192]\n",
+            "jmp 14b\n",
+        )
+    };
+}
+
 /// [`small_x86_body`] after the extents (xmin in r10d, xmax in r11d), its rows with
-/// the columns clamped to the clip's (`clamp`) or not (`inside`). Its local labels are
-/// its own: the two copies follow each other, every jump inside one copy but those to
-/// `90`, `91` (after both).
+/// the columns clamped to the clip's (`clamp`) or not (`inside`): the corners sorted by
+/// y, the rows, the depths' clamp and differences, the x offsets, the area and the
+/// depth plane's numerators, then [`small_x86_side`] for the area's sign. Its local
+/// labels are its own: the two copies follow each other, every jump inside one copy
+/// but those to `90`, `91` (after both).
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
 macro_rules! small_x86_rest {
     ($clamp:ident) => {
         concat!(
-            "sub r11d, r10d\n",
-            "cmp r11d, 8191\n",
-            "jg 91f\n",
+            small_x86_extents!($clamp),
             // p0 kept; a, m, c sorted by y (stable, as `by_rows`).
             "mov r15, rsi\n",
             "movsx eax, word ptr [rsi + 6]\n",
@@ -167,12 +355,13 @@ macro_rules! small_x86_rest {
             "xchg rsi, rdx\n",
             "xchg eax, r8d\n",
             "23:\n",
-            // dyl = yc − ya (refused from 8192); start, end, mid.
+            // dyl = yc − ya (refused from 8192); start, end, mid; the halves' rows
+            // (upper at 168, lower at 156), start at 32, s1 = 16·mid + 8 − ym at 180,
+            // 16·start + 8 at 172, s0 = 16·start + 8 − ya at 176; dy2, dys.
             "mov r11d, r9d\n",
             "sub r11d, eax\n",
             "cmp r11d, 8191\n",
             "jg 91f\n",
-            "mov dword ptr [rdi + 132], r11d\n",
             "lea r12d, [rax + 7]\n",
             "sar r12d, 4\n",
             "cmp r12d, dword ptr [rdi + 96]\n",
@@ -189,242 +378,72 @@ macro_rules! small_x86_rest {
             "cmovl r14d, r12d\n",
             "cmp r14d, r13d\n",
             "cmovg r14d, r13d\n",
-            "mov dword ptr [rdi + 148], r12d\n",
-            "mov dword ptr [rdi + 152], r14d\n",
             "sub r13d, r14d\n",
-            "mov dword ptr [rdi + 108], r13d\n",
+            "mov dword ptr [rdi + 156], r13d\n",
             "mov r13d, r14d\n",
             "sub r13d, r12d\n",
-            "mov dword ptr [rdi + 40], r13d\n",
-            "mov dword ptr [rdi + 164], eax\n",
-            "mov dword ptr [rdi + 168], r8d\n",
-            // dys; dxl, dxs; area (0: nothing to draw).
-            "mov r9d, r8d\n",
-            "sub r9d, eax\n",
-            "mov dword ptr [rdi + 140], r9d\n",
-            "movsx r12d, word ptr [rsi + 4]\n",
-            "movsx r13d, word ptr [rdx + 4]\n",
-            "movsx r14d, word ptr [rcx + 4]\n",
-            "sub r14d, r12d\n",
-            "mov dword ptr [rdi + 128], r14d\n",
-            "sub r13d, r12d\n",
-            "mov dword ptr [rdi + 136], r13d\n",
-            "imul r11d, r13d\n",
-            "imul r9d, r14d\n",
-            "sub r11d, r9d\n",
-            "jz 90f\n",
-            "mov dword ptr [rdi + 144], r11d\n",
-            // xa' = xa − 16·ORIGIN + 8.
-            "add r12d, 16392\n",
-            "mov dword ptr [rdi + 172], r12d\n",
-            // The depths: lo, hi (biased), dz₁, dz₂ of z >> 4.
-            "mov eax, dword ptr [rsi]\n",
-            "mov r8d, dword ptr [rdx]\n",
-            "mov r9d, dword ptr [rcx]\n",
-            "mov r12d, eax\n",
-            "cmp r8d, r12d\n",
-            "cmovb r12d, r8d\n",
-            "cmp r9d, r12d\n",
-            "cmovb r12d, r9d\n",
-            "add r12d, 32768\n",
-            "mov dword ptr [rdi + 8], r12d\n",
-            "mov r12d, eax\n",
-            "cmp r8d, r12d\n",
-            "cmova r12d, r8d\n",
-            "cmp r9d, r12d\n",
-            "cmova r12d, r9d\n",
-            "add r12d, 32768\n",
-            "mov dword ptr [rdi + 12], r12d\n",
-            "shr rax, 4\n",
-            "shr r8, 4\n",
-            "shr r9, 4\n",
-            "sub r8, rax\n",
-            "sub r9, rax\n",
-            // na = dz₁·dyl − dz₂·dys (rax), nb = dz₂·dxs − dz₁·dxl (r12), 64-bit.
-            "movsxd rax, dword ptr [rdi + 132]\n",
-            "imul rax, r8\n",
-            "movsxd r12, dword ptr [rdi + 140]\n",
-            "imul r12, r9\n",
-            "sub rax, r12\n",
-            "movsxd r12, r13d\n",
-            "imul r12, r9\n",
-            "movsxd r13, r14d\n",
-            "imul r13, r8\n",
-            "sub r12, r13\n",
-            // ⌊16n/area⌋ = ⌊k/|area|⌋ (k = ±16n: n times 16 with area's sign): IDIV's
-            // truncated quotient, less 1 where the remainder is negative.
-            "movsxd r13, r11d\n",
-            "mov r14, r13\n",
-            "sar r14, 63\n",
-            "xor r13, r14\n",
-            "sub r13, r14\n",
-            "and r14, -32\n",
-            "add r14, 16\n",
-            "imul rax, r14\n",
-            "imul r12, r14\n",
-            "cqo\n",
-            "idiv r13\n",
-            "sar rdx, 63\n",
-            "add rax, rdx\n",
-            "mov dword ptr [rdi + 176], eax\n",
-            "shl eax, 4\n",
-            "mov dword ptr [rdi], eax\n",
-            "mov rax, r12\n",
-            "cqo\n",
-            "idiv r13\n",
-            "sar rdx, 63\n",
-            "add rax, rdx\n",
-            "mov dword ptr [rdi + 180], eax\n",
-            "shl eax, 4\n",
-            "mov dword ptr [rdi + 4], eax\n",
-            // The first row's depth at local column 0 (screen column ORIGIN), from p0:
-            // z + bias + q·(8 − (x − 16·ORIGIN)) + r·(8 − (y − 16·start)).
-            "movsx eax, word ptr [r15 + 4]\n",
-            "mov r9d, -16376\n",
-            "sub r9d, eax\n",
-            "imul r9d, dword ptr [rdi + 176]\n",
-            "mov r13d, dword ptr [rdi + 148]\n",
-            "shl r13d, 4\n",
-            "add r13d, 8\n",
-            "movsx eax, word ptr [r15 + 6]\n",
-            "mov r12d, r13d\n",
-            "sub r12d, eax\n",
-            "imul r12d, dword ptr [rdi + 180]\n",
-            "lea r10d, [r9 + r12 + 32768]\n",
-            "add r10d, dword ptr [r15]\n",
-            // The edges: s0 = 16·start + 8 − ya; long t = s0·dxl + xa'·dyl − 1,
-            // short t = s0·dxs + xa'·dys − 1.
-            "mov r9d, r13d\n",
-            "sub r9d, dword ptr [rdi + 164]\n",
-            "mov r12d, r9d\n",
-            "imul r12d, dword ptr [rdi + 128]\n",
-            "mov r13d, dword ptr [rdi + 172]\n",
-            "imul r13d, dword ptr [rdi + 132]\n",
-            "lea r12d, [r12 + r13 - 1]\n",
-            "mov r13d, r9d\n",
-            "imul r13d, dword ptr [rdi + 136]\n",
-            "mov r14d, dword ptr [rdi + 172]\n",
-            "imul r14d, dword ptr [rdi + 140]\n",
-            "lea r13d, [r13 + r14 - 1]\n",
-            // The first row's address: local column 0 of screen row `start`.
-            "movsxd r11, dword ptr [rdi + 148]\n",
-            "imul r11, qword ptr [rdi + 56]\n",
-            "add r11, qword ptr [rdi + 64]\n",
-            // Sides: with the middle corner right of the long edge (area > 0) the
-            // long edge is the left one (r8), else the right one (r9).
-            "mov eax, dword ptr [rdi + 128]\n",
-            "shl eax, 4\n",
-            "mov edx, dword ptr [rdi + 132]\n",
-            "shl edx, 4\n",
-            "mov r14d, dword ptr [rdi + 136]\n",
+            "mov dword ptr [rdi + 168], r13d\n",
+            "mov dword ptr [rdi + 32], r12d\n",
             "shl r14d, 4\n",
-            "mov r15d, dword ptr [rdi + 140]\n",
-            "shl r15d, 4\n",
-            "cmp dword ptr [rdi + 144], 0\n",
-            "jle 31f\n",
-            "mov r8d, r12d\n",
-            "mov r9d, r13d\n",
-            "mov dword ptr [rdi + 24], eax\n",
-            "mov dword ptr [rdi + 44], edx\n",
-            "mov dword ptr [rdi + 28], r14d\n",
-            "mov dword ptr [rdi + 48], r15d\n",
-            "jmp 32f\n",
-            "31:\n",
-            "mov r8d, r13d\n",
-            "mov r9d, r12d\n",
-            "mov dword ptr [rdi + 24], r14d\n",
-            "mov dword ptr [rdi + 44], r15d\n",
-            "mov dword ptr [rdi + 28], eax\n",
-            "mov dword ptr [rdi + 48], edx\n",
-            "32:\n",
-            "mov r14d, dword ptr [rdi + 52]\n",
-            "mov r15, qword ptr [rdi + 72]\n",
-            // The upper half (ecx 1: the lower one still to come).
-            "mov ecx, 1\n",
-            "cmp dword ptr [rdi + 40], 0\n",
-            "jle 40f\n",
-            // The rows (`rows_x86`'s loop).
-            "2:\n",
-            "mov eax, r8d\n",
-            "xor edx, edx\n",
-            "div dword ptr [rdi + 44]\n",
-            small_x86_clamp!($clamp, "cmovl", 16),
-            "movsxd r12, eax\n",
-            "mov eax, r9d\n",
-            "xor edx, edx\n",
-            "div dword ptr [rdi + 48]\n",
-            small_x86_clamp!($clamp, "cmovg", 20),
-            "add r8d, dword ptr [rdi + 24]\n",
-            "add r9d, dword ptr [rdi + 28]\n",
-            "sub eax, r12d\n",
-            "jle 5f\n",
-            "add qword ptr [rdi + 184], rax\n",
-            "mov edx, r12d\n",
-            "imul edx, dword ptr [rdi]\n",
-            "add edx, r10d\n",
-            "cmp edx, dword ptr [rdi + 8]\n",
-            "cmovb edx, dword ptr [rdi + 8]\n",
-            "cmp edx, dword ptr [rdi + 12]\n",
-            "cmova edx, dword ptr [rdi + 12]\n",
-            "lea r12, [r11 + r12 * 2]\n",
-            "3:\n",
-            "mov r13d, edx\n",
-            "shr r13d, 16\n",
-            "cmp r13w, word ptr [r12]\n",
-            "jae 6f\n",
-            "mov word ptr [r12], r13w\n",
-            "mov word ptr [r12 + r15], r14w\n",
-            "4:\n",
-            "add edx, dword ptr [rdi]\n",
-            "add r12, 2\n",
-            "dec eax\n",
-            "jnz 3b\n",
-            "5:\n",
-            "add r10d, dword ptr [rdi + 4]\n",
-            "add r11, qword ptr [rdi + 56]\n",
-            "dec dword ptr [rdi + 40]\n",
-            "jnz 2b\n",
-            "test ecx, ecx\n",
-            "jz 90f\n",
-            // The lower half: the short edge replaced on its side.
-            "40:\n",
-            "xor ecx, ecx\n",
-            "mov eax, dword ptr [rdi + 108]\n",
-            "test eax, eax\n",
-            "jle 90f\n",
-            "mov dword ptr [rdi + 40], eax\n",
-            // Its short edge (only now: the rows' registers r8–r11, r14, r15 kept):
-            // s1 = 16·mid + 8 − ym, from xa' + dxs, by (dxl − dxs, dyl − dys);
-            // t in r12, its step in r13, its divisor in esi.
-            "mov r12d, dword ptr [rdi + 152]\n",
+            "add r14d, 8\n",
+            "sub r14d, r8d\n",
+            "mov dword ptr [rdi + 180], r14d\n",
             "shl r12d, 4\n",
             "add r12d, 8\n",
-            "sub r12d, dword ptr [rdi + 168]\n",
-            "mov r13d, dword ptr [rdi + 128]\n",
-            "sub r13d, dword ptr [rdi + 136]\n",
-            "imul r12d, r13d\n",
-            "shl r13d, 4\n",
-            "mov esi, dword ptr [rdi + 132]\n",
-            "sub esi, dword ptr [rdi + 140]\n",
-            "mov edx, dword ptr [rdi + 172]\n",
-            "add edx, dword ptr [rdi + 136]\n",
-            "imul edx, esi\n",
-            "lea r12d, [r12 + rdx - 1]\n",
-            "shl esi, 4\n",
-            "cmp dword ptr [rdi + 144], 0\n",
-            "jle 41f\n",
-            "mov r9d, r12d\n",
-            "mov dword ptr [rdi + 28], r13d\n",
-            "mov dword ptr [rdi + 48], esi\n",
-            "jmp 2b\n",
-            "41:\n",
-            "mov r8d, r12d\n",
-            "mov dword ptr [rdi + 24], r13d\n",
-            "mov dword ptr [rdi + 44], esi\n",
-            "jmp 2b\n",
-            "6:\n",
-            "inc qword ptr [rdi + 192]\n",
-            "jmp 4b\n",
+            "mov dword ptr [rdi + 172], r12d\n",
+            "sub r12d, eax\n",
+            "mov dword ptr [rdi + 176], r12d\n",
+            "sub r9d, r8d\n",
+            "sub r8d, eax\n",
+            // The depths: lo, hi (biased); dz1, dz2 of z >> 4 (64-bit).
+            "mov r10d, dword ptr [rsi]\n",
+            "mov r12d, dword ptr [rdx]\n",
+            "mov r13d, dword ptr [rcx]\n",
+            "mov eax, r10d\n",
+            "mov r14d, r10d\n",
+            "cmp r12d, r10d\n",
+            "cmovb eax, r12d\n",
+            "cmova r14d, r12d\n",
+            "cmp r13d, eax\n",
+            "cmovb eax, r13d\n",
+            "cmp r13d, r14d\n",
+            "cmova r14d, r13d\n",
+            "add eax, 32768\n",
+            "mov dword ptr [rdi + 8], eax\n",
+            "add r14d, 32768\n",
+            "mov dword ptr [rdi + 12], r14d\n",
+            "shr r10d, 4\n",
+            "shr r12d, 4\n",
+            "shr r13d, 4\n",
+            "sub r12, r10\n",
+            "sub r13, r10\n",
+            // dxs (rsi), dxl (rdx), 64-bit; xa' = xa − 16·ORIGIN + 8 (r10).
+            "movsx r10, word ptr [rsi + 4]\n",
+            "movsx rsi, word ptr [rdx + 4]\n",
+            "sub rsi, r10\n",
+            "movsx rdx, word ptr [rcx + 4]\n",
+            "sub rdx, r10\n",
+            "add r10d, 16392\n",
+            // na = dz1·dyl − dz2·dys (rax), nb = dz2·dxs − dz1·dxl (r13) and the area
+            // dxs·dyl − dxl·dys (rcx; 0: nothing to draw), 64-bit.
+            "mov rax, r12\n",
+            "imul rax, r11\n",
+            "mov rcx, r13\n",
+            "imul rcx, r8\n",
+            "sub rax, rcx\n",
+            "imul r13, rsi\n",
+            "imul r12, rdx\n",
+            "sub r13, r12\n",
+            "mov rcx, rsi\n",
+            "imul rcx, r11\n",
+            "mov r12, rdx\n",
+            "imul r12, r8\n",
+            "sub rcx, r12\n",
+            "jz 90f\n",
+            "jl 30f\n",
+            small_x86_side!($clamp, pos),
+            "30:\n",
+            small_x86_side!($clamp, neg),
         )
     };
 }
@@ -504,8 +523,14 @@ impl SmallRun {
                     clip.x1,
                     clip.y1,
                     0,
-                    // xmin and xmax of a triangle inside the clip's columns by a pixel.
-                    16 * (clip.x0 + 1),
+                    // xmin and xmax of a triangle inside the clip's columns by a pixel
+                    // (none for a clip over 514 columns: the extents are then below
+                    // 512 pixels, which the rows without the clamp do not test).
+                    if clip.x1 - clip.x0 <= 514 {
+                        16 * (clip.x0 + 1)
+                    } else {
+                        i32::MAX
+                    },
                     16 * (clip.x1 - 1) - 1,
                     0,
                     0,
