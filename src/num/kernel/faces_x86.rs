@@ -27,7 +27,8 @@ struct FacesBlock {
     pos: isize, // 200
     end: *const [u16; 3], // 208
     cache: *const CachedVertex, // 216
-    /// A face's normal's address less the face's.
+    /// The normals' address less the faces', plus the faces' end: a face's normal at
+    /// this plus the face's `pos` (wrapping).
     normals: isize, // 224
     /// The cull mode's dropped areas: `area − lo ≤ span`, unsigned.
     neg_lo: i32, // 232
@@ -82,7 +83,7 @@ macro_rules! faces_x86_drop {
 }
 
 /// A lit face's packed 5-6-5 colour into the rows' colour (at 52), as `lit_565`: the
-/// face at `rbx + rsi`, its normal `[rdi + 224]` bytes on; keeps rax, rcx, rdx
+/// face at `rbx + rsi`, its normal at `[rdi + 224] + rsi`; keeps rax, rcx, rdx
 /// (the corners' indices); clobbers r8–r11.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
@@ -92,16 +93,15 @@ macro_rules! faces_x86_color {
     };
     (lit) => {
         concat!(
-            "lea r8, [rbx + rsi]\n",
-            "add r8, qword ptr [rdi + 224]\n",
+            "mov r8, qword ptr [rdi + 224]\n",
             // n·L (wrapping), max(0, n·L), the rounded high word of its product with
             // the diffuse weight, plus ambient, clamped to 0 ..= 65535.
-            "movsx r9d, word ptr [r8]\n",
+            "movsx r9d, word ptr [r8 + rsi]\n",
             "imul r9d, dword ptr [rdi + 248]\n",
-            "movsx r10d, word ptr [r8 + 2]\n",
+            "movsx r10d, word ptr [r8 + rsi + 2]\n",
             "imul r10d, dword ptr [rdi + 252]\n",
             "add r9d, r10d\n",
-            "movsx r10d, word ptr [r8 + 4]\n",
+            "movsx r10d, word ptr [r8 + rsi + 4]\n",
             "imul r10d, dword ptr [rdi + 256]\n",
             "add r9d, r10d\n",
             "test r9d, r9d\n",
@@ -267,7 +267,9 @@ impl<'a, C: Copy> FacesX86<'a, C> {
                 if normals.len() < faces.len() {
                     return None;
                 }
-                b.normals = (normals.as_ptr() as isize).wrapping_sub(faces.as_ptr() as isize);
+                b.normals = (normals.as_ptr() as isize)
+                    .wrapping_sub(faces.as_ptr() as isize)
+                    .wrapping_add(b.end as isize);
                 (b.light, b.ambient, b.diffuse) = (light, ambient, i64::from(diffuse));
                 (b.channels, b.half) = (channels, half);
                 (to_color(0), true, normals)
@@ -374,8 +376,9 @@ fn fused(b: &mut FacesBlock, lit: bool) -> bool {
         // faces of the loop's faces; their indices all lie below the cache's length
         // (`indices_below`, checked when the loop was made over these borrowed faces
         // and cache), so the entries read (`cache + 8·index`, x/y at 4) lie inside the
-        // cache. The colour (`lit`) reads the normal at the face's address plus
-        // `normals`: normal `first + k` of a slice holding one for every face. The
+        // cache. The colour (`lit`) reads the normal at `normals + pos` (the face's
+        // address plus the normals' offset from the faces): normal `first + k` of a
+        // slice holding one for every face. The
         // set-up and rows are `small_x86`'s body on the corners' entries, with its
         // bounds argument (`SmallRun::run`): `block_for` made the block from the run's
         // (the clip inside the rows) and checked that both buffers reach past the
