@@ -26,7 +26,8 @@ const ORIGIN: i32 = -1024;
 #[derive(Clone, Default)]
 #[repr(C)]
 pub(super) struct Block {
-    /// sx, sy, lo, hi, cx0, cx1, spare, spare, start, spare, spare, spare, spare, color.
+    /// sx, sy, lo, hi, cx0, cx1, spare, spare, the first row, spare, spare, spare, spare,
+    /// color.
     rows: [u32; 14], // 0
     pitch: usize, // 56
     /// The depth's address of screen column `ORIGIN` of screen row 0 (wrapping).
@@ -37,9 +38,9 @@ pub(super) struct Block {
     at: [i32; 10], // 88
     /// The edges' steps and divisors (dx, dy, of `t >> 4`: ⌊(t >> 4)/dy⌋ = ⌊t/16dy⌋, and
     /// 16·dx steps `t`, a multiple of 16, so dx steps `t >> 4`): the long one, the upper
-    /// and the lower short one; the lower one's `t >> 4` at its first row, its rows; the
-    /// depth's step a pixel rotated (two words: `(sx >> 16) | (sx << 48)`); the upper
-    /// rows, 16·start + 8, s0 and s1.
+    /// and the lower short one; the lower one's `t >> 4` at its first row, the row past
+    /// the last; the depth's step a pixel rotated (two words: `(sx >> 16) | (sx << 48)`);
+    /// the middle row, 16·start + 8, s0 and s1.
     set: [i32; 14], // 128
     /// Pixels tested and failed, summed.
     tested: u64, // 184
@@ -309,12 +310,12 @@ macro_rules! small_x86_side {
             "mov r15, qword ptr [rdi + 72]\n",
             // The upper half, then the lower one with its short edge.
             "mov ecx, dword ptr [rdi + 168]\n",
-            "test ecx, ecx\n",
+            "sub ecx, dword ptr [rdi + 32]\n",
             "jle 40f\n",
             small_x86_rows!($clamp, $ul, $uld, $ur, $urd, "136", "2", "3", "4", "5", "6"),
             "40:\n",
             "mov ecx, dword ptr [rdi + 156]\n",
-            "test ecx, ecx\n",
+            "sub ecx, dword ptr [rdi + 168]\n",
             "jle 90f\n",
             "mov r9d, dword ptr [rdi + 152]\n",
             small_x86_rows!($clamp, $ll, $lld, $lr, $lrd, "144", "12", "13", "14", "15", "16"),
@@ -361,8 +362,8 @@ macro_rules! small_x86_rest {
             "xchg rsi, rdx\n",
             "xchg eax, r8d\n",
             "23:\n",
-            // dyl = yc − ya (refused from 8192); start, end, mid; the halves' rows
-            // (upper at 168, lower at 156), start at 32, s1 = 16·mid + 8 − ym at 180,
+            // dyl = yc − ya (refused from 8192); start, end, mid (at 32, 156 and 168:
+            // the halves' rows are their differences), s1 = 16·mid + 8 − ym at 180,
             // 16·start + 8 at 172, s0 = 16·start + 8 − ya at 176; dy2, dys.
             "mov r11d, r9d\n",
             "sub r11d, eax\n",
@@ -384,11 +385,8 @@ macro_rules! small_x86_rest {
             "cmovl r14d, r12d\n",
             "cmp r14d, r13d\n",
             "cmovg r14d, r13d\n",
-            "sub r13d, r14d\n",
             "mov dword ptr [rdi + 156], r13d\n",
-            "mov r13d, r14d\n",
-            "sub r13d, r12d\n",
-            "mov dword ptr [rdi + 168], r13d\n",
+            "mov dword ptr [rdi + 168], r14d\n",
             "mov dword ptr [rdi + 32], r12d\n",
             "shl r14d, 4\n",
             "add r14d, 8\n",
