@@ -17,10 +17,14 @@ use core::marker::PhantomData;
 /// Whether [`FacesX86`] runs the assembly loop (x86-64); elsewhere it is never made.
 pub(crate) const FACES_X86_KERNEL: bool = cfg!(zraster_x86_64);
 
+/// ⌈2²³ / 255⌉: `⌊y / 255⌋ = (y · DIV255) >> 23` for every `y` below 2¹⁵ (the colour's
+/// channels, whose `y = x >> 15` stays below it).
+const DIV255: u16 = 32897;
+
 /// What the loop reads and writes, at the offsets in the comments: `small_x86`'s block,
 /// the scan's place and operands, the light, the count of faces drawn.
 #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
-#[repr(C)]
+#[repr(C, align(16))]
 struct FacesBlock {
     small: Block, // 0
     /// The next face's byte offset from the end of the faces (negative while one is left).
@@ -39,13 +43,18 @@ struct FacesBlock {
     light: [i32; 3], // 248
     ambient: i32, // 260
     diffuse: i64, // 264
-    /// Each channel's `v · max · MUL`, and `HALF · MUL` (`LightBlock::wide_parts`).
-    channels: [u64; 3], // 272
-    half: u64,    // 296
+    /// Each channel's `v · max` (words, high field first), and `HALF` in every lane.
+    channels: [u16; 8], // 272
+    half: [u32; 4], // 288
     /// The 5- and 6-bit fields' greatest values, 0 and the greatest intensity.
     max: [u32; 4], // 304
     /// rbx and rbp while the loop runs.
     saved: [u64; 2], // 320
+    /// ⌈2²³ / 255⌉ in every word, the fields' greatest values (words) and their
+    /// places' weights (2¹¹, 2⁵, 1).
+    div255: [u16; 8], // 336
+    fields: [u16; 8], // 352
+    weights: [u16; 8], // 368
 }
 
 #[cfg(target_pointer_width = "64")]
@@ -58,8 +67,9 @@ const _: () = {
     assert!(offset_of!(B, sign) == 240 && offset_of!(B, drawn) == 244);
     assert!(offset_of!(B, light) == 248 && offset_of!(B, ambient) == 260);
     assert!(offset_of!(B, diffuse) == 264 && offset_of!(B, channels) == 272);
-    assert!(offset_of!(B, half) == 296 && offset_of!(B, max) == 304);
-    assert!(offset_of!(B, saved) == 320);
+    assert!(offset_of!(B, half) == 288 && offset_of!(B, max) == 304);
+    assert!(offset_of!(B, saved) == 320 && offset_of!(B, div255) == 336);
+    assert!(offset_of!(B, fields) == 352 && offset_of!(B, weights) == 368);
 };
 
 /// On to `52` with a face of area r8d the cull mode keeps: `back` (`Cull::Back`: a
@@ -113,30 +123,26 @@ macro_rules! faces_x86_color {
             "cmovs r9d, dword ptr [rdi + 312]\n",
             "cmp r9d, 65535\n",
             "cmova r9d, dword ptr [rdi + 316]\n",
-            // Each channel (i · v·max·MUL + HALF·MUL) >> 54, at most its field's
-            // greatest value, high to low.
-            "mov r10, r9\n",
-            "imul r10, qword ptr [rdi + 272]\n",
-            "add r10, qword ptr [rdi + 296]\n",
-            "shr r10, 54\n",
-            "cmp r10d, 31\n",
-            "cmova r10d, dword ptr [rdi + 304]\n",
-            "shl r10d, 11\n",
-            "mov r11, r9\n",
-            "imul r11, qword ptr [rdi + 280]\n",
-            "add r11, qword ptr [rdi + 296]\n",
-            "shr r11, 54\n",
-            "cmp r11d, 63\n",
-            "cmova r11d, dword ptr [rdi + 308]\n",
-            "shl r11d, 5\n",
-            "or r10d, r11d\n",
-            "imul r9, qword ptr [rdi + 288]\n",
-            "add r9, qword ptr [rdi + 296]\n",
-            "shr r9, 54\n",
-            "cmp r9d, 31\n",
-            "cmova r9d, dword ptr [rdi + 304]\n",
-            "or r10d, r9d\n",
-            "mov dword ptr [rdi + 52], r10d\n",
+            // The three channels at once (words, high to low): x = i · v·max + HALF
+            // (below 2³⁰, `new` checked), ⌊x / (255 · 2¹⁵)⌋ as ⌊(x >> 15) · ⌈2²³/255⌉
+            // >> 23⌋ (exact below 2¹⁵ · 2), at most the field's greatest value, then
+            // weighed into their places and summed.
+            "movd xmm0, r9d\n",
+            "pshuflw xmm0, xmm0, 0\n",
+            "movdqa xmm1, xmm0\n",
+            "pmullw xmm0, xmmword ptr [rdi + 272]\n",
+            "pmulhuw xmm1, xmmword ptr [rdi + 272]\n",
+            "punpcklwd xmm0, xmm1\n",
+            "paddd xmm0, xmmword ptr [rdi + 288]\n",
+            "psrld xmm0, 15\n",
+            "packssdw xmm0, xmm0\n",
+            "pmulhuw xmm0, xmmword ptr [rdi + 336]\n",
+            "psrlw xmm0, 7\n",
+            "pminsw xmm0, xmmword ptr [rdi + 352]\n",
+            "pmaddwd xmm0, xmmword ptr [rdi + 368]\n",
+            "pshufd xmm1, xmm0, 1\n",
+            "paddd xmm0, xmm1\n",
+            "movd dword ptr [rdi + 52], xmm0\n",
         )
     };
 }
@@ -253,17 +259,34 @@ impl<'a, C: Copy> FacesX86<'a, C> {
             light: [0; 3],
             ambient: 0,
             diffuse: 0,
-            channels: [0; 3],
-            half: 0,
+            channels: [0; 8],
+            half: [0; 4],
             max: [31, 63, 0, 65535],
             saved: [0; 2],
+            div255: [DIV255; 8],
+            fields: [31, 63, 31, 0, 0, 0, 0, 0],
+            weights: [1 << 11, 1 << 5, 1, 0, 0, 0, 0, 0],
         };
         let (color, lit, normals) = match *color {
             FaceColor::Flat(c) => (c, false, &[][..]),
             FaceColor::Lit(block, to_color, Some(_)) => {
                 let (light, ambient, diffuse) = block.light_parts();
-                let (channels, half) = block.wide_channels();
                 let normals = block.normals().get(first..)?;
+                // The channels' arithmetic here: `(i·v + HALF)·MUL >> 54` (`lit_565`)
+                // with MUL = ⌈2³⁹/255⌉, a division by 255 · 2¹⁵, and i·v + HALF below
+                // 2³⁰ for every intensity i up to 65535.
+                let (wide, half) = block.wide_channels();
+                let v = block.channels;
+                let mul = (1u64 << 39) / 255 + 1;
+                let small = v
+                    .iter()
+                    .all(|&v| 65535 * u64::from(v) + u64::from(block.half) < 1 << 30);
+                if !small
+                    || wide != v.map(|v| u64::from(v) * mul)
+                    || half != u64::from(block.half) * mul
+                {
+                    return None;
+                }
                 if normals.len() < faces.len() {
                     return None;
                 }
@@ -271,7 +294,8 @@ impl<'a, C: Copy> FacesX86<'a, C> {
                     .wrapping_sub(faces.as_ptr() as isize)
                     .wrapping_add(b.end as isize);
                 (b.light, b.ambient, b.diffuse) = (light, ambient, i64::from(diffuse));
-                (b.channels, b.half) = (channels, half);
+                b.channels[..3].copy_from_slice(&v.map(|v| v as u16));
+                b.half = [block.half; 4];
                 (to_color(0), true, normals)
             }
             FaceColor::Lit(_, _, None) => return None,
@@ -492,5 +516,18 @@ impl<C> FacesX86<'_, C> {
         });
         #[allow(unreachable_code)]
         false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// [`DIV255`](super::DIV255) divides every `y` below 2¹⁵ by 255 (as `PMULHUW`, a
+    /// 16-bit high word, then 7 more bits).
+    #[test]
+    fn div255_divides_by_255() {
+        for y in 0..1u32 << 15 {
+            let high = (y * u32::from(super::DIV255)) >> 16;
+            assert_eq!(high >> 7, y / 255, "{y}");
+        }
     }
 }
