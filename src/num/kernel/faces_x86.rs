@@ -93,7 +93,7 @@ macro_rules! faces_x86_drop {
 }
 
 /// A lit face's packed 5-6-5 colour into the rows' colour (at 52), as `lit_565`: the
-/// face at `rbx + rsi`, its normal at `[rdi + 224] + rsi`; keeps rax, rcx, rdx
+/// face at `rbx + rsi`, its normal at `[rdi + 224] + rsi`; keeps r15, rcx, rdx
 /// (the corners' indices); clobbers r8–r11.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
@@ -167,10 +167,10 @@ macro_rules! faces_x86_body {
             // The scan: the corners' x/y words; (b − a) · (1, −1) and (c − a) swapped,
             // multiplied and added: (xb − xa)(yc − ya) − (yb − ya)(xc − xa).
             "50:\n",
-            "movzx eax, word ptr [rbx + rsi]\n",
+            "movzx r15d, word ptr [rbx + rsi]\n",
             "movzx edx, word ptr [rbx + rsi + 2]\n",
             "movzx ecx, word ptr [rbx + rsi + 4]\n",
-            "movd xmm0, dword ptr [rbp + rax * 8 + 4]\n",
+            "movd xmm0, dword ptr [rbp + r15 * 8 + 4]\n",
             "movd xmm1, dword ptr [rbp + rdx * 8 + 4]\n",
             "movd xmm2, dword ptr [rbp + rcx * 8 + 4]\n",
             "psubw xmm1, xmm0\n",
@@ -183,13 +183,11 @@ macro_rules! faces_x86_body {
             "add rsi, 6\n",
             "jnz 50b\n",
             "jmp 58f\n",
-            // Drawn: its place kept, its colour, its corners' entries.
+            // Drawn: its place kept, its colour, its corners' entries (indices r15,
+            // rdx and rcx of the cache at rbp, as the body takes them).
             "52:\n",
             "mov qword ptr [rdi + 200], rsi\n",
             faces_x86_color!($color),
-            "lea rsi, [rbp + rax * 8]\n",
-            "lea rdx, [rbp + rdx * 8]\n",
-            "lea rcx, [rbp + rcx * 8]\n",
             small_x86_body!(),
             // Drawn (perhaps nothing): counted, the scan's registers back, on.
             "90:\n",

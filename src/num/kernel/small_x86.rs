@@ -82,11 +82,12 @@ const _: () = {
     assert!(core::mem::size_of::<Block>() == 200);
 };
 
-/// The set-up and rows of [`small_x86`] (the block in rdi, the corners' entries in rsi,
-/// rdx and rcx): on to local label `90` when done (the pixels tested and failed added
-/// to the block's 64-bit sums at 184 and 192), to `91` when refused (nothing drawn).
-/// Clobbers rax, rcx, rdx, rsi, r8–r15 and the flags; no stack. Also the body of the
-/// fused face loop ([`faces_x86`](super::faces_x86)).
+/// The set-up and rows of [`small_x86`] (the block in rdi, the corners' entries at
+/// indices r15, rdx and rcx of the entries from rbp): on to local label `90` when done
+/// (the pixels tested and failed added to the block's 64-bit sums at 184 and 192), to
+/// `91` when refused (nothing drawn). Clobbers rax, rcx, rdx, rsi, r8–r15 and the
+/// flags, keeps rbx and rbp; no stack. Also the body of the fused face loop
+/// ([`faces_x86`](super::faces_x86)), whose scan leaves the indices there.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
 macro_rules! small_x86_body {
@@ -95,24 +96,24 @@ macro_rules! small_x86_body {
             // A triangle well inside the clip's columns (one pixel to spare on each
             // side) needs no clamp of its rows' columns: the rows without it. Each
             // corner's x less the least such x, unsigned, at most the span of them.
-            "movsx eax, word ptr [rsi + 4]\n",
+            "movsx eax, word ptr [rbp + r15 * 8 + 4]\n",
             "sub eax, dword ptr [rdi + 112]\n",
             "cmp eax, dword ptr [rdi + 116]\n",
             "ja 29f\n",
-            "movsx eax, word ptr [rdx + 4]\n",
+            "movsx eax, word ptr [rbp + rdx * 8 + 4]\n",
             "sub eax, dword ptr [rdi + 112]\n",
             "cmp eax, dword ptr [rdi + 116]\n",
             "ja 29f\n",
-            "movsx eax, word ptr [rcx + 4]\n",
+            "movsx eax, word ptr [rbp + rcx * 8 + 4]\n",
             "sub eax, dword ptr [rdi + 112]\n",
             "cmp eax, dword ptr [rdi + 116]\n",
             "ja 29f\n",
             small_x86_rest!(inside),
             "29:\n",
             // Extents in x (the corners in any order): 512 pixels or more refused.
-            "movsx eax, word ptr [rsi + 4]\n",
-            "movsx r8d, word ptr [rdx + 4]\n",
-            "movsx r9d, word ptr [rcx + 4]\n",
+            "movsx eax, word ptr [rbp + r15 * 8 + 4]\n",
+            "movsx r8d, word ptr [rbp + rdx * 8 + 4]\n",
+            "movsx r9d, word ptr [rbp + rcx * 8 + 4]\n",
             "mov r10d, eax\n",
             "cmp r8d, r10d\n",
             "cmovl r10d, r8d\n",
@@ -292,15 +293,15 @@ macro_rules! small_x86_side {
             "mov dword ptr [rdi + 132], r11d\n",
             // The first row's depth at local column 0 (screen column ORIGIN), from
             // p0: z + bias + q·(8 − (x − 16·ORIGIN)) + r·(16·start + 8 − y).
-            "movsx ecx, word ptr [r15 + 4]\n",
+            "movsx ecx, word ptr [rbp + r15 * 8 + 4]\n",
             "add ecx, 16376\n",
             "imul ecx, r12d\n",
-            "movsx eax, word ptr [r15 + 6]\n",
+            "movsx eax, word ptr [rbp + r15 * 8 + 6]\n",
             "mov r10d, dword ptr [rdi + 172]\n",
             "sub r10d, eax\n",
             "imul r10d, r13d\n",
             "sub r10d, ecx\n",
-            "add r10d, dword ptr [r15]\n",
+            "add r10d, dword ptr [rbp + r15 * 8]\n",
             "add r10d, 32768\n",
             // The first row's address: local column 0 of screen row `start`.
             "movsxd r11, dword ptr [rdi + 32]\n",
@@ -342,16 +343,16 @@ macro_rules! small_x86_rest {
     ($clamp:ident) => {
         concat!(
             small_x86_extents!($clamp),
-            // p0 kept; a, m, c sorted by y (stable, as `by_rows`).
-            "mov r15, rsi\n",
-            "movsx eax, word ptr [rsi + 6]\n",
-            "movsx r8d, word ptr [rdx + 6]\n",
+            // p0 kept (r15); a, m, c sorted by y (stable, as `by_rows`).
+            "mov rsi, r15\n",
+            "movsx eax, word ptr [rbp + rsi * 8 + 6]\n",
+            "movsx r8d, word ptr [rbp + rdx * 8 + 6]\n",
             "cmp r8d, eax\n",
             "jge 21f\n",
             "xchg rsi, rdx\n",
             "xchg eax, r8d\n",
             "21:\n",
-            "movsx r9d, word ptr [rcx + 6]\n",
+            "movsx r9d, word ptr [rbp + rcx * 8 + 6]\n",
             "cmp r9d, r8d\n",
             "jge 22f\n",
             "xchg rdx, rcx\n",
@@ -400,9 +401,9 @@ macro_rules! small_x86_rest {
             "sub r9d, r8d\n",
             "sub r8d, eax\n",
             // The depths: lo, hi (biased); dz1, dz2 of z >> 4 (64-bit).
-            "mov r10d, dword ptr [rsi]\n",
-            "mov r12d, dword ptr [rdx]\n",
-            "mov r13d, dword ptr [rcx]\n",
+            "mov r10d, dword ptr [rbp + rsi * 8]\n",
+            "mov r12d, dword ptr [rbp + rdx * 8]\n",
+            "mov r13d, dword ptr [rbp + rcx * 8]\n",
             "mov eax, r10d\n",
             "mov r14d, r10d\n",
             "cmp r12d, r10d\n",
@@ -422,10 +423,10 @@ macro_rules! small_x86_rest {
             "sub r12, r10\n",
             "sub r13, r10\n",
             // dxs (rsi), dxl (r14), 64-bit; xa' = xa − 16·ORIGIN + 8 (r10).
-            "movsx r10, word ptr [rsi + 4]\n",
-            "movsx rsi, word ptr [rdx + 4]\n",
+            "movsx r10, word ptr [rbp + rsi * 8 + 4]\n",
+            "movsx rsi, word ptr [rbp + rdx * 8 + 4]\n",
             "sub rsi, r10\n",
-            "movsx r14, word ptr [rcx + 4]\n",
+            "movsx r14, word ptr [rbp + rcx * 8 + 4]\n",
             "sub r14, r10\n",
             "add r10d, 16392\n",
             // na = dz1·dyl − dz2·dys (rax), nb = dz2·dxs − dz1·dxl (r13) and the area
@@ -605,8 +606,12 @@ impl SmallRun {
             b.failed = 0;
             b.rows[13] = u32::from(bits);
             let refused: usize;
-            // SAFETY: reads the three cache entries (8 bytes each: the depth at 0, x and y
-            // at 4 and 6) and reads and writes `b` (`repr(C)`, offsets asserted above). The
+            // The entries side by side: the body reads them by index from one address.
+            let entries = [*tri[0], *tri[1], *tri[2]];
+            // SAFETY: reads the three entries of `entries` (8 bytes each: the depth at 0, x
+            // and y at 4 and 6; indices 0, 1 and 2 from its address, in rbp while the body
+            // runs, rbp saved in `b` and restored) and reads and writes `b` (`repr(C)`,
+            // offsets asserted above). The
             // rows are those `fill_small_divide` draws: screen rows start..end inside the
             // clip's y0..y1, each of its pixels at a column inside the clip's x0..x1 (the
             // row's columns clamped to them). `SmallRun::new` has checked that the clip lies
@@ -616,9 +621,13 @@ impl SmallRun {
             // screen column ORIGIN of row 0 for these rows) and colour `delta` bytes on lies
             // inside them. The divisors:
             // |area| ≠ 0 (tested), an edge's dy > 0 on the rows it bounds. Clobbers rax,
-            // rcx, rdx, rsi, r8–r15 and the flags; no stack.
+            // rcx, rdx, rsi, r8–r15 and the flags; rbp restored; no stack.
             unsafe {
                 core::arch::asm!(
+                    // rbp (not an operand) kept in the block's spare word at 24 while
+                    // it holds the entries' address.
+                    "mov qword ptr [rdi + 24], rbp",
+                    "mov rbp, rax",
                     small_x86_body!(),
                     "91:",
                     "mov esi, 1",
@@ -626,11 +635,12 @@ impl SmallRun {
                     "90:",
                     "xor esi, esi",
                     "92:",
+                    "mov rbp, qword ptr [rdi + 24]",
                     in("rdi") &raw mut *b,
-                    inout("rsi") core::ptr::from_ref(tri[0]) as usize => refused,
-                    inout("rdx") core::ptr::from_ref(tri[1]) => _,
-                    inout("rcx") core::ptr::from_ref(tri[2]) => _,
-                    out("rax") _,
+                    inout("rax") entries.as_ptr() => _,
+                    out("rsi") refused,
+                    inout("rdx") 1usize => _,
+                    inout("rcx") 2usize => _,
                     out("r8") _,
                     out("r9") _,
                     out("r10") _,
@@ -638,7 +648,7 @@ impl SmallRun {
                     out("r12") _,
                     out("r13") _,
                     out("r14") _,
-                    out("r15") _,
+                    inout("r15") 0usize => _,
                     options(nostack),
                 );
             }
