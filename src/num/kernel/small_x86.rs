@@ -42,7 +42,7 @@ pub(super) struct Block {
     /// the last; the depth's step a pixel rotated (two words: `(sx >> 16) | (sx << 48)`);
     /// the middle row, 16·start + 8, s0 and s1.
     set: [i32; 14], // 128
-    /// Pixels tested and failed, summed.
+    /// Pixels tested (twice: the spans' bytes) and failed, summed.
     tested: u64, // 184
     failed: u64,  // 192
 }
@@ -68,7 +68,7 @@ impl Block {
     /// The pixels tested and failed since the block was made.
     #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
     pub(super) fn counts(&self) -> (u64, u64) {
-        (self.tested, self.failed)
+        (self.tested / 2, self.failed)
     }
 }
 
@@ -84,9 +84,9 @@ const _: () = {
 
 /// The set-up and rows of [`small_x86`] (the block in rdi, the corners' entries at
 /// indices r15, rdx and rcx of the entries from rbp): on to local label `90` when done
-/// (the pixels tested and failed added to the block's 64-bit sums at 184 and 192), to
-/// `91` when refused (nothing drawn). Clobbers rax, rcx, rdx, rsi, r8–r15 and the
-/// flags, keeps rbx and rbp; no stack. Also the body of the fused face loop
+/// (twice the pixels tested and the pixels failed added to the block's sums at 184 and
+/// 192), to `91` when refused (nothing drawn). Clobbers rax, rcx, rdx, rsi, r8–r15 and
+/// the flags, keeps rbx and rbp; no stack. Also the body of the fused face loop
 /// ([`faces_x86`](super::faces_x86)), whose scan leaves the indices there.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
@@ -166,8 +166,9 @@ macro_rules! small_x86_extents {
 /// `[rdi + $ld]`, the right one's in `$rt` by `[rdi + $rd]`, each stepped by its
 /// `[rdi + …dt]` (the long edge r8 by 128, the short r9 by `$sdt`); the columns clamped
 /// or not (`$clamp`); the labels `$a`–`$e` the copy's own (the pixel's failure at `$e`,
-/// placed by the caller after the copy). A row's pixels run by a negative index up to
-/// the row's end, the depth in rdx rotated (the integer in bits 0–15, the fraction in
+/// placed by the caller after the copy). A row's pixels run by a negative byte offset up
+/// to the row's end (the tested pixels summed as bytes, twice their number), the depth
+/// in rdx rotated (the integer in bits 0–15, the fraction in
 /// 48–63: one add and the fraction's carry a pixel, as `acc >> 16` of the 32-bit sum).
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
@@ -176,25 +177,25 @@ macro_rules! small_x86_rows {
      $a:literal, $b:literal, $c:literal, $d:literal, $e:literal) => {
         concat!(
             $a, ":\n",
-            "mov eax, ", $lt, "\n",
-            "xor edx, edx\n",
-            "div dword ptr [rdi + ", $ld, "]\n",
-            small_x86_clamp!($clamp, "cmovl", 16),
-            "mov r12d, eax\n",
             "mov eax, ", $rt, "\n",
             "xor edx, edx\n",
             "div dword ptr [rdi + ", $rd, "]\n",
             small_x86_clamp!($clamp, "cmovg", 20),
+            "lea rsi, [r11 + rax * 2]\n",
+            "mov eax, ", $lt, "\n",
+            "xor edx, edx\n",
+            "div dword ptr [rdi + ", $ld, "]\n",
+            small_x86_clamp!($clamp, "cmovl", 16),
             "add r8d, dword ptr [rdi + 128]\n",
             "add r9d, dword ptr [rdi + ", $sdt, "]\n",
-            // r12 = left − right: the span's negative length (none from 0 on).
-            "sub r12, rax\n",
+            // r12 = the left end's address less the right's: the span's negative
+            // length in bytes (none from 0 on), counted into the tested bytes.
+            "lea r12, [r11 + rax * 2]\n",
+            "sub r12, rsi\n",
             "jge ", $d, "f\n",
-            "lea rsi, [r11 + rax * 2]\n",
             "sub qword ptr [rdi + 184], r12\n",
-            "lea edx, [rax + r12]\n",
-            "imul edx, dword ptr [rdi]\n",
-            "add edx, r10d\n",
+            "imul eax, dword ptr [rdi]\n",
+            "lea edx, [rax + r10]\n",
             "cmp edx, dword ptr [rdi + 8]\n",
             "cmovb edx, dword ptr [rdi + 8]\n",
             "cmp edx, dword ptr [rdi + 12]\n",
@@ -202,14 +203,14 @@ macro_rules! small_x86_rows {
             "ror rdx, 16\n",
             "lea r13, [rsi + r15]\n",
             $b, ":\n",
-            "cmp dx, word ptr [rsi + r12 * 2]\n",
+            "cmp dx, word ptr [rsi + r12]\n",
             "jae ", $e, "f\n",
-            "mov word ptr [rsi + r12 * 2], dx\n",
-            "mov word ptr [r13 + r12 * 2], r14w\n",
+            "mov word ptr [rsi + r12], dx\n",
+            "mov word ptr [r13 + r12], r14w\n",
             $c, ":\n",
             "add rdx, qword ptr [rdi + 160]\n",
             "adc rdx, 0\n",
-            "inc r12\n",
+            "add r12, 2\n",
             "jnz ", $b, "b\n",
             $d, ":\n",
             "add r10d, dword ptr [rdi + 4]\n",
@@ -656,7 +657,8 @@ impl SmallRun {
                 return SmallX86::Refused;
             }
             // A triangle of extents below 512 pixels tests fewer than 2³² pixels.
-            return SmallX86::Drawn(b.tested as u32, b.failed as u32);
+            let (tested, failed) = b.counts();
+            return SmallX86::Drawn(tested as u32, failed as u32);
         }
         #[allow(unreachable_code)]
         {
