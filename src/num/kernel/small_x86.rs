@@ -222,27 +222,26 @@ macro_rules! small_x86_rows {
 }
 
 /// [`small_x86_rest`] after the area's sign (`pos`: the middle corner right of the long
-/// edge, which is then the left one; `neg`: left of it), the dividend's factor `$k`
-/// (±16) and the rows' copies for that side: the depth steps, the edges, the first
+/// edge, which is then the left one; `neg`: left of it), the dividends' signs and the
+/// rows' copies for that side: the depth steps, the edges, the first
 /// row's depth and address, then both halves' rows, on to `90`.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
 macro_rules! small_x86_side {
     ($clamp:ident, pos) => {
-        small_x86_side!(@ $clamp, "", "shl rax, 4\n", "imul rax, r13, 16\n",
+        small_x86_side!(@ $clamp, "", "", "mov rax, r13\n",
             "r8d", "132", "r9d", "140", "r8d", "132", "r9d", "148")
     };
     ($clamp:ident, neg) => {
-        small_x86_side!(@ $clamp, "neg rcx\n", "imul rax, rax, -16\n", "imul rax, r13, -16\n",
+        small_x86_side!(@ $clamp, "neg rcx\n", "neg rax\n", "imul rax, r13, -1\n",
             "r9d", "140", "r8d", "132", "r9d", "148", "r8d", "132")
     };
     (@ $clamp:ident, $neg:literal, $ka:literal, $kb:literal,
      $ul:literal, $uld:literal, $ur:literal, $urd:literal,
      $ll:literal, $lld:literal, $lr:literal, $lrd:literal) => {
         concat!(
-            // q = ⌊16·na/area⌋, r = ⌊16·nb/area⌋: the dividends times 16 with the
-            // area's sign over |area|, IDIV's quotient less 1 where the remainder
-            // is negative.
+            // q = ⌊16·na/area⌋, r = ⌊16·nb/area⌋: the dividends with the area's sign
+            // over |area|, IDIV's quotient less 1 where the remainder is negative.
             $neg,
             $ka,
             "cqo\n",
@@ -401,7 +400,7 @@ macro_rules! small_x86_rest {
             "mov dword ptr [rdi + 176], r12d\n",
             "sub r9d, r8d\n",
             "sub r8d, eax\n",
-            // The depths: lo, hi (biased); dz1, dz2 of z >> 4 (64-bit).
+            // The depths: lo, hi (biased); 16·dz1, 16·dz2 of z >> 4 (64-bit).
             "mov r10d, dword ptr [rbp + rsi * 8]\n",
             "mov r12d, dword ptr [rbp + rdx * 8]\n",
             "mov r13d, dword ptr [rbp + rcx * 8]\n",
@@ -418,9 +417,9 @@ macro_rules! small_x86_rest {
             "mov dword ptr [rdi + 8], eax\n",
             "add r14d, 32768\n",
             "mov dword ptr [rdi + 12], r14d\n",
-            "shr r10d, 4\n",
-            "shr r12d, 4\n",
-            "shr r13d, 4\n",
+            "and r10d, -16\n",
+            "and r12d, -16\n",
+            "and r13d, -16\n",
             "sub r12, r10\n",
             "sub r13, r10\n",
             // dxs (rsi), dxl (r14), 64-bit; xa' = xa − 16·ORIGIN + 8 (r10).
@@ -430,7 +429,8 @@ macro_rules! small_x86_rest {
             "movsx r14, word ptr [rbp + rcx * 8 + 4]\n",
             "sub r14, r10\n",
             "add r10d, 16392\n",
-            // na = dz1·dyl − dz2·dys (rax), nb = dz2·dxs − dz1·dxl (r13) and the area
+            // 16·na = 16·(dz1·dyl − dz2·dys) (rax), 16·nb = 16·(dz2·dxs − dz1·dxl) (r13)
+            // and the area
             // dxs·dyl − dxl·dys (rcx; 0: nothing to draw), 64-bit.
             "mov rax, r12\n",
             "imul rax, r11\n",
