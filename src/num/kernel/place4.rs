@@ -32,9 +32,11 @@ pub(crate) fn place_quads(
     mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
 ) {
     let q = Quad::new(b);
-    let mut ps = positions.chunks_exact(4);
-    let mut os = out.chunks_exact_mut(4);
-    for (p, o) in (&mut ps).zip(&mut os) {
+    // Whole quads of both, then the rest: one count for the loop.
+    let n = positions.len().min(out.len()) / 4 * 4;
+    let (positions, rest) = positions.split_at(n);
+    let (out, rest_out) = out.split_at_mut(n);
+    for (p, o) in positions.chunks_exact(4).zip(out.chunks_exact_mut(4)) {
         let (Ok(p), Ok(o)) = (<&[[i16; 3]; 4]>::try_from(p), <&mut [_; 4]>::try_from(o)) else {
             continue;
         };
@@ -47,7 +49,7 @@ pub(crate) fn place_quads(
             }
         }
     }
-    for (p, e) in ps.remainder().iter().zip(os.into_remainder()) {
+    for (p, e) in rest.iter().zip(rest_out) {
         *e = entry(p);
     }
 }
