@@ -55,6 +55,8 @@ struct FacesBlock {
     div255: [u16; 8], // 336
     fields: [u16; 8], // 352
     weights: [u16; 8], // 368
+    /// The light's components as words (where they fit), then 0.
+    light16: [i16; 8], // 384
 }
 
 #[cfg(target_pointer_width = "64")]
@@ -70,6 +72,7 @@ const _: () = {
     assert!(offset_of!(B, half) == 288 && offset_of!(B, max) == 304);
     assert!(offset_of!(B, saved) == 320 && offset_of!(B, div255) == 336);
     assert!(offset_of!(B, fields) == 352 && offset_of!(B, weights) == 368);
+    assert!(offset_of!(B, light16) == 384);
 };
 
 /// On to `52` with a face of area r8d the cull mode keeps: `back` (`Cull::Back`: a
@@ -101,11 +104,9 @@ macro_rules! faces_x86_color {
     (flat) => {
         ""
     };
-    (lit) => {
+    // n·L (wrapping) into r9d: each product and their sum in 32 bits.
+    (@dot lit) => {
         concat!(
-            "mov r8, qword ptr [rdi + 224]\n",
-            // n·L (wrapping), max(0, n·L), the rounded high word of its product with
-            // the diffuse weight, plus ambient, clamped to 0 ..= 65535.
             "movsx r9d, word ptr [r8 + rsi]\n",
             "imul r9d, dword ptr [rdi + 248]\n",
             "movsx r10d, word ptr [r8 + rsi + 2]\n",
@@ -114,6 +115,26 @@ macro_rules! faces_x86_color {
             "movsx r10d, word ptr [r8 + rsi + 4]\n",
             "imul r10d, dword ptr [rdi + 256]\n",
             "add r9d, r10d\n",
+        )
+    };
+    // The same by PMADDWD where the light's components fit words (at 384): the first
+    // two products summed in one lane, the third in the next (the same wrapping sum).
+    (@dot lit16) => {
+        concat!(
+            "movd xmm0, dword ptr [r8 + rsi]\n",
+            "pinsrw xmm0, word ptr [r8 + rsi + 4], 2\n",
+            "pmaddwd xmm0, xmmword ptr [rdi + 384]\n",
+            "pshufd xmm1, xmm0, 1\n",
+            "paddd xmm0, xmm1\n",
+            "movd r9d, xmm0\n",
+        )
+    };
+    ($lit:ident) => {
+        concat!(
+            "mov r8, qword ptr [rdi + 224]\n",
+            // n·L, max(0, n·L), the rounded high word of its product with the diffuse
+            // weight, plus ambient, clamped to 0 ..= 65535.
+            faces_x86_color!(@dot $lit),
             "test r9d, r9d\n",
             "cmovs r9d, dword ptr [rdi + 312]\n",
             "imul r9, qword ptr [rdi + 264]\n",
@@ -264,6 +285,7 @@ impl<'a, C: Copy> FacesX86<'a, C> {
             div255: [DIV255; 8],
             fields: [31, 63, 31, 0, 0, 0, 0, 0],
             weights: [1 << 11, 1 << 5, 1, 0, 0, 0, 0, 0],
+            light16: [0; 8],
         };
         let (color, lit, normals) = match *color {
             FaceColor::Flat(c) => (c, false, &[][..]),
@@ -292,6 +314,9 @@ impl<'a, C: Copy> FacesX86<'a, C> {
                     .wrapping_sub(faces.as_ptr() as isize)
                     .wrapping_add(b.end as isize);
                 (b.light, b.ambient, b.diffuse) = (light, ambient, i64::from(diffuse));
+                for (w, &l) in b.light16.iter_mut().zip(&light) {
+                    *w = l as i16;
+                }
                 b.channels[..3].copy_from_slice(&v.map(|v| v as u16));
                 b.half = [block.half; 4];
                 (to_color(0), true, normals)
@@ -412,11 +437,15 @@ fn fused(b: &mut FacesBlock, lit: bool) -> bool {
         unsafe {
             // Cull::Back drops the areas 0 ..= i32::MAX: the sign test.
             let back = b.neg_lo == 0 && b.span == i32::MAX as u32;
-            match (lit, back) {
-                (true, true) => faces_x86_asm!(lit, back, b, status),
-                (true, false) => faces_x86_asm!(lit, range, b, status),
-                (false, true) => faces_x86_asm!(flat, back, b, status),
-                (false, false) => faces_x86_asm!(flat, range, b, status),
+            // A light whose components fit words: n·L by PMADDWD.
+            let narrow = b.light.iter().all(|&l| i16::try_from(l).is_ok());
+            match (lit, narrow, back) {
+                (true, true, true) => faces_x86_asm!(lit16, back, b, status),
+                (true, true, false) => faces_x86_asm!(lit16, range, b, status),
+                (true, false, true) => faces_x86_asm!(lit, back, b, status),
+                (true, false, false) => faces_x86_asm!(lit, range, b, status),
+                (false, _, true) => faces_x86_asm!(flat, back, b, status),
+                (false, _, false) => faces_x86_asm!(flat, range, b, status),
             }
         }
         status != 0
