@@ -17,17 +17,22 @@ use core::marker::PhantomData;
 /// Whether [`FacesX86`] runs the assembly loop (x86-64); elsewhere it is never made.
 pub(crate) const FACES_X86_KERNEL: bool = cfg!(zraster_x86_64);
 
+/// ⌈2²³ / 255⌉: `⌊y / 255⌋ = (y · DIV255) >> 23` for every `y` below 2¹⁵ (the colour's
+/// channels, whose `y = x >> 15` stays below it).
+const DIV255: u16 = 32897;
+
 /// What the loop reads and writes, at the offsets in the comments: `small_x86`'s block,
 /// the scan's place and operands, the light, the count of faces drawn.
 #[cfg_attr(not(zraster_x86_64), allow(dead_code))]
-#[repr(C)]
+#[repr(C, align(16))]
 struct FacesBlock {
     small: Block, // 0
     /// The next face's byte offset from the end of the faces (negative while one is left).
     pos: isize, // 200
     end: *const [u16; 3], // 208
     cache: *const CachedVertex, // 216
-    /// A face's normal's address less the face's.
+    /// The normals' address less the faces', plus the faces' end: a face's normal at
+    /// this plus the face's `pos` (wrapping).
     normals: isize, // 224
     /// The cull mode's dropped areas: `area − lo ≤ span`, unsigned.
     neg_lo: i32, // 232
@@ -38,13 +43,20 @@ struct FacesBlock {
     light: [i32; 3], // 248
     ambient: i32, // 260
     diffuse: i64, // 264
-    /// Each channel's `v · max · MUL`, and `HALF · MUL` (`LightBlock::wide_parts`).
-    channels: [u64; 3], // 272
-    half: u64,    // 296
+    /// Each channel's `v · max` (words, high field first), and `HALF` in every lane.
+    channels: [u16; 8], // 272
+    half: [u32; 4], // 288
     /// The 5- and 6-bit fields' greatest values, 0 and the greatest intensity.
     max: [u32; 4], // 304
     /// rbx and rbp while the loop runs.
     saved: [u64; 2], // 320
+    /// ⌈2²³ / 255⌉ in every word, the fields' greatest values (words) and their
+    /// places' weights (2¹¹, 2⁵, 1).
+    div255: [u16; 8], // 336
+    fields: [u16; 8], // 352
+    weights: [u16; 8], // 368
+    /// The light's components as words (where they fit), then 0.
+    light16: [i16; 8], // 384
 }
 
 #[cfg(target_pointer_width = "64")]
@@ -57,8 +69,10 @@ const _: () = {
     assert!(offset_of!(B, sign) == 240 && offset_of!(B, drawn) == 244);
     assert!(offset_of!(B, light) == 248 && offset_of!(B, ambient) == 260);
     assert!(offset_of!(B, diffuse) == 264 && offset_of!(B, channels) == 272);
-    assert!(offset_of!(B, half) == 296 && offset_of!(B, max) == 304);
-    assert!(offset_of!(B, saved) == 320);
+    assert!(offset_of!(B, half) == 288 && offset_of!(B, max) == 304);
+    assert!(offset_of!(B, saved) == 320 && offset_of!(B, div255) == 336);
+    assert!(offset_of!(B, fields) == 352 && offset_of!(B, weights) == 368);
+    assert!(offset_of!(B, light16) == 384);
 };
 
 /// On to `52` with a face of area r8d the cull mode keeps: `back` (`Cull::Back`: a
@@ -82,7 +96,7 @@ macro_rules! faces_x86_drop {
 }
 
 /// A lit face's packed 5-6-5 colour into the rows' colour (at 52), as `lit_565`: the
-/// face at `rbx + rsi`, its normal `[rdi + 224]` bytes on; keeps rax, rcx, rdx
+/// face at `rbx + rsi`, its normal at `[rdi + 224] + rsi`; keeps r15, rcx, rdx
 /// (the corners' indices); clobbers r8–r11.
 #[cfg(zraster_x86_64)]
 #[rustfmt::skip]
@@ -90,20 +104,37 @@ macro_rules! faces_x86_color {
     (flat) => {
         ""
     };
-    (lit) => {
+    // n·L (wrapping) into r9d: each product and their sum in 32 bits.
+    (@dot lit) => {
         concat!(
-            "lea r8, [rbx + rsi]\n",
-            "add r8, qword ptr [rdi + 224]\n",
-            // n·L (wrapping), max(0, n·L), the rounded high word of its product with
-            // the diffuse weight, plus ambient, clamped to 0 ..= 65535.
-            "movsx r9d, word ptr [r8]\n",
+            "movsx r9d, word ptr [r8 + rsi]\n",
             "imul r9d, dword ptr [rdi + 248]\n",
-            "movsx r10d, word ptr [r8 + 2]\n",
+            "movsx r10d, word ptr [r8 + rsi + 2]\n",
             "imul r10d, dword ptr [rdi + 252]\n",
             "add r9d, r10d\n",
-            "movsx r10d, word ptr [r8 + 4]\n",
+            "movsx r10d, word ptr [r8 + rsi + 4]\n",
             "imul r10d, dword ptr [rdi + 256]\n",
             "add r9d, r10d\n",
+        )
+    };
+    // The same by PMADDWD where the light's components fit words (at 384): the first
+    // two products summed in one lane, the third in the next (the same wrapping sum).
+    (@dot lit16) => {
+        concat!(
+            "movd xmm0, dword ptr [r8 + rsi]\n",
+            "pinsrw xmm0, word ptr [r8 + rsi + 4], 2\n",
+            "pmaddwd xmm0, xmmword ptr [rdi + 384]\n",
+            "pshufd xmm1, xmm0, 1\n",
+            "paddd xmm0, xmm1\n",
+            "movd r9d, xmm0\n",
+        )
+    };
+    ($lit:ident) => {
+        concat!(
+            "mov r8, qword ptr [rdi + 224]\n",
+            // n·L, max(0, n·L), the rounded high word of its product with the diffuse
+            // weight, plus ambient, clamped to 0 ..= 65535.
+            faces_x86_color!(@dot $lit),
             "test r9d, r9d\n",
             "cmovs r9d, dword ptr [rdi + 312]\n",
             "imul r9, qword ptr [rdi + 264]\n",
@@ -113,30 +144,26 @@ macro_rules! faces_x86_color {
             "cmovs r9d, dword ptr [rdi + 312]\n",
             "cmp r9d, 65535\n",
             "cmova r9d, dword ptr [rdi + 316]\n",
-            // Each channel (i · v·max·MUL + HALF·MUL) >> 54, at most its field's
-            // greatest value, high to low.
-            "mov r10, r9\n",
-            "imul r10, qword ptr [rdi + 272]\n",
-            "add r10, qword ptr [rdi + 296]\n",
-            "shr r10, 54\n",
-            "cmp r10d, 31\n",
-            "cmova r10d, dword ptr [rdi + 304]\n",
-            "shl r10d, 11\n",
-            "mov r11, r9\n",
-            "imul r11, qword ptr [rdi + 280]\n",
-            "add r11, qword ptr [rdi + 296]\n",
-            "shr r11, 54\n",
-            "cmp r11d, 63\n",
-            "cmova r11d, dword ptr [rdi + 308]\n",
-            "shl r11d, 5\n",
-            "or r10d, r11d\n",
-            "imul r9, qword ptr [rdi + 288]\n",
-            "add r9, qword ptr [rdi + 296]\n",
-            "shr r9, 54\n",
-            "cmp r9d, 31\n",
-            "cmova r9d, dword ptr [rdi + 304]\n",
-            "or r10d, r9d\n",
-            "mov dword ptr [rdi + 52], r10d\n",
+            // The three channels at once (words, high to low): x = i · v·max + HALF
+            // (below 2³⁰, `new` checked), ⌊x / (255 · 2¹⁵)⌋ as ⌊(x >> 15) · ⌈2²³/255⌉
+            // >> 23⌋ (exact below 2¹⁵ · 2), at most the field's greatest value, then
+            // weighed into their places and summed.
+            "movd xmm0, r9d\n",
+            "pshuflw xmm0, xmm0, 0\n",
+            "movdqa xmm1, xmm0\n",
+            "pmullw xmm0, xmmword ptr [rdi + 272]\n",
+            "pmulhuw xmm1, xmmword ptr [rdi + 272]\n",
+            "punpcklwd xmm0, xmm1\n",
+            "paddd xmm0, xmmword ptr [rdi + 288]\n",
+            "psrld xmm0, 15\n",
+            "packssdw xmm0, xmm0\n",
+            "pmulhuw xmm0, xmmword ptr [rdi + 336]\n",
+            "psrlw xmm0, 7\n",
+            "pminsw xmm0, xmmword ptr [rdi + 352]\n",
+            "pmaddwd xmm0, xmmword ptr [rdi + 368]\n",
+            "pshufd xmm1, xmm0, 1\n",
+            "paddd xmm0, xmm1\n",
+            "movd dword ptr [rdi + 52], xmm0\n",
         )
     };
 }
@@ -161,10 +188,10 @@ macro_rules! faces_x86_body {
             // The scan: the corners' x/y words; (b − a) · (1, −1) and (c − a) swapped,
             // multiplied and added: (xb − xa)(yc − ya) − (yb − ya)(xc − xa).
             "50:\n",
-            "movzx eax, word ptr [rbx + rsi]\n",
+            "movzx r15d, word ptr [rbx + rsi]\n",
             "movzx edx, word ptr [rbx + rsi + 2]\n",
             "movzx ecx, word ptr [rbx + rsi + 4]\n",
-            "movd xmm0, dword ptr [rbp + rax * 8 + 4]\n",
+            "movd xmm0, dword ptr [rbp + r15 * 8 + 4]\n",
             "movd xmm1, dword ptr [rbp + rdx * 8 + 4]\n",
             "movd xmm2, dword ptr [rbp + rcx * 8 + 4]\n",
             "psubw xmm1, xmm0\n",
@@ -177,13 +204,11 @@ macro_rules! faces_x86_body {
             "add rsi, 6\n",
             "jnz 50b\n",
             "jmp 58f\n",
-            // Drawn: its place kept, its colour, its corners' entries.
+            // Drawn: its place kept, its colour, its corners' entries (indices r15,
+            // rdx and rcx of the cache at rbp, as the body takes them).
             "52:\n",
             "mov qword ptr [rdi + 200], rsi\n",
             faces_x86_color!($color),
-            "lea rsi, [rbp + rax * 8]\n",
-            "lea rdx, [rbp + rdx * 8]\n",
-            "lea rcx, [rbp + rcx * 8]\n",
             small_x86_body!(),
             // Drawn (perhaps nothing): counted, the scan's registers back, on.
             "90:\n",
@@ -253,23 +278,47 @@ impl<'a, C: Copy> FacesX86<'a, C> {
             light: [0; 3],
             ambient: 0,
             diffuse: 0,
-            channels: [0; 3],
-            half: 0,
+            channels: [0; 8],
+            half: [0; 4],
             max: [31, 63, 0, 65535],
             saved: [0; 2],
+            div255: [DIV255; 8],
+            fields: [31, 63, 31, 0, 0, 0, 0, 0],
+            weights: [1 << 11, 1 << 5, 1, 0, 0, 0, 0, 0],
+            light16: [0; 8],
         };
         let (color, lit, normals) = match *color {
             FaceColor::Flat(c) => (c, false, &[][..]),
             FaceColor::Lit(block, to_color, Some(_)) => {
                 let (light, ambient, diffuse) = block.light_parts();
-                let (channels, half) = block.wide_channels();
                 let normals = block.normals().get(first..)?;
+                // The channels' arithmetic here: `(i·v + HALF)·MUL >> 54` (`lit_565`)
+                // with MUL = ⌈2³⁹/255⌉, a division by 255 · 2¹⁵, and i·v + HALF below
+                // 2³⁰ for every intensity i up to 65535.
+                let (wide, half) = block.wide_channels();
+                let v = block.channels;
+                let mul = (1u64 << 39) / 255 + 1;
+                let small = v
+                    .iter()
+                    .all(|&v| 65535 * u64::from(v) + u64::from(block.half) < 1 << 30);
+                if !small
+                    || wide != v.map(|v| u64::from(v) * mul)
+                    || half != u64::from(block.half) * mul
+                {
+                    return None;
+                }
                 if normals.len() < faces.len() {
                     return None;
                 }
-                b.normals = (normals.as_ptr() as isize).wrapping_sub(faces.as_ptr() as isize);
+                b.normals = (normals.as_ptr() as isize)
+                    .wrapping_sub(faces.as_ptr() as isize)
+                    .wrapping_add(b.end as isize);
                 (b.light, b.ambient, b.diffuse) = (light, ambient, i64::from(diffuse));
-                (b.channels, b.half) = (channels, half);
+                for (w, &l) in b.light16.iter_mut().zip(&light) {
+                    *w = l as i16;
+                }
+                b.channels[..3].copy_from_slice(&v.map(|v| v as u16));
+                b.half = [block.half; 4];
                 (to_color(0), true, normals)
             }
             FaceColor::Lit(_, _, None) => return None,
@@ -374,8 +423,9 @@ fn fused(b: &mut FacesBlock, lit: bool) -> bool {
         // faces of the loop's faces; their indices all lie below the cache's length
         // (`indices_below`, checked when the loop was made over these borrowed faces
         // and cache), so the entries read (`cache + 8·index`, x/y at 4) lie inside the
-        // cache. The colour (`lit`) reads the normal at the face's address plus
-        // `normals`: normal `first + k` of a slice holding one for every face. The
+        // cache. The colour (`lit`) reads the normal at `normals + pos` (the face's
+        // address plus the normals' offset from the faces): normal `first + k` of a
+        // slice holding one for every face. The
         // set-up and rows are `small_x86`'s body on the corners' entries, with its
         // bounds argument (`SmallRun::run`): `block_for` made the block from the run's
         // (the clip inside the rows) and checked that both buffers reach past the
@@ -387,11 +437,15 @@ fn fused(b: &mut FacesBlock, lit: bool) -> bool {
         unsafe {
             // Cull::Back drops the areas 0 ..= i32::MAX: the sign test.
             let back = b.neg_lo == 0 && b.span == i32::MAX as u32;
-            match (lit, back) {
-                (true, true) => faces_x86_asm!(lit, back, b, status),
-                (true, false) => faces_x86_asm!(lit, range, b, status),
-                (false, true) => faces_x86_asm!(flat, back, b, status),
-                (false, false) => faces_x86_asm!(flat, range, b, status),
+            // A light whose components fit words: n·L by PMADDWD.
+            let narrow = b.light.iter().all(|&l| i16::try_from(l).is_ok());
+            match (lit, narrow, back) {
+                (true, true, true) => faces_x86_asm!(lit16, back, b, status),
+                (true, true, false) => faces_x86_asm!(lit16, range, b, status),
+                (true, false, true) => faces_x86_asm!(lit, back, b, status),
+                (true, false, false) => faces_x86_asm!(lit, range, b, status),
+                (false, _, true) => faces_x86_asm!(flat, back, b, status),
+                (false, _, false) => faces_x86_asm!(flat, range, b, status),
             }
         }
         status != 0
@@ -489,5 +543,18 @@ impl<C> FacesX86<'_, C> {
         });
         #[allow(unreachable_code)]
         false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// [`DIV255`](super::DIV255) divides every `y` below 2¹⁵ by 255 (as `PMULHUW`, a
+    /// 16-bit high word, then 7 more bits).
+    #[test]
+    fn div255_divides_by_255() {
+        for y in 0..1u32 << 15 {
+            let high = (y * u32::from(super::DIV255)) >> 16;
+            assert_eq!(high >> 7, y / 255, "{y}");
+        }
     }
 }

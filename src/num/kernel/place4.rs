@@ -3,8 +3,8 @@
 //! reciprocals. It computes [`place_portable`] lane by lane, every `f32` operation the
 //! same and in the same order (packed SSE arithmetic rounds as scalar does), so its
 //! entries are those of the `f32` path, as the Cortex-M4F's `place_pairs` are; a
-//! position the twin does not place is left to the caller. The intrinsics take no
-//! pointers; the only `unsafe` is the call into SSE2 code, which x86-64 always has.
+//! position the twin does not place is left to the caller. The only `unsafe` is the call
+//! into SSE2 code, which x86-64 always has, and the two loads of four positions' bytes.
 #![allow(unsafe_code)]
 
 use super::place::{place_portable, PlaceBlock};
@@ -32,9 +32,11 @@ pub(crate) fn place_quads(
     mut entry: impl FnMut(&[i16; 3]) -> CachedVertex,
 ) {
     let q = Quad::new(b);
-    let mut ps = positions.chunks_exact(4);
-    let mut os = out.chunks_exact_mut(4);
-    for (p, o) in (&mut ps).zip(&mut os) {
+    // Whole quads of both, then the rest: one count for the loop.
+    let n = positions.len().min(out.len()) / 4 * 4;
+    let (positions, rest) = positions.split_at(n);
+    let (out, rest_out) = out.split_at_mut(n);
+    for (p, o) in positions.chunks_exact(4).zip(out.chunks_exact_mut(4)) {
         let (Ok(p), Ok(o)) = (<&[[i16; 3]; 4]>::try_from(p), <&mut [_; 4]>::try_from(o)) else {
             continue;
         };
@@ -47,7 +49,7 @@ pub(crate) fn place_quads(
             }
         }
     }
-    for (p, e) in ps.remainder().iter().zip(os.into_remainder()) {
+    for (p, e) in rest.iter().zip(rest_out) {
         *e = entry(p);
     }
 }
@@ -99,10 +101,11 @@ mod sse {
     #[cfg(target_arch = "x86_64")]
     use core::arch::x86_64::*;
 
-    /// The rows as `PMADDWD` operands (`c₀c₁` and `c₂`, 0 in every lane) and `t`, and
-    /// the projection's constants, each in all four lanes.
+    /// The rows as `PMADDWD` operands of the positions' words as they lie (see
+    /// [`Operands::place4`]) and `t`, and the projection's constants, each in all four
+    /// lanes.
     pub(super) struct Operands {
-        /// Each row's `c₀c₁`, `c₂` and `t`.
+        /// Each row's `c₀c₁ | 0c₀ | c₀c₁ | 0c₀`, `c₂0 | c₁c₂ | c₂0 | c₁c₂` and `t`.
         rows: [[__m128i; 3]; 6],
         sx: __m128,
         sy: __m128,
@@ -118,7 +121,11 @@ mod sse {
             let (rows, [_, sx, sy, depth_half], [ox, oy]) = b.parts();
             let lanes = |v: u32| _mm_set1_epi32(v as i32);
             Operands {
-                rows: rows.map(|[c01, c12, t]| [lanes(c01), lanes(c12 >> 16), lanes(t)]),
+                rows: rows.map(|[c01, c12, t]| {
+                    let pair =
+                        |a: u32, b: u32| _mm_setr_epi32(a as i32, b as i32, a as i32, b as i32);
+                    [pair(c01, c01 << 16), pair(c12 >> 16, c12), lanes(t)]
+                }),
                 sx: _mm_set1_ps(sx),
                 sy: _mm_set1_ps(sy),
                 ox: _mm_set1_ps(ox),
@@ -132,17 +139,25 @@ mod sse {
         #[inline]
         #[target_feature(enable = "sse2")]
         pub(super) fn place4(&self, p: &[[i16; 3]; 4], out: &mut [CachedVertex; 4]) -> u32 {
-            // x and y of a position as one word (x low), by one load.
-            // SAFETY: reads the first 4 of the position's 6 bytes (any bits are a u32).
-            let xy = |p: &[i16; 3]| unsafe { core::ptr::read_unaligned(p.as_ptr().cast::<i32>()) };
-            let z = |&[_, _, z]: &[i16; 3]| i32::from(z as u16);
-            let [a, b, c, d] = p;
-            let pxy = _mm_setr_epi32(xy(a), xy(b), xy(c), xy(d));
-            let pz = _mm_setr_epi32(z(a), z(b), z(c), z(d));
+            // The four positions' 12 words x₀y₀ z₀x₁ y₁z₁ x₂y₂ | z₂x₃ y₃z₃ by two loads,
+            // as word pairs: lane k's x, y and z lie in `u`'s and `w`'s pair k, which
+            // the rows' pairs (`c₀c₁ | 0c₀ | …` and `c₂0 | c₁c₂ | …`) weigh.
+            let at = p.as_ptr().cast::<u8>();
+            // SAFETY: `p` is 24 bytes (four `[i16; 3]`): bytes 0..16 and 16..24, read
+            // unaligned (any bits are words).
+            let (l0, l1) = unsafe {
+                (
+                    _mm_loadu_si128(at.cast::<__m128i>()),
+                    _mm_loadl_epi64(at.add(16).cast::<__m128i>()),
+                )
+            };
+            // u = x₀y₀ z₀x₁ x₂y₂ z₂x₃, w = z₀x₁ y₁z₁ z₂x₃ y₃z₃.
+            let u = _mm_unpacklo_epi64(l0, _mm_unpacklo_epi32(_mm_shuffle_epi32(l0, 3), l1));
+            let w = _mm_unpacklo_epi64(_mm_shuffle_epi32(l0, 0b1001), l1);
             // c₀·x + c₁·y + c₂·z + t, exact in 32 bits (wrapping as the twin).
-            let row = |[c01, c2, t]: [__m128i; 3]| {
-                let s = _mm_add_epi32(_mm_madd_epi16(pxy, c01), t);
-                _mm_cvtepi32_ps(_mm_add_epi32(s, _mm_madd_epi16(pz, c2)))
+            let row = |[k1, k2, t]: [__m128i; 3]| {
+                let s = _mm_add_epi32(_mm_madd_epi16(u, k1), t);
+                _mm_cvtepi32_ps(_mm_add_epi32(s, _mm_madd_epi16(w, k2)))
             };
             let [x, y, zh, wh, zl, wl] = self.rows.map(row);
             let unit = _mm_set1_ps(1.0 / 16384.0);
