@@ -33,6 +33,9 @@ pub(crate) const PLACE_V6M_KERNEL: bool = cfg!(all(zraster_thumb, zraster_armv6m
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(crate) struct PlaceV6m<'a> {
+    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each (a copy:
+    /// the loop's last row LDM leaves its pointer at the hint).
+    rows: [[i32; 4]; 6],
     /// 16 + sh for w's bits sh beyond 31 at the last vertex that changed it (the hint,
     /// sh in 1..=14), 48 + sh in the slow mode.
     hint: u32,
@@ -43,8 +46,8 @@ pub(crate) struct PlaceV6m<'a> {
     /// the half extent times 2^L₂, the origin (1/16 pixel) times 2¹⁴ plus the rounding
     /// constant, and the bias and limit of a placed coordinate (|c| < 2¹⁴).
     ops: [u32; 12],
-    /// The rows x, y, z high, w high, z low, w low: `c₀`, `c₁`, `c₂`, `t` each.
-    rows: &'a [[i32; 4]; 6],
+    /// Unused: the word the loop's offsets from the hint leave here.
+    spare: u32,
     /// The exponent `e` of x and y's scale to z and w's (0..=20).
     e: u32,
     /// The half height and width (1/16 pixel, at most 2¹⁵).
@@ -53,21 +56,25 @@ pub(crate) struct PlaceV6m<'a> {
     fold: [u32; 2],
     /// For y and x, L₁: the rest of L, v's left shift (0 but in the slow mode).
     left: [u32; 2],
+    /// The transform the rows are from.
+    from: core::marker::PhantomData<&'a [[i32; 4]; 6]>,
 }
 
-// The loop reads the hint at 0, 14 − sh at 4, the operands at 8, the rows' address at
-// 56, e at 60, the halves at 64, the folds at 72 and L₁ at 80 (addresses of 32 bits).
+// The loop reads the rows at 0 by LDM, and from the hint at 96 on: the hint at +0,
+// 14 − sh at +4, the operands at +8, e at +60, the halves at +64, the folds at +72 and
+// L₁ at +80 (words).
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 const _: () = assert!(
-    core::mem::offset_of!(PlaceV6m<'_>, hint) == 0
-        && core::mem::offset_of!(PlaceV6m<'_>, up) == 4
-        && core::mem::offset_of!(PlaceV6m<'_>, ops) == 8
-        && core::mem::offset_of!(PlaceV6m<'_>, rows) == 56
-        && core::mem::offset_of!(PlaceV6m<'_>, e) == 60
-        && core::mem::offset_of!(PlaceV6m<'_>, half) == 64
-        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 72
-        && core::mem::offset_of!(PlaceV6m<'_>, left) == 80
-        && core::mem::size_of::<PlaceV6m<'_>>() == 88
+    core::mem::offset_of!(PlaceV6m<'_>, rows) == 0
+        && core::mem::offset_of!(PlaceV6m<'_>, hint) == 96
+        && core::mem::offset_of!(PlaceV6m<'_>, up) == 96 + 4
+        && core::mem::offset_of!(PlaceV6m<'_>, ops) == 96 + 8
+        && core::mem::offset_of!(PlaceV6m<'_>, spare) == 96 + 56
+        && core::mem::offset_of!(PlaceV6m<'_>, e) == 96 + 60
+        && core::mem::offset_of!(PlaceV6m<'_>, half) == 96 + 64
+        && core::mem::offset_of!(PlaceV6m<'_>, fold) == 96 + 72
+        && core::mem::offset_of!(PlaceV6m<'_>, left) == 96 + 80
+        && core::mem::size_of::<PlaceV6m<'_>>() == 96 + 88
         && core::mem::size_of::<[[i32; 4]; 6]>() == 96
 );
 
@@ -105,15 +112,17 @@ impl<'a> PlaceV6m<'a> {
         (ops[Y_LIMIT], ops[X_LIMIT]) = (2 * k, 2 * k);
         let half = [half[1], half[0]];
         PlaceV6m {
+            rows: *rows,
             hint: 63,
             up: 0,
             ops,
-            rows,
+            spare: 0,
             e,
             half,
             // The most f with h·2^f ≤ 2¹⁵ (15 − ⌈log₂ h⌉), at most 5.
             fold: half.map(|h| h.wrapping_sub(1).leading_zeros().saturating_sub(17).min(5)),
             left: [0; 2],
+            from: core::marker::PhantomData,
         }
     }
 
@@ -332,8 +341,8 @@ pub(crate) fn place_run_v6m(
     #[cfg(all(zraster_thumb, zraster_armv6m))]
     {
         let start = out.as_mut_ptr().cast::<u32>();
-        // SAFETY: the loop reads the block (`repr(C)`, 88 bytes, 4-aligned) and the rows
-        // it borrows (96 bytes) and writes its hint and shift words, reads one position a
+        // SAFETY: the loop reads the block (`repr(C)`, 184 bytes, 4-aligned: its rows,
+        // then 88 bytes from the hint) and writes its hint and shift words, reads one position a
         // turn (three halfwords, 2-aligned as `[i16; 3]` is) from `positions`' start and
         // writes one entry a turn (a word and two halfwords, 4-aligned as
         // `CachedVertex` is; any bits are a valid entry) from `out`'s start, and stops
@@ -511,11 +520,12 @@ macro_rules! place_x {
     };
 }
 
-// SAFETY (for `place_run_v6m`): the loop reads the block through r12 (88 bytes: the
-// hint, 14 − sh, the depth's and coordinates' operands, the rows' address, e, the
-// halves, folds and left shifts) and the rows through r8, that address (96 bytes by
-// LDM), and writes only the block's hint, 14 − sh, right shifts, factors and left
-// shifts (0..8, 16..24, 28, 48, 80..88) on a search; the slow mode reads and writes the two row values it keeps
+// SAFETY (for `place_run_v6m`): the loop reads the block's rows through r8, its address
+// (96 bytes by LDM, which leave the pointer at the hint), the rest through r12, the
+// address + 96 (88 bytes: the hint, 14 − sh, the depth's and coordinates' operands, a
+// spare word, e, the halves, folds and left shifts), and writes only the hint, 14 −
+// sh, right shifts, factors and left shifts (r12 + 0..8, 16..24, 28, 48, 80..88) on a
+// search; the slow mode reads and writes the two row values it keeps
 // on the stack. A turn reads three halfwords at r9 + 6 and writes the entry at r10
 // (advanced by 8 first: its depth word, then the halves of y and x), r9 advancing 6,
 // and stops after the entry at r11 (end − 8, so r10 returned past it) or at an entry
@@ -539,9 +549,9 @@ core::arch::global_asm!(
     "mov r6, r10",
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
+    "mov r8, r0",
+    "adds r0, #96",
     "mov r12, r0",
-    "ldr r4, [r0, #56]",
-    "mov r8, r4",
     "subs r1, #6",
     "mov r9, r1",
     "subs r2, #8",
@@ -591,8 +601,8 @@ core::arch::global_asm!(
     "b 8f",
     "9:",
     // (wt − 1) >> (16 + sh) = 1 for the hint's sh (so w > 2³⁰⁺ˢʰ, wn > 2³⁰, and w ≥
-    // 2³¹), else the search. r5 = 16 + sh, r6 = up = 14 − sh, r7 at y's operands.
-    "mov r7, r12",
+    // 2³¹), else the search. r7 at the hint (where the rows' LDMs left it); then r5 =
+    // 16 + sh, r6 = up = 14 − sh, r7 at y's operands.
     "ldm r7!, {{r5, r6}}",
     "lsrs r4, r4, r5",
     "cmp r4, #1",
