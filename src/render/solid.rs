@@ -758,13 +758,23 @@ mod fused_x86 {
             .unwrap()
             .perspective(radians(60.0), 0.1, 10.0, view)
             .unwrap();
-        let turn = (r() % 6283) as f32 / 1000.0;
+        // Now and then the light along the view axis with the model unturned: a light
+        // component of exactly ±1 in model space, the loop's wide n·L form.
+        let axis = r().is_multiple_of(6);
+        let turn = if axis {
+            0.0
+        } else {
+            (r() % 6283) as f32 / 1000.0
+        };
         let xf = cam.with_model(Mat4::rotation_y(turn) * Mat4::rotation_x(turn * 0.7));
-        let opts = RenderOptions {
+        let mut opts = RenderOptions {
             shading,
             cull: [Cull::Back, Cull::Back, Cull::Front, Cull::None][r() as usize % 4],
             ..Default::default()
         };
+        if axis {
+            opts.light.direction = Vec3::new(0.0, 0.0, 1.0);
+        }
         [false, true].map(|twin| {
             TWIN.with(|t| t.set((twin, t.get().1)));
             let len = (w * h) as usize;

@@ -6,8 +6,9 @@
 //! a small flat-coloured triangle, set-up and rows ([`small_less_as_u16`](rows::small_less_as_u16),
 //! on ARMv7E-M, which runs the span loop's SIMD steps for rows of eight pixels or more;
 //! its rows alone are [`rows_less_as_u16`](rows::rows_less_as_u16), checked on their own);
-//! on ARMv6-M the rows of a small triangle ([`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16),
-//! edges by DDA), and its set-up before them ([`small_walk_less_as_u16`](rows_v6m::small_walk_less_as_u16));
+//! on ARMv6-M a small triangle walked by its bounding box and three edge functions, set-up
+//! and rows in one routine ([`small_walk_less_as_u16`](rows_v6m::small_walk_less_as_u16)),
+//! and the DDA rows of `fill::small`'s own set-up ([`rows_walk_less_as_u16`](rows_v6m::rows_walk_less_as_u16));
 //! the cull pass's scan over dropped faces ([`skip_culled`](cull::skip_culled), checked
 //! by `check_cull_kernel`), and the same scan binning the drawn faces of a banded frame
 //! ([`bin_scan`](bin::bin_scan), checked by `check_bin_kernel`); the vertex cache's
