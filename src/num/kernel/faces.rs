@@ -613,17 +613,17 @@ struct BandBlock {
     sroom: u32,     // 200
     tested: [u32; 2], // 204
     failed: [u32; 2], // 212
-    drawn: u32,     // 220
-    run: u32,       // 224
-    flushes: u32,   // 228
+    /// The pixels tested since the last flush into `tested` (with the rows' `failed`
+    /// into `failed`), below 2³¹ + 2¹⁹ (a flush at 2³¹; a face tests under 2¹⁹).
+    run: u32, // 220
     /// The head of the face the loop stopped at.
-    least: u32, // 232
+    least: u32, // 224
 }
 
 #[cfg(all(zraster_thumb, zraster_dsp))]
 impl BandBlock {
-    /// A block to be filled: its counts 0 (the faces to the next flush `FLUSH`), the
-    /// rest `v` or null (each written before the loop reads it).
+    /// A block to be filled: its counts 0, the rest `v` or null (each written before
+    /// the loop reads it).
     #[inline(always)]
     fn splat(v: u32) -> BandBlock {
         BandBlock {
@@ -651,9 +651,7 @@ impl BandBlock {
             sroom: v,
             tested: [0; 2],
             failed: [0; 2],
-            drawn: FLUSH,
             run: 0,
-            flushes: 0,
             least: 0,
         }
     }
@@ -674,9 +672,8 @@ const _: () = {
     assert!(offset_of!(B, filled) == 184 && offset_of!(B, room) == 188);
     assert!(offset_of!(B, sread) == 192 && offset_of!(B, skeep) == 196);
     assert!(offset_of!(B, sroom) == 200 && offset_of!(B, tested) == 204);
-    assert!(offset_of!(B, failed) == 212 && offset_of!(B, drawn) == 220);
-    assert!(offset_of!(B, run) == 224 && offset_of!(B, flushes) == 228);
-    assert!(offset_of!(B, least) == 232);
+    assert!(offset_of!(B, failed) == 212 && offset_of!(B, run) == 220);
+    assert!(offset_of!(B, least) == 224);
 };
 
 /// The colour of a face into the rows' block (at 12) and r0 for the band loop: the
@@ -777,7 +774,7 @@ macro_rules! keep_state {
 /// colours one for one; a face taken from the band above whose set-up was saved resumes
 /// it at this band's first row instead of being set up again. Ends with r0 0 at the end
 /// of the faces, 1 at a face left whole to the caller, 2 at a face whose carry is done
-/// but which it does not draw (its head at 232), the heads stored back.
+/// but which it does not draw (its head at 224), the heads stored back.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! band_body {
@@ -819,15 +816,15 @@ macro_rules! band_body {
             "it hs\n",
             "movhs r11, r3\n",
             "64:\n",
-            // By the chain: its own (2) worked out (r1 the face); tall (3) the
-            // caller's; taken (0): resumed while there is a set-up, else the next
-            // carried colour while there is one, else worked out, and counted; kept
-            // (1): worked out and kept, with its set-up while the slots follow.
-            "and r5, r8, #3\n",
-            "cmp r5, #2\n",
-            "beq 27f\n",
+            // By the chain (one shift: its bit 1 into C, Z set when its bit 0 is clear):
+            // tall (3) the caller's; its own (2) worked out (r1 the face); taken (0):
+            // resumed while there is a set-up, else the next carried colour while
+            // there is one, else worked out, and counted; kept (1): worked out and
+            // kept, with its set-up while the slots follow.
+            "lsls r5, r8, #31\n",
             "bhi 68f\n",
-            "cbnz r5, 25f\n",
+            "bcs 27f\n",
+            "bne 25f\n",
             "ldrd r0, r1, [r7, #168]\n",
             "cmp r1, r0\n",
             "blo 30f\n",
@@ -880,14 +877,15 @@ macro_rules! band_body {
                 "0",
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
-            // Refused by the set-up: the caller's. Else the counts, as the face loop's.
+            // Refused by the set-up: the caller's. Else its tested pixels (r1, below
+            // 2¹⁹) into the running sum, flushed with the rows' failed ones into the
+            // 64-bit sums once it reaches 2³¹ (no face count: the bands take none).
             "61:\n",
             "cbnz r2, 67f\n",
-            "ldrd r4, r5, [r7, #220]\n",
-            "subs r4, #1\n",
-            "add r5, r1\n",
-            "strd r4, r5, [r7, #220]\n",
-            "bne 60b\n",
+            "ldr r5, [r7, #220]\n",
+            "adds r5, r1\n",
+            "str r5, [r7, #220]\n",
+            "bpl 60b\n",
             "ldrd r2, r3, [r7, #204]\n",
             "adds r2, r2, r5\n",
             "adc r3, r3, #0\n",
@@ -898,13 +896,8 @@ macro_rules! band_body {
             "adc r3, r3, #0\n",
             "strd r2, r3, [r7, #212]\n",
             "movs r4, #0\n",
-            "str r4, [r7, #224]\n",
-            "str r4, [r7, #44]\n",
-            "ldr r4, [r7, #228]\n",
-            "adds r4, #1\n",
-            "str r4, [r7, #228]\n",
-            "mov r4, #8192\n",
             "str r4, [r7, #220]\n",
+            "str r4, [r7, #44]\n",
             "b 60b\n",
             "66:\n",
             "movs r0, #0\n",
@@ -915,7 +908,7 @@ macro_rules! band_body {
             "68:\n",
             "movs r0, #1\n",
             "65:\n",
-            "str r8, [r7, #232]\n",
+            "str r8, [r7, #224]\n",
             "69:\n",
             "add r1, r7, #84\n",
             "stm r1, {{r6, r9, r10, r11}}\n",
@@ -1009,7 +1002,7 @@ macro_rules! band_body {
 /// covers: each face's colour taken from the band above (chain 0) while `carry` has
 /// one, else coloured by `color`, and kept for the band below (chain 1) while there is
 /// room; drawn by the small triangles' set-up and rows (`small_less_cached`: the depth
-/// test `Less` with depth writes, a two-byte colour); its counts into `counts`. A face
+/// test `Less` with depth writes, a two-byte colour); its pixel counts into `counts`. A face
 /// taken from the band above whose set-up `carry.states` holds is not set up again:
 /// its rows go on from there; a kept face's set-up is kept too while the slots follow
 /// the colours. The heads move past each face it takes. Returns where it stopped
@@ -1147,9 +1140,10 @@ fn band_faces_less_dsp<C: Copy>(
     unsafe {
         status = fused_asm!(band_body, block, to_color);
     }
+    // No face count: the countdown as at the start (none drawn, none flushed).
     counts.add_loop(
         (block.tested, block.run, block.failed, block.rows.failed()),
-        (block.flushes, block.drawn),
+        (0, FLUSH),
     );
     *heads = block.heads;
     *carry.taken = carry
@@ -1633,8 +1627,9 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
             });
             let (clip, row) = (clip_at(b), first_row + (b * band_rows) as i32);
             let done = small_less_portable([&p, &q, &r], &clip, row, W, z, c, col);
+            // The pixels only: the band loop counts no faces (the bands take theirs
+            // from the binning).
             if let SmallDone::Drawn(tested, failed) = done {
-                counts.drawn += 1;
                 counts.tested += u64::from(tested);
                 counts.failed += u64::from(failed);
             }
