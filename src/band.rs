@@ -177,8 +177,12 @@ where
             // unbinned path below is not built.
             if S::BINNED_BANDS || r.binning == Binning::Binned {
                 let faces = BandFaces::new(bins.get(run).unwrap_or(&[]), r, nb, k);
-                touched |= !faces.is_empty();
-                r.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
+                // A band no face reaches draws nothing and keeps no colour: its set-up
+                // (lights, targets, the fused loop's block) is skipped.
+                if !faces.is_empty() {
+                    touched = true;
+                    r.draw_band_faces(&mut color, &mut zbuf, faces, &mut carry)?;
+                }
             } else {
                 touched = true;
                 r.draw_fused(&mut color, &mut zbuf)?;
