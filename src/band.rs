@@ -40,8 +40,8 @@ use crate::{
 ///
 /// Bins: two chains of triangles per band, those whose top row lies in it and that
 /// reach the next band too, and those that do not (each in face order); and an extra
-/// last chain, which every band visits, for triangles reaching more than two bands or
-/// needing clipping. So a band draws the first chain of the band above, then its own
+/// last chain, which every band visits, for triangles reaching more than two bands
+/// (rows below the screen counted as bands go on) or needing clipping. So a band draws the first chain of the band above, then its own
 /// two, without looking at any triangle that does not reach it. The chains are linked
 /// through a `u16` per triangle. Layout of the caller's slice: the chains' tails
 /// (2 · bands + 1), the links (one a triangle), then the chains' heads

@@ -165,7 +165,9 @@ impl<'b> BinChains<'b> {
 /// The chain of a face whose corners' y are `ys` (1/16 pixel) on a screen whose last row
 /// is `last_row`, for bands `band_of` a row: the chain of the band holding its first
 /// row (`2b + 1` when it stays in band `b`, `2b` when it reaches band `b + 1`), or
-/// `tall` when it reaches further; `None` when it covers no row's pixel centre.
+/// `tall` when it reaches further; `None` when it covers no row's pixel centre on the
+/// screen. Its rows below the screen count too (the last row is not a bound on them:
+/// one compare less): such a face may be kept for a band that never comes, or be tall.
 #[inline(always)]
 fn chain_of(
     ys: [i32; 3],
@@ -178,8 +180,8 @@ fn chain_of(
     // them in 16 bits and extends them again.)
     let (ya, yb, yc) = (ys[0] + 7, ys[1] + 7, ys[2] + 7);
     let top = (ya.min(yb).min(yc) >> 4).max(0);
-    let bottom = ((ya.max(yb).max(yc) >> 4) - 1).min(last_row);
-    if top > bottom {
+    let bottom = (ya.max(yb).max(yc) >> 4) - 1;
+    if top > last_row || top > bottom {
         return None;
     }
     let (tb, bb) = (band_of(top), band_of(bottom));
@@ -287,11 +289,12 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
     // names a slot (an index below `slots.len()`) and that there is a slot for each
     // face; a tail only ever becomes a face's place (below the faces' number, r1 counts
     // them), and the chain is below `tails.len()` (`BinChains::new`: 2 · bands + 1 of
-    // them): for 0 ≤ top ≤ bottom ≤ last_row = height − 1 and bands tb = ⌊top/rows⌋,
-    // bb = ⌊bottom/rows⌋ < bands (rows ≥ 1, so UDIV never divides by 0), a face of one
-    // or two bands (bb − tb ≤ 1) has chain 2·tb + 1 or 2·tb, below
-    // 2 · bands, and `tall` is the last; the tails are addressed from the second
-    // (`tails1`, `tails` has at least three), as chain − 1 (2·tb − (bb − tb)).
+    // them): for 0 ≤ top ≤ last_row = height − 1 and top ≤ bottom (below 2¹¹), the
+    // bands tb = ⌊top/rows⌋ < bands and bb = ⌊bottom/rows⌋ ≥ tb (rows ≥ 1, so UDIV
+    // never divides by 0), a face of one or two bands (bb − tb ≤ 1) has chain
+    // 2·tb + 1 or 2·tb, below 2 · bands, and `tall` is the last; the tails are
+    // addressed from the second (`tails1`, `tails` has at least three), as chain − 1
+    // (2·tb − (bb − tb)).
     // r6 and r7 (not allowed as operands) are pushed and popped with r8–r11 (r7 counts
     // the drawn faces, stored back at the end); the flags are scratch (USAT may set
     // the sticky Q flag, which nothing in the crate reads).
@@ -349,14 +352,13 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "add r9, r11, r9, asr #16",
             "usat r8, #16, r8, asr #4", // top, at least 0 (and below 2¹¹)
             "asr r9, r9, #4",
-            "sub r9, r9, #1",
+            "sub r9, r9, #1", // bottom
             "ldrd r10, r11, [r6]", // last_row, rows
-            "cmp r9, r10",
-            "it gt",
-            "movgt r9, r10", // bottom, at most last_row
             "adds r7, #1", // one more drawn
-            "cmp r8, r9",
-            "bgt 5b", // no row
+            "cmp r8, r10",
+            "it le",
+            "cmple r8, r9",
+            "bgt 5b", // no row: below the screen, or none covered
             "udiv r8, r8, r11",
             "udiv r9, r9, r11",
             "sub r10, r9, r8", // d = bb − tb
@@ -424,10 +426,10 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
     // tail names and that tail. As in `bin_scan_dsp`: `bin_scan` checked that every
     // tail names a slot and that there is a slot for each face; a tail only ever
     // becomes a face's place ((r0 − faces) / 6, below the faces' number: the offset
-    // halved times 1/3 modulo 2³², exact for a multiple of 3); for 0 ≤ top ≤ bottom ≤
-    // last_row the bands tb = top >> shift ≤ bb = bottom >> shift are below the bands'
-    // number, so chain 2·tb − (bb − tb) + 1 for bb − tb ≤ 1, and the tall one, are
-    // below `tails.len()`, addressed from the second tail as chain − 1.
+    // halved times 1/3 modulo 2³², exact for a multiple of 3); for 0 ≤ top ≤ last_row
+    // and top ≤ bottom the bands tb = top >> shift ≤ bb = bottom >> shift, tb below the
+    // bands' number, so chain 2·tb − (bb − tb) + 1 for bb − tb ≤ 1, and the tall one,
+    // are below `tails.len()`, addressed from the second tail as chain − 1.
     // r6–r11 are pushed first and popped last (r6 and r7 cannot be operands; r8 holds
     // the entries' number, r9 the constants, r10 the drawn faces, stored back at the
     // end, r11 one); r12 and lr are declared clobbered, the flags are scratch.
@@ -529,11 +531,9 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "subs r3, #1",
             "mov r6, r9",
             "ldm r6!, {{r2, r4}}", // last_row, log2(rows); r6 at the tails
-            "cmp r3, r2",
-            "ble 5f",
-            "mov r3, r2", // bottom, at most last_row
-            "5:",
             "add r10, r11", // one more drawn
+            "cmp r5, r2",
+            "bgt 8f", // below the screen
             "cmp r5, r3",
             "bgt 8f", // no row
             "lsrs r5, r4",
