@@ -607,7 +607,9 @@ struct BandBlock {
     /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
     filled: u32, // 184
     room: u32,      // 188
-    /// The read half's slots, the slot `snext` of the other, its slots (at most `room`).
+    /// The read half's slot `taken` (moved on a slot with each face resumed: they
+    /// are the first ones taken, in order), the slot `snext` of the other, its slots
+    /// (at most `room`).
     sread: *const u32, // 192
     skeep: *mut u32, // 196
     sroom: u32,     // 200
@@ -943,10 +945,9 @@ macro_rules! band_body {
             "30:\n",
             "adds r0, r1, #1\n",
             "str r0, [r7, #172]\n",
-            "ldr r0, [r7, #192]\n",
-            "add r2, r1, r1, lsl #2\n",
-            "add r2, r1, r2, lsl #2\n",
-            "add r12, r0, r2, lsl #2\n",
+            "ldr r12, [r7, #192]\n",
+            "add r0, r12, #84\n",
+            "str r0, [r7, #192]\n",
             "mov r0, r7\n",
             "push {{r0-r12}}\n",
             "ldm r12!, {{r1, r2, r3, r4, r5, r6, r8}}\n",
@@ -1094,7 +1095,10 @@ fn band_faces_less_dsp<C: Copy>(
     let snext = saved.min(sroom);
     block.sfilled = filled.min(sread.len() / STATE_WORDS) as u32;
     block.snext = snext as u32;
-    block.sread = sread.as_ptr();
+    // Read only below `sfilled` (at most the half's slots), as the slot of `taken`.
+    block.sread = sread
+        .as_ptr()
+        .wrapping_add((taken0 as usize).wrapping_mul(STATE_WORDS));
     block.skeep = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
     block.sroom = sroom as u32;
     let status: u32;
@@ -1119,8 +1123,10 @@ fn band_faces_less_dsp<C: Copy>(
     // word-aligned; the clip inside both buffers by `kernel_buffers`; its SAFETY
     // argument); a triangle it refuses goes to the caller. The counts are stored into
     // the block by its pinned offsets. The set-ups: a slot is read only for a face taken
-    // at `taken` < sfilled ≤ the read half's slots (at `sread` + 4·STATE_WORDS·taken,
-    // 21 words); one is written only at `skeep`, slot `snext` < sroom ≤ the other half's
+    // at `taken` < sfilled ≤ the read half's slots, at `sread`, which starts at slot
+    // `taken` and moves on one slot (21 words) with each face resumed, the only ones
+    // taking a slot, all taken before any other (once `taken` reaches `sfilled` it only
+    // grows): so at slot `taken` then too; one is written only at `skeep`, slot `snext` < sroom ≤ the other half's
     // slots (`kept == snext` below `sroom`, which is at most `room`: its colour is kept
     // at `keep[kept]` then too), after which `skeep` moves to the next slot and `snext`
     // counts it. Every slot below `sfilled` holds what `keep_state` saved there in the
