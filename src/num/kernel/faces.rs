@@ -616,7 +616,8 @@ struct BandBlock {
     tested: [u32; 2], // 204
     failed: [u32; 2], // 212
     /// The pixels tested since the last flush into `tested` (with the rows' `failed`
-    /// into `failed`), below 2³¹ + 2¹⁹ (a flush at 2³¹; a face tests under 2¹⁹).
+    /// into `failed`), added by the rows themselves (`small_body`'s `band` and `keep`
+    /// forms), below 2³¹ + 2¹⁹ (a flush at 2³¹; a face tests under 2¹⁹).
     run: u32, // 220
     /// The head of the face the loop stopped at.
     least: u32, // 224
@@ -871,7 +872,7 @@ macro_rules! band_body {
             "22:\n",
             band_corners!("67f"),
             small_body!(
-                fused,
+                band,
                 "ldrsh",
                 "6",
                 "ldrsh",
@@ -879,15 +880,15 @@ macro_rules! band_body {
                 "0",
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
-            // Refused by the set-up: the caller's. Else its tested pixels (r1, below
-            // 2¹⁹) into the running sum, flushed with the rows' failed ones into the
-            // 64-bit sums once it reaches 2³¹ (no face count: the bands take none).
+            // Refused by the set-up: the caller's. Else its tested pixels (below 2¹⁹)
+            // are in the running sum (r1 the sum, or 0 with no rows drawn), flushed
+            // with the rows' failed ones into the 64-bit sums once it reaches 2³¹ (no
+            // face count: the bands take none).
             "61:\n",
             "cbnz r2, 67f\n",
-            "ldr r5, [r7, #220]\n",
-            "adds r5, r1\n",
-            "str r5, [r7, #220]\n",
+            "cmp r1, #0\n",
             "bpl 60b\n",
+            "ldr r5, [r7, #220]\n",
             "ldrd r2, r3, [r7, #204]\n",
             "adds r2, r2, r5\n",
             "adc r3, r3, #0\n",
