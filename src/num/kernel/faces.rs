@@ -880,14 +880,14 @@ macro_rules! band_body {
                 "0",
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
-            // Refused by the set-up: the caller's. Else its tested pixels (below 2¹⁹)
-            // are in the running sum (r1 the sum, or 0 with no rows drawn), flushed
-            // with the rows' failed ones into the 64-bit sums once it reaches 2³¹ (no
-            // face count: the bands take none).
+            // Its tested pixels (below 2¹⁹) are in the running sum (r1 the sum, 0 with
+            // no rows drawn), flushed with the rows' failed ones into the 64-bit sums
+            // once it reaches 2³¹ (no face count: the bands take none); refused by the
+            // set-up (r1 −1, r2 1): the caller's.
             "61:\n",
-            "cbnz r2, 67f\n",
             "cmp r1, #0\n",
             "bpl 60b\n",
+            "cbnz r2, 67f\n",
             "ldr r5, [r7, #220]\n",
             "ldrd r2, r3, [r7, #204]\n",
             "adds r2, r2, r5\n",

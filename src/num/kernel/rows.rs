@@ -910,7 +910,9 @@ macro_rules! rows_start {
 /// sp + 12, n1 in the block, and must leave them so; label 73 follows it, where the
 /// band loop enters with a set-up of its own). With `band` (the band loop's other
 /// faces): as `fused`; `band` and `keep` add the pixels tested to the band block's
-/// running sum at 220 and return that sum in r1 (not the face's own count).
+/// running sum at 220 and return that sum in r1 (not the face's own count). Every
+/// form returns r2 1 for a triangle it leaves to the general path (r1 then −1), else
+/// 0 (r1 0 when nothing was drawn).
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -1181,6 +1183,7 @@ macro_rules! small_body {
             // Not drawn (90: for the general path), the steep depth's call (92).
             "90:\n",
             "movs r2, #1\n",
+            "mvn r1, #0\n",
             "b 98f\n",
             // Steep depth: q and r by a call (AAPCS: a in r0:r1, b in r2:r3, the area
             // on the stack; q, r back in r0, r1), the block kept beside the area.
@@ -1198,9 +1201,9 @@ macro_rules! small_body {
             "b 93b\n",
             "91:\n",
             "movs r2, #0\n",
+            "movs r1, #0\n",
             "98:\n",
             "add sp, #16\n",
-            "movs r1, #0\n",
             "movs r3, #0\n",
             "b 99f\n",
             "200:\n",
