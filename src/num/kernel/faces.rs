@@ -881,11 +881,10 @@ macro_rules! band_body {
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
             // Its tested pixels (below 2¹⁹) are in the running sum (r1 the sum, 0 with
-            // no rows drawn), flushed with the rows' failed ones into the 64-bit sums
-            // once it reaches 2³¹ (no face count: the bands take none); refused by the
-            // set-up (r1 −1, r2 1): the caller's.
+            // no rows drawn; N its bit 31), flushed with the rows' failed ones into the
+            // 64-bit sums once it reaches 2³¹ (no face count: the bands take none);
+            // refused by the set-up (r1 −1, N set, r2 1): the caller's.
             "61:\n",
-            "cmp r1, #0\n",
             "bpl 60b\n",
             "cbnz r2, 67f\n",
             "ldr r5, [r7, #220]\n",

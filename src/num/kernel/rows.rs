@@ -910,9 +910,10 @@ macro_rules! rows_start {
 /// sp + 12, n1 in the block, and must leave them so; label 73 follows it, where the
 /// band loop enters with a set-up of its own). With `band` (the band loop's other
 /// faces): as `fused`; `band` and `keep` add the pixels tested to the band block's
-/// running sum at 220 and return that sum in r1 (not the face's own count). Every
-/// form returns r2 1 for a triangle it leaves to the general path (r1 then −1), else
-/// 0 (r1 0 when nothing was drawn).
+/// running sum at 220 and return that sum in r1 (not the face's own count) with the
+/// flags' N its bit 31. Every form returns r2 1 for a triangle it leaves to the
+/// general path (r1 then −1, N set), else 0 (r1 0, N clear, when nothing was drawn);
+/// nothing after those values are set writes the flags.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -948,7 +949,7 @@ macro_rules! small_body {
             "",
             "",
             "ldr r6, [r0, #220]\n",
-            "str r6, [r0, #220]\nmov r1, r6\n",
+            "str r6, [r0, #220]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
@@ -961,7 +962,7 @@ macro_rules! small_body {
             "",
             concat!($hook, "73:\n"),
             "ldr r6, [r0, #220]\n",
-            "str r6, [r0, #220]\nmov r1, r6\n",
+            "str r6, [r0, #220]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
@@ -1183,7 +1184,7 @@ macro_rules! small_body {
             // Not drawn (90: for the general path), the steep depth's call (92).
             "90:\n",
             "movs r2, #1\n",
-            "mvn r1, #0\n",
+            "mvns r1, #0\n",
             "b 98f\n",
             // Steep depth: q and r by a call (AAPCS: a in r0:r1, b in r2:r3, the area
             // on the stack; q, r back in r0, r1), the block kept beside the area.
@@ -1204,14 +1205,14 @@ macro_rules! small_body {
             "movs r1, #0\n",
             "98:\n",
             "add sp, #16\n",
-            "movs r3, #0\n",
+            "mov r3, #0\n",
             "b 99f\n",
             "200:\n",
             rows_start!($zrow),
             rows_body!(inside, $sum0, $sum1),
             "199:\n",
             $failed,
-            "movs r2, #0\n",
+            "mov r2, #0\n",
             "99:\n",
             "pop {{r4-r12}}\n",
         )
