@@ -601,18 +601,19 @@ struct BandBlock {
     sfilled: u32, // 168
     taken: u32,     // 172
     kept: u32,      // 176
-    /// The next slot to save into: a kept face whose colour goes to `kept == snext`
-    /// (below `sroom`) saves its set-up there, at `skeep`.
-    snext: u32, // 180
+    /// A kept face whose colour goes to `kept` below `sroom` saves its set-up at
+    /// `skeep`, slot `snext`: `sroom` is the other half's slots (at most `room`)
+    /// while `kept == snext`, else 0.
+    sroom: u32, // 180
     /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
     filled: u32, // 184
     room: u32,      // 188
     /// The read half's slot `taken` (moved on a slot with each face resumed: they
-    /// are the first ones taken, in order), the slot `snext` of the other, its slots
-    /// (at most `room`).
+    /// are the first ones taken, in order), the slot `snext` of the other.
     sread: *const u32, // 192
     skeep: *mut u32, // 196
-    sroom: u32,     // 200
+    /// The next slot to save into.
+    snext: u32, // 200
     tested: [u32; 2], // 204
     failed: [u32; 2], // 212
     /// The pixels tested since the last flush into `tested` (with the rows' `failed`
@@ -646,12 +647,12 @@ impl BandBlock {
             sfilled: v,
             taken: v,
             kept: v,
-            snext: v,
+            sroom: v,
             filled: v,
             room: v,
             sread: core::ptr::null(),
             skeep: core::ptr::null_mut(),
-            sroom: v,
+            snext: v,
             tested: [0; 2],
             failed: [0; 2],
             run: 0,
@@ -671,10 +672,10 @@ const _: () = {
     assert!(offset_of!(B, to_color) == 152 && offset_of!(B, entries) == 156);
     assert!(offset_of!(B, read) == 160 && offset_of!(B, keep) == 164);
     assert!(offset_of!(B, sfilled) == 168 && offset_of!(B, taken) == 172);
-    assert!(offset_of!(B, kept) == 176 && offset_of!(B, snext) == 180);
+    assert!(offset_of!(B, kept) == 176 && offset_of!(B, sroom) == 180);
     assert!(offset_of!(B, filled) == 184 && offset_of!(B, room) == 188);
     assert!(offset_of!(B, sread) == 192 && offset_of!(B, skeep) == 196);
-    assert!(offset_of!(B, sroom) == 200 && offset_of!(B, tested) == 204);
+    assert!(offset_of!(B, snext) == 200 && offset_of!(B, tested) == 204);
     assert!(offset_of!(B, failed) == 212 && offset_of!(B, run) == 220);
     assert!(offset_of!(B, least) == 224);
 };
@@ -746,9 +747,9 @@ macro_rules! keep_state {
             "ldm r1, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
             "stm r12!, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
             // Counted: the next slot is the one after it.
-            "ldr r1, [r0, #180]\n",
+            "ldr r1, [r0, #200]\n",
             "adds r1, #1\n",
-            "str r1, [r0, #180]\n",
+            "str r1, [r0, #200]\n",
             "str r12, [r0, #196]\n",
             // This band's rows: n0 = min(n0, m), n1 = min(n1, m − n0), m = clip.y1 − first
             // row, at least 0.
@@ -845,11 +846,7 @@ macro_rules! band_body {
             band_color!($color),
             "ldrd r1, r2, [r7, #176]\n",
             "cmp r1, r2\n",
-            "bne 28f\n",
-            "ldr r2, [r7, #200]\n",
-            "cmp r1, r2\n",
             "blo 31f\n",
-            "28:\n",
             "ldr r2, [r7, #188]\n",
             "cmp r1, r2\n",
             "bhs 22f\n",
@@ -928,6 +925,7 @@ macro_rules! band_body {
             small_body!(
                 keep,
                 keep_state!(),
+                "str r2, [r0, #180]\n",
                 "ldrsh",
                 "6",
                 "ldrsh",
@@ -1100,7 +1098,12 @@ fn band_faces_less_dsp<C: Copy>(
         .as_ptr()
         .wrapping_add((taken0 as usize).wrapping_mul(STATE_WORDS));
     block.skeep = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
-    block.sroom = sroom as u32;
+    // Slots only while they follow the kept colours one for one.
+    block.sroom = if block.kept == block.snext {
+        sroom as u32
+    } else {
+        0
+    };
     let status: u32;
     // SAFETY: the loop composes blocks whose bounds arguments hold as they do alone.
     // The merge reads `links[f]` and `faces[f]` only for the least head's face f (the
@@ -1126,10 +1129,13 @@ fn band_faces_less_dsp<C: Copy>(
     // at `taken` < sfilled ≤ the read half's slots, at `sread`, which starts at slot
     // `taken` and moves on one slot (21 words) with each face resumed, the only ones
     // taking a slot, all taken before any other (once `taken` reaches `sfilled` it only
-    // grows): so at slot `taken` then too; one is written only at `skeep`, slot `snext` < sroom ≤ the other half's
-    // slots (`kept == snext` below `sroom`, which is at most `room`: its colour is kept
-    // at `keep[kept]` then too), after which `skeep` moves to the next slot and `snext`
-    // counts it. Every slot below `sfilled` holds what `keep_state` saved there in the
+    // grows): so at slot `taken` then too; one is written only at `skeep`, slot
+    // `snext` = `kept` < sroom ≤ the other half's slots: a kept face saves only below
+    // `sroom`, which is 0 unless `kept == snext` (so made at the entry; a kept face
+    // whose set-up saves nothing, having no rows, makes it 0 before the loop goes on;
+    // one that stops the loop leaves it to the next entry), and at most `room`: its
+    // colour is kept at `keep[kept]` then too; then `skeep` moves to the next slot and
+    // `snext` counts it. Every slot below `sfilled` holds what `keep_state` saved there in the
     // band above (`KeptStates`: the loop's count alone makes `sfilled`): a triangle's
     // set-up as `small_body` made it, whose rows the set-up's argument bounds
     // (first row s, its two halves' rows before any clip, each edge's t stepped exactly
@@ -1156,7 +1162,7 @@ fn band_faces_less_dsp<C: Copy>(
         .taken
         .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
     *carry.kept = block.kept as usize;
-    carry.states.saved = block.snext.min(block.sroom) as usize;
+    carry.states.saved = (block.snext as usize).min(sroom);
     match status {
         0 => BandStop::Done,
         1 => BandStop::Whole(block.least),

@@ -908,7 +908,8 @@ macro_rules! rows_start {
 /// clip's last row, and `$hook` run between the set-up and the rows (it finds the
 /// first row's depth in r3, px0 in r4, the first row in r5, n0 at sp + 8, xmax at
 /// sp + 12, n1 in the block, and must leave them so; label 73 follows it, where the
-/// band loop enters with a set-up of its own). With `band` (the band loop's other
+/// band loop enters with a set-up of its own), and `$none` run for a triangle that
+/// draws nothing (r0 the block, r2 0). With `band` (the band loop's other
 /// faces): as `fused`; `band` and `keep` add the pixels tested to the band block's
 /// running sum at 220 and return that sum in r1 (not the face's own count) with the
 /// flags' N its bit 31. Every form returns r2 1 for a triangle it leaves to the
@@ -924,6 +925,7 @@ macro_rules! small_body {
             "ldrd r8, r10, [sp, #36]\n",
             "ldr r3, [r0, #44]\n",
             "",
+            "",
             "movs r6, #0\n",
             "mov r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
@@ -934,6 +936,7 @@ macro_rules! small_body {
             @ "ldrd r5, r8, [r0, #120]\n",
             "ldr r1, [r0, #116]\n",
             "ldrd r8, r10, [r0, #128]\n",
+            "",
             "",
             "",
             "movs r6, #0\n",
@@ -948,12 +951,13 @@ macro_rules! small_body {
             "ldrd r8, r10, [r0, #128]\n",
             "",
             "",
+            "",
             "ldr r6, [r0, #220]\n",
             "str r6, [r0, #220]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
-    (keep, $hook:expr,
+    (keep, $hook:expr, $none:literal,
      $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         small_body!(
             @ "ldr r5, [r0, #120]\nmovw r8, #0x7fff\n",
@@ -961,13 +965,14 @@ macro_rules! small_body {
             "ldrd r8, r10, [r0, #128]\n",
             "",
             concat!($hook, "73:\n"),
+            $none,
             "ldr r6, [r0, #220]\n",
             "str r6, [r0, #220]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
     (@ $entry:literal, $zrow:literal, $clipx:literal, $failed:literal, $hook:expr,
-     $sum0:literal, $sum1:literal,
+     $none:literal, $sum0:literal, $sum1:literal,
      $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
             // r0–r3 pushed to make the set-up's 16 bytes of scratch (r1, the first
@@ -1202,6 +1207,7 @@ macro_rules! small_body {
             "b 93b\n",
             "91:\n",
             "movs r2, #0\n",
+            $none,
             "movs r1, #0\n",
             "98:\n",
             "add sp, #16\n",
