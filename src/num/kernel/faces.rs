@@ -602,26 +602,24 @@ struct BandBlock {
     taken: u32,     // 172
     kept: u32,      // 176
     /// A kept face whose colour goes to `kept` below `sroom` saves its set-up at
-    /// `skeep`, slot `snext`: `sroom` is the other half's slots (at most `room`)
-    /// while `kept == snext`, else 0.
+    /// `skeep`, slot `kept`: `sroom` is the other half's slots (at most `room`)
+    /// while the slots saved follow the kept colours (`kept` of each), else 0.
     sroom: u32, // 180
     /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
     filled: u32, // 184
     room: u32,      // 188
     /// The read half's slot `taken` (moved on a slot with each face resumed: they
-    /// are the first ones taken, in order), the slot `snext` of the other.
+    /// are the first ones taken, in order), the next slot of the other to save into.
     sread: *const u32, // 192
     skeep: *mut u32, // 196
-    /// The next slot to save into.
-    snext: u32, // 200
-    tested: [u32; 2], // 204
-    failed: [u32; 2], // 212
+    tested: [u32; 2], // 200
+    failed: [u32; 2], // 208
     /// The pixels tested since the last flush into `tested` (with the rows' `failed`
     /// into `failed`), added by the rows themselves (`small_body`'s `band` and `keep`
     /// forms), below 2³¹ + 2¹⁹ (a flush at 2³¹; a face tests under 2¹⁹).
-    run: u32, // 220
+    run: u32, // 216
     /// The head of the face the loop stopped at.
-    least: u32, // 224
+    least: u32, // 220
 }
 
 #[cfg(all(zraster_thumb, zraster_dsp))]
@@ -652,7 +650,6 @@ impl BandBlock {
             room: v,
             sread: core::ptr::null(),
             skeep: core::ptr::null_mut(),
-            snext: v,
             tested: [0; 2],
             failed: [0; 2],
             run: 0,
@@ -675,9 +672,8 @@ const _: () = {
     assert!(offset_of!(B, kept) == 176 && offset_of!(B, sroom) == 180);
     assert!(offset_of!(B, filled) == 184 && offset_of!(B, room) == 188);
     assert!(offset_of!(B, sread) == 192 && offset_of!(B, skeep) == 196);
-    assert!(offset_of!(B, snext) == 200 && offset_of!(B, tested) == 204);
-    assert!(offset_of!(B, failed) == 212 && offset_of!(B, run) == 220);
-    assert!(offset_of!(B, least) == 224);
+    assert!(offset_of!(B, tested) == 200 && offset_of!(B, failed) == 208);
+    assert!(offset_of!(B, run) == 216 && offset_of!(B, least) == 220);
 };
 
 /// The colour of a face into the rows' block (at 12) and r0 for the band loop: the
@@ -727,7 +723,7 @@ macro_rules! band_corners {
 }
 
 /// A kept face's set-up saved into its slot (the band loop's r4 as pushed, at sp + 16),
-/// the slot counted, then its rows in this band cut at the clip's last row: the
+/// the next slot made `skeep`, then its rows in this band cut at the clip's last row: the
 /// `$hook` of `small_body!(keep, ..)` (its registers there: r3 the first row's depth,
 /// r4 px0, r5 the first row, n0 at sp + 8, xmax at sp + 12, n1 at 64, none of them the
 /// clip's: the set-up ran unclipped below). Slot layout: [`STATE_WORDS`].
@@ -746,10 +742,8 @@ macro_rules! keep_state {
             "add r1, r0, #48\n",
             "ldm r1, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
             "stm r12!, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
-            // Counted: the next slot is the one after it.
-            "ldr r1, [r0, #200]\n",
-            "adds r1, #1\n",
-            "str r1, [r0, #200]\n",
+            // The next slot is the one after it (the caller counts the slots saved
+            // from where it ends).
             "str r12, [r0, #196]\n",
             // This band's rows: n0 = min(n0, m), n1 = min(n1, m − n0), m = clip.y1 − first
             // row, at least 0.
@@ -778,7 +772,7 @@ macro_rules! keep_state {
 /// colours one for one; a face taken from the band above whose set-up was saved resumes
 /// it at this band's first row instead of being set up again. Ends with r0 0 at the end
 /// of the faces, 1 at a face left whole to the caller, 2 at a face whose carry is done
-/// but which it does not draw (its head at 224), the heads stored back.
+/// but which it does not draw (its head at 220), the heads stored back.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! band_body {
@@ -884,18 +878,18 @@ macro_rules! band_body {
             "61:\n",
             "bpl 60b\n",
             "cbnz r2, 67f\n",
-            "ldr r5, [r7, #220]\n",
-            "ldrd r2, r3, [r7, #204]\n",
+            "ldr r5, [r7, #216]\n",
+            "ldrd r2, r3, [r7, #200]\n",
             "adds r2, r2, r5\n",
             "adc r3, r3, #0\n",
-            "strd r2, r3, [r7, #204]\n",
-            "ldrd r2, r3, [r7, #212]\n",
+            "strd r2, r3, [r7, #200]\n",
+            "ldrd r2, r3, [r7, #208]\n",
             "ldr r4, [r7, #44]\n",
             "adds r2, r2, r4\n",
             "adc r3, r3, #0\n",
-            "strd r2, r3, [r7, #212]\n",
+            "strd r2, r3, [r7, #208]\n",
             "movs r4, #0\n",
-            "str r4, [r7, #220]\n",
+            "str r4, [r7, #216]\n",
             "str r4, [r7, #44]\n",
             "b 60b\n",
             "66:\n",
@@ -907,7 +901,7 @@ macro_rules! band_body {
             "68:\n",
             "movs r0, #1\n",
             "65:\n",
-            "str r8, [r7, #224]\n",
+            "str r8, [r7, #220]\n",
             "69:\n",
             "add r1, r7, #84\n",
             "stm r1, {{r6, r9, r10, r11}}\n",
@@ -1092,14 +1086,14 @@ fn band_faces_less_dsp<C: Copy>(
     let sroom = (skeep.len() / STATE_WORDS).min(room);
     let snext = saved.min(sroom);
     block.sfilled = filled.min(sread.len() / STATE_WORDS) as u32;
-    block.snext = snext as u32;
     // Read only below `sfilled` (at most the half's slots), as the slot of `taken`.
     block.sread = sread
         .as_ptr()
         .wrapping_add((taken0 as usize).wrapping_mul(STATE_WORDS));
-    block.skeep = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
+    let skeep_at = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
+    block.skeep = skeep_at;
     // Slots only while they follow the kept colours one for one.
-    block.sroom = if block.kept == block.snext {
+    block.sroom = if block.kept as usize == snext {
         sroom as u32
     } else {
         0
@@ -1130,12 +1124,12 @@ fn band_faces_less_dsp<C: Copy>(
     // `taken` and moves on one slot (21 words) with each face resumed, the only ones
     // taking a slot, all taken before any other (once `taken` reaches `sfilled` it only
     // grows): so at slot `taken` then too; one is written only at `skeep`, slot
-    // `snext` = `kept` < sroom ≤ the other half's slots: a kept face saves only below
-    // `sroom`, which is 0 unless `kept == snext` (so made at the entry; a kept face
-    // whose set-up saves nothing, having no rows, makes it 0 before the loop goes on;
-    // one that stops the loop leaves it to the next entry), and at most `room`: its
-    // colour is kept at `keep[kept]` then too; then `skeep` moves to the next slot and
-    // `snext` counts it. Every slot below `sfilled` holds what `keep_state` saved there in the
+    // `kept` < sroom ≤ the other half's slots: a kept face saves only below `sroom`,
+    // which is 0 unless `skeep` is slot `kept` (so made at the entry, from the slots
+    // saved; each save moves both on by one; a kept face whose set-up saves nothing,
+    // having no rows, makes it 0 before the loop goes on; one that stops the loop
+    // leaves it to the next entry), and at most `room`: its colour is kept at
+    // `keep[kept]` then too; then `skeep` moves to the next slot. Every slot below `sfilled` holds what `keep_state` saved there in the
     // band above (`KeptStates`: the loop's count alone makes `sfilled`): a triangle's
     // set-up as `small_body` made it, whose rows the set-up's argument bounds
     // (first row s, its two halves' rows before any clip, each edge's t stepped exactly
@@ -1162,7 +1156,9 @@ fn band_faces_less_dsp<C: Copy>(
         .taken
         .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
     *carry.kept = block.kept as usize;
-    carry.states.saved = (block.snext as usize).min(sroom);
+    // The slots saved: those before where `skeep` ended (it moves a slot a save).
+    let moved = (block.skeep as usize).wrapping_sub(skeep_at as usize);
+    carry.states.saved = (snext + moved / (4 * STATE_WORDS)).min(sroom);
     match status {
         0 => BandStop::Done,
         1 => BandStop::Whole(block.least),

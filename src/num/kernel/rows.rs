@@ -911,7 +911,7 @@ macro_rules! rows_start {
 /// band loop enters with a set-up of its own), and `$none` run for a triangle that
 /// draws nothing (r0 the block, r2 0). With `band` (the band loop's other
 /// faces): as `fused`; `band` and `keep` add the pixels tested to the band block's
-/// running sum at 220 and return that sum in r1 (not the face's own count) with the
+/// running sum at 216 and return that sum in r1 (not the face's own count) with the
 /// flags' N its bit 31. Every form returns r2 1 for a triangle it leaves to the
 /// general path (r1 then −1, N set), else 0 (r1 0, N clear, when nothing was drawn);
 /// nothing after those values are set writes the flags.
@@ -952,8 +952,8 @@ macro_rules! small_body {
             "",
             "",
             "",
-            "ldr r6, [r0, #220]\n",
-            "str r6, [r0, #220]\nmovs r1, r6\n",
+            "ldr r6, [r0, #216]\n",
+            "str r6, [r0, #216]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
@@ -966,8 +966,8 @@ macro_rules! small_body {
             "",
             concat!($hook, "73:\n"),
             $none,
-            "ldr r6, [r0, #220]\n",
-            "str r6, [r0, #220]\nmovs r1, r6\n",
+            "ldr r6, [r0, #216]\n",
+            "str r6, [r0, #216]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
