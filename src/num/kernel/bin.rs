@@ -28,33 +28,54 @@ pub(crate) struct BinChains<'b> {
 /// second.
 #[repr(C)]
 struct BinConsts {
-    last_row: i32,          // 0: the screen's last row
-    rows: u32,              // 4: rows a band (≥ 1)
-    drawn: u32,             // 8: drawn faces found
-    tall_less1: u32,        // 12: the chain of faces reaching more than two bands, less 1
-    tails1: *mut u16,       // 16, 20: the second tail and the slots, set from the slices
-    slots: *mut u16,        //   before each run of the assembly
-    shift: u32,             // 24: log2(rows) (ARMv6-M: rows a power of two)
-    span: u32,              // 28: the scan's range of dropped areas (ARMv6-M)
-    faces: *const [u16; 3], // 32: the first face (ARMv6-M)
-    third: u32,             // 36: 1/3 modulo 2³² (ARMv6-M: a place from a face's offset)
+    last_row: i32,    // 0: the screen's last row
+    rows: u32,        // 4: rows a band (≥ 1)
+    drawn: u32,       // 8: drawn faces found
+    tall_less1: u32,  // 12: the chain of faces reaching more than two bands, less 1
+    tails1: *mut u16, // 16, 20: the second tail and the slots, set from the slices
+    slots: *mut u16,  //   before each run of the assembly
+    shift: u32,       // 24: log2(rows) (ARMv6-M: rows a power of two)
+    /// The ARMv6-M scan's copy, filled before each run (kept here rather than on the
+    /// stack: LLVM then fully unrolls the chains' loops around it, +0.7 KB of hot code).
+    #[cfg(all(zraster_thumb, zraster_armv6m))]
+    v6m: V6mConsts,
 }
 
 const _: () = {
     use core::mem::offset_of;
     assert!(offset_of!(BinConsts, last_row) == 0 && offset_of!(BinConsts, rows) == 4);
     assert!(offset_of!(BinConsts, drawn) == 8 && offset_of!(BinConsts, tall_less1) == 12);
-    // The pointers as the assembly (32-bit) reads them by one LDRD, then ARMv6-M's.
+    // The pointers as the assembly (32-bit) reads them by one LDRD.
     assert!(offset_of!(BinConsts, tails1) == 16);
-    assert!(
-        core::mem::size_of::<usize>() != 4
-            || (offset_of!(BinConsts, slots) == 20
-                && offset_of!(BinConsts, shift) == 24
-                && offset_of!(BinConsts, span) == 28
-                && offset_of!(BinConsts, faces) == 32
-                && offset_of!(BinConsts, third) == 36),
-        "the assembly's offsets"
-    );
+    assert!(core::mem::size_of::<usize>() != 4 || offset_of!(BinConsts, slots) == 20);
+};
+
+/// What the ARMv6-M scan ([`bin_scan`]) reads through one register, in the order its
+/// LDMs take them: a drawn face's last row and shift by one, the tails, slots and first
+/// face by another (offsets in the comments).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+#[repr(C)]
+struct V6mConsts {
+    last_row: i32,          // 0: the screen's last row
+    shift: u32,             // 4: log2(rows), rows a power of two
+    tails1: *mut u16,       // 8: the second tail
+    slots: *mut u16,        // 12
+    faces: *const [u16; 3], // 16: the first face
+    third: u32,             // 20: 1/3 modulo 2³² (a place from a face's offset)
+    tall_less1: u32,        // 24: the tall faces' chain, less 1
+    span: u32,              // 28: the scan's range of dropped areas
+    drawn: u32,             // 32: drawn faces found
+}
+
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+const _: () = {
+    use core::mem::offset_of;
+    type V = V6mConsts;
+    assert!(offset_of!(V, last_row) == 0 && offset_of!(V, shift) == 4);
+    assert!(offset_of!(V, tails1) == 8 && offset_of!(V, slots) == 12);
+    assert!(offset_of!(V, faces) == 16 && offset_of!(V, third) == 20);
+    assert!(offset_of!(V, tall_less1) == 24 && offset_of!(V, span) == 28);
+    assert!(offset_of!(V, drawn) == 32);
 };
 
 impl<'b> BinChains<'b> {
@@ -82,9 +103,18 @@ impl<'b> BinChains<'b> {
                 tails1: core::ptr::null_mut(),
                 slots: core::ptr::null_mut(),
                 shift: rows.trailing_zeros(),
-                span: 0,
-                faces: core::ptr::null(),
-                third: 0xAAAA_AAAB,
+                #[cfg(all(zraster_thumb, zraster_armv6m))]
+                v6m: V6mConsts {
+                    last_row,
+                    shift: 0,
+                    tails1: core::ptr::null_mut(),
+                    slots: core::ptr::null_mut(),
+                    faces: core::ptr::null(),
+                    third: 0,
+                    tall_less1: 0,
+                    span: 0,
+                    drawn: 0,
+                },
             },
             tails,
             slots,
@@ -135,7 +165,9 @@ impl<'b> BinChains<'b> {
 /// The chain of a face whose corners' y are `ys` (1/16 pixel) on a screen whose last row
 /// is `last_row`, for bands `band_of` a row: the chain of the band holding its first
 /// row (`2b + 1` when it stays in band `b`, `2b` when it reaches band `b + 1`), or
-/// `tall` when it reaches further; `None` when it covers no row's pixel centre.
+/// `tall` when it reaches further; `None` when it covers no row's pixel centre on the
+/// screen. Its rows below the screen count too (the last row is not a bound on them:
+/// one compare less): such a face may be kept for a band that never comes, or be tall.
 #[inline(always)]
 fn chain_of(
     ys: [i32; 3],
@@ -148,8 +180,8 @@ fn chain_of(
     // them in 16 bits and extends them again.)
     let (ya, yb, yc) = (ys[0] + 7, ys[1] + 7, ys[2] + 7);
     let top = (ya.min(yb).min(yc) >> 4).max(0);
-    let bottom = ((ya.max(yb).max(yc) >> 4) - 1).min(last_row);
-    if top > bottom {
+    let bottom = (ya.max(yb).max(yc) >> 4) - 1;
+    if top > last_row || top > bottom {
         return None;
     }
     let (tb, bb) = (band_of(top), band_of(bottom));
@@ -257,11 +289,12 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
     // names a slot (an index below `slots.len()`) and that there is a slot for each
     // face; a tail only ever becomes a face's place (below the faces' number, r1 counts
     // them), and the chain is below `tails.len()` (`BinChains::new`: 2 · bands + 1 of
-    // them): for 0 ≤ top ≤ bottom ≤ last_row = height − 1 and bands tb = ⌊top/rows⌋,
-    // bb = ⌊bottom/rows⌋ < bands (rows ≥ 1, so UDIV never divides by 0), a face of one
-    // or two bands (bb − tb ≤ 1) has chain 2·tb + 1 or 2·tb, below
-    // 2 · bands, and `tall` is the last; the tails are addressed from the second
-    // (`tails1`, `tails` has at least three), as chain − 1 (2·tb − (bb − tb)).
+    // them): for 0 ≤ top ≤ last_row = height − 1 and top ≤ bottom (below 2¹¹), the
+    // bands tb = ⌊top/rows⌋ < bands and bb = ⌊bottom/rows⌋ ≥ tb (rows ≥ 1, so UDIV
+    // never divides by 0), a face of one or two bands (bb − tb ≤ 1) has chain
+    // 2·tb + 1 or 2·tb, below 2 · bands, and `tall` is the last; the tails are
+    // addressed from the second (`tails1`, `tails` has at least three), as chain − 1
+    // (2·tb − (bb − tb)).
     // r6 and r7 (not allowed as operands) are pushed and popped with r8–r11 (r7 counts
     // the drawn faces, stored back at the end); the flags are scratch (USAT may set
     // the sticky Q flag, which nothing in the crate reads).
@@ -319,14 +352,13 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "add r9, r11, r9, asr #16",
             "usat r8, #16, r8, asr #4", // top, at least 0 (and below 2¹¹)
             "asr r9, r9, #4",
-            "sub r9, r9, #1",
+            "sub r9, r9, #1", // bottom
             "ldrd r10, r11, [r6]", // last_row, rows
-            "cmp r9, r10",
-            "it gt",
-            "movgt r9, r10", // bottom, at most last_row
             "adds r7, #1", // one more drawn
-            "cmp r8, r9",
-            "bgt 5b", // no row
+            "cmp r8, r10",
+            "it le",
+            "cmple r8, r9",
+            "bgt 5b", // no row: below the screen, or none covered
             "udiv r8, r8, r11",
             "udiv r9, r9, r11",
             "sub r10, r9, r8", // d = bb − tb
@@ -369,27 +401,35 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
         return;
     }
     let c = &mut chains.consts;
-    c.tails1 = chains.tails.as_mut_ptr().wrapping_add(1);
-    c.slots = chains.slots.as_mut_ptr();
-    c.span = r.span;
-    c.faces = r.faces;
-    let consts: *mut BinConsts = c;
+    c.v6m = V6mConsts {
+        last_row: c.last_row,
+        shift: c.shift,
+        tails1: chains.tails.as_mut_ptr().wrapping_add(1),
+        slots: chains.slots.as_mut_ptr(),
+        faces: r.faces,
+        third: 0xAAAA_AAAB,
+        tall_less1: c.tall_less1,
+        span: r.span,
+        drawn: c.drawn,
+    };
+    let consts: *mut V6mConsts = &mut c.v6m;
     let at: *const [u16; 3];
     // SAFETY: the scan is `skip_culled_v6m`'s loop (see its SAFETY comment: `pos` is
     // below the number of faces, tested above; it reads one face a turn up to `end`,
     // and only cache words of indices it found below `regs.len`; r0 ends at the face
-    // it stops at). What it adds, for a drawn face: it reads the `BinConsts` through
-    // r9 (an exclusive borrow of `chains`, whose slices it describes; `bin_scan` calls
-    // it only for a power of two rows, whose log2 is `shift`), works out the face's
+    // it stops at). What it adds, for a drawn face: it reads the `V6mConsts` through
+    // r9 (a copy of `chains`' constants and the pointers of its slices, which
+    // `chains` borrows exclusively; `bin_scan` calls it only for a power of two rows,
+    // whose log2 is `shift`; the LDMs read it in order from r9), works out the face's
     // chain as `BinChains::bin` does from the corners' y (y0 and the differences the
     // area took, below 2¹⁵ in magnitude) and writes two halfwords: the slot its chain's
     // tail names and that tail. As in `bin_scan_dsp`: `bin_scan` checked that every
     // tail names a slot and that there is a slot for each face; a tail only ever
     // becomes a face's place ((r0 − faces) / 6, below the faces' number: the offset
-    // halved times 1/3 modulo 2³², exact for a multiple of 3); for 0 ≤ top ≤ bottom ≤
-    // last_row the bands tb = top >> shift ≤ bb = bottom >> shift are below the bands'
-    // number, so chain 2·tb − (bb − tb) + 1 for bb − tb ≤ 1, and the tall one, are
-    // below `tails.len()`, addressed from the second tail as chain − 1.
+    // halved times 1/3 modulo 2³², exact for a multiple of 3); for 0 ≤ top ≤ last_row
+    // and top ≤ bottom the bands tb = top >> shift ≤ bb = bottom >> shift, tb below the
+    // bands' number, so chain 2·tb − (bb − tb) + 1 for bb − tb ≤ 1, and the tall one,
+    // are below `tails.len()`, addressed from the second tail as chain − 1.
     // r6–r11 are pushed first and popped last (r6 and r7 cannot be operands; r8 holds
     // the entries' number, r9 the constants, r10 the drawn faces, stored back at the
     // end, r11 one); r12 and lr are declared clobbered, the flags are scratch.
@@ -408,7 +448,7 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "mov r9, r5",  // the constants
             "ldr r6, [r5, #28]",
             "mov lr, r6", // span
-            "ldr r6, [r5, #8]",
+            "ldr r6, [r5, #32]",
             "mov r10, r6", // the drawn faces so far
             "movs r6, #1",
             "mov r11, r6",
@@ -458,7 +498,7 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "3:", // a bad index or an unplaced corner, or none left
             "mov r6, r9",
             "mov r5, r10",
-            "str r5, [r6, #8]",
+            "str r5, [r6, #32]",
             "pop {{r6, r7}}",
             "mov r10, r6",
             "mov r11, r7",
@@ -490,15 +530,12 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "asrs r3, r3, #4",
             "subs r3, #1",
             "mov r6, r9",
-            "ldr r4, [r6, #0]", // last_row
-            "cmp r3, r4",
-            "ble 5f",
-            "mov r3, r4", // bottom, at most last_row
-            "5:",
+            "ldm r6!, {{r2, r4}}", // last_row, log2(rows); r6 at the tails
             "add r10, r11", // one more drawn
+            "cmp r5, r2",
+            "bgt 8f", // below the screen
             "cmp r5, r3",
             "bgt 8f", // no row
-            "ldr r4, [r6, #24]", // log2(rows)
             "lsrs r5, r4",
             "lsrs r3, r4",
             "subs r3, r3, r5", // d = bb − tb
@@ -507,26 +544,24 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "lsls r5, r5, #1",
             "subs r5, r5, r3", // one or two bands: chain 2·tb − d + 1
             "13:", // append the face (its place) to chain r5 + 1
-            "ldr r4, [r6, #16]",
+            "ldm r6!, {{r2, r3, r4}}", // the second tail, the slots, the first face
             "lsls r5, r5, #1",
-            "adds r5, r4, r5",
-            "ldrh r4, [r5]",
-            "ldr r3, [r6, #32]",
-            "subs r3, r0, r3",
-            "lsrs r3, r3, #1",
-            "ldr r2, [r6, #36]",
-            "muls r3, r2, r3",
-            "ldr r2, [r6, #20]",
-            "lsls r4, r4, #1",
-            "strh r3, [r2, r4]",
-            "strh r3, [r5]",
+            "adds r5, r2, r5",
+            "subs r4, r0, r4",
+            "lsrs r4, r4, #1",
+            "ldr r2, [r6]", // 1/3
+            "muls r4, r2, r4", // the face's place
+            "ldrh r2, [r5]",
+            "lsls r2, r2, #1",
+            "strh r4, [r3, r2]",
+            "strh r4, [r5]",
             "8:",
             "adds r0, #6",
             "cmp r0, r7",
             "bne 2b",
             "b 3b",
             "12:",
-            "ldr r5, [r6, #12]", // more: the tall chain
+            "ldr r5, [r6, #16]", // more: the tall chain (r6 at the tails)
             "b 13b",
             "9:",
             inout("r0") r.faces.wrapping_add(*pos) => at,
@@ -539,6 +574,7 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             out("lr") _,
         );
     }
+    chains.consts.drawn = chains.consts.v6m.drawn;
     // The place: the bytes from the first face over 6 (as in `skip_culled_v6m`).
     let bytes = at as usize - r.faces as usize;
     *pos = (bytes >> 1).wrapping_mul(0xAAAA_AAAB);

@@ -601,29 +601,31 @@ struct BandBlock {
     sfilled: u32, // 168
     taken: u32,     // 172
     kept: u32,      // 176
-    /// The next slot to save into: a kept face whose colour goes to `kept == snext`
-    /// (below `sroom`) saves its set-up there, at `skeep`.
-    snext: u32, // 180
+    /// A kept face whose colour goes to `kept` below `sroom` saves its set-up at
+    /// `skeep`, slot `kept`: `sroom` is the other half's slots (at most `room`)
+    /// while the slots saved follow the kept colours (`kept` of each), else 0.
+    sroom: u32, // 180
     /// Taken below `filled` (at most `read`'s length), kept below `room` (`keep`'s).
     filled: u32, // 184
     room: u32,      // 188
-    /// The read half's slots, the slot `snext` of the other, its slots (at most `room`).
+    /// The read half's slot `taken` (moved on a slot with each face resumed: they
+    /// are the first ones taken, in order), the next slot of the other to save into.
     sread: *const u32, // 192
     skeep: *mut u32, // 196
-    sroom: u32,     // 200
-    tested: [u32; 2], // 204
-    failed: [u32; 2], // 212
-    drawn: u32,     // 220
-    run: u32,       // 224
-    flushes: u32,   // 228
+    tested: [u32; 2], // 200
+    failed: [u32; 2], // 208
+    /// The pixels tested since the last flush into `tested` (with the rows' `failed`
+    /// into `failed`), added by the rows themselves (`small_body`'s `band` and `keep`
+    /// forms), below 2³¹ + 2¹⁹ (a flush at 2³¹; a face tests under 2¹⁹).
+    run: u32, // 216
     /// The head of the face the loop stopped at.
-    least: u32, // 232
+    least: u32, // 220
 }
 
 #[cfg(all(zraster_thumb, zraster_dsp))]
 impl BandBlock {
-    /// A block to be filled: its counts 0 (the faces to the next flush `FLUSH`), the
-    /// rest `v` or null (each written before the loop reads it).
+    /// A block to be filled: its counts 0, the rest `v` or null (each written before
+    /// the loop reads it).
     #[inline(always)]
     fn splat(v: u32) -> BandBlock {
         BandBlock {
@@ -643,17 +645,14 @@ impl BandBlock {
             sfilled: v,
             taken: v,
             kept: v,
-            snext: v,
+            sroom: v,
             filled: v,
             room: v,
             sread: core::ptr::null(),
             skeep: core::ptr::null_mut(),
-            sroom: v,
             tested: [0; 2],
             failed: [0; 2],
-            drawn: FLUSH,
             run: 0,
-            flushes: 0,
             least: 0,
         }
     }
@@ -670,13 +669,11 @@ const _: () = {
     assert!(offset_of!(B, to_color) == 152 && offset_of!(B, entries) == 156);
     assert!(offset_of!(B, read) == 160 && offset_of!(B, keep) == 164);
     assert!(offset_of!(B, sfilled) == 168 && offset_of!(B, taken) == 172);
-    assert!(offset_of!(B, kept) == 176 && offset_of!(B, snext) == 180);
+    assert!(offset_of!(B, kept) == 176 && offset_of!(B, sroom) == 180);
     assert!(offset_of!(B, filled) == 184 && offset_of!(B, room) == 188);
     assert!(offset_of!(B, sread) == 192 && offset_of!(B, skeep) == 196);
-    assert!(offset_of!(B, sroom) == 200 && offset_of!(B, tested) == 204);
-    assert!(offset_of!(B, failed) == 212 && offset_of!(B, drawn) == 220);
-    assert!(offset_of!(B, run) == 224 && offset_of!(B, flushes) == 228);
-    assert!(offset_of!(B, least) == 232);
+    assert!(offset_of!(B, tested) == 200 && offset_of!(B, failed) == 208);
+    assert!(offset_of!(B, run) == 216 && offset_of!(B, least) == 220);
 };
 
 /// The colour of a face into the rows' block (at 12) and r0 for the band loop: the
@@ -726,7 +723,7 @@ macro_rules! band_corners {
 }
 
 /// A kept face's set-up saved into its slot (the band loop's r4 as pushed, at sp + 16),
-/// the slot counted, then its rows in this band cut at the clip's last row: the
+/// the next slot made `skeep`, then its rows in this band cut at the clip's last row: the
 /// `$hook` of `small_body!(keep, ..)` (its registers there: r3 the first row's depth,
 /// r4 px0, r5 the first row, n0 at sp + 8, xmax at sp + 12, n1 at 64, none of them the
 /// clip's: the set-up ran unclipped below). Slot layout: [`STATE_WORDS`].
@@ -745,10 +742,8 @@ macro_rules! keep_state {
             "add r1, r0, #48\n",
             "ldm r1, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
             "stm r12!, {{r1, r2, r6, r7, r8, r9, r10, r11, lr}}\n",
-            // Counted: the next slot is the one after it.
-            "ldr r1, [r0, #180]\n",
-            "adds r1, #1\n",
-            "str r1, [r0, #180]\n",
+            // The next slot is the one after it (the caller counts the slots saved
+            // from where it ends).
             "str r12, [r0, #196]\n",
             // This band's rows: n0 = min(n0, m), n1 = min(n1, m − n0), m = clip.y1 − first
             // row, at least 0.
@@ -777,7 +772,7 @@ macro_rules! keep_state {
 /// colours one for one; a face taken from the band above whose set-up was saved resumes
 /// it at this band's first row instead of being set up again. Ends with r0 0 at the end
 /// of the faces, 1 at a face left whole to the caller, 2 at a face whose carry is done
-/// but which it does not draw (its head at 232), the heads stored back.
+/// but which it does not draw (its head at 220), the heads stored back.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! band_body {
@@ -805,29 +800,29 @@ macro_rules! band_body {
             "bfi r6, r1, #2, #16\n",
             "cmp r6, r9\n",
             "blo 64f\n",
+            // Each head it passes moves up a place as it takes the next one's (MOVs,
+            // no IT: the 4-way merge's last head, the tall faces', is mostly END).
             "mov r3, r6\n",
             "mov r6, r9\n",
+            "mov r9, r3\n",
             "cmp r3, r10\n",
-            "itt lo\n",
-            "movlo r9, r3\n",
             "blo 64f\n",
             "mov r9, r10\n",
+            "mov r10, r3\n",
             "cmp r3, r11\n",
-            "ite lo\n",
-            "movlo r10, r3\n",
-            "movhs r10, r11\n",
-            "it hs\n",
-            "movhs r11, r3\n",
+            "blo 64f\n",
+            "mov r10, r11\n",
+            "mov r11, r3\n",
             "64:\n",
-            // By the chain: its own (2) worked out (r1 the face); tall (3) the
-            // caller's; taken (0): resumed while there is a set-up, else the next
-            // carried colour while there is one, else worked out, and counted; kept
-            // (1): worked out and kept, with its set-up while the slots follow.
-            "and r5, r8, #3\n",
-            "cmp r5, #2\n",
-            "beq 27f\n",
+            // By the chain (one shift: its bit 1 into C, Z set when its bit 0 is clear):
+            // tall (3) the caller's; its own (2) worked out (r1 the face); taken (0):
+            // resumed while there is a set-up, else the next carried colour while
+            // there is one, else worked out, and counted; kept (1): worked out and
+            // kept, with its set-up while the slots follow.
+            "lsls r5, r8, #31\n",
             "bhi 68f\n",
-            "cbnz r5, 25f\n",
+            "bcs 27f\n",
+            "bne 25f\n",
             "ldrd r0, r1, [r7, #168]\n",
             "cmp r1, r0\n",
             "blo 30f\n",
@@ -845,11 +840,7 @@ macro_rules! band_body {
             band_color!($color),
             "ldrd r1, r2, [r7, #176]\n",
             "cmp r1, r2\n",
-            "bne 28f\n",
-            "ldr r2, [r7, #200]\n",
-            "cmp r1, r2\n",
             "blo 31f\n",
-            "28:\n",
             "ldr r2, [r7, #188]\n",
             "cmp r1, r2\n",
             "bhs 22f\n",
@@ -872,7 +863,7 @@ macro_rules! band_body {
             "22:\n",
             band_corners!("67f"),
             small_body!(
-                fused,
+                band,
                 "ldrsh",
                 "6",
                 "ldrsh",
@@ -880,31 +871,26 @@ macro_rules! band_body {
                 "0",
                 "ldrsh r6, [lr, #4]\nldrsh r7, [lr, #6]\nldr r8, [lr]\n"
             ),
-            // Refused by the set-up: the caller's. Else the counts, as the face loop's.
+            // Its tested pixels (below 2¹⁹) are in the running sum (r1 the sum, 0 with
+            // no rows drawn; N its bit 31), flushed with the rows' failed ones into the
+            // 64-bit sums once it reaches 2³¹ (no face count: the bands take none);
+            // refused by the set-up (r1 −1, N set, r2 1): the caller's.
             "61:\n",
+            "bpl 60b\n",
             "cbnz r2, 67f\n",
-            "ldrd r4, r5, [r7, #220]\n",
-            "subs r4, #1\n",
-            "add r5, r1\n",
-            "strd r4, r5, [r7, #220]\n",
-            "bne 60b\n",
-            "ldrd r2, r3, [r7, #204]\n",
+            "ldr r5, [r7, #216]\n",
+            "ldrd r2, r3, [r7, #200]\n",
             "adds r2, r2, r5\n",
             "adc r3, r3, #0\n",
-            "strd r2, r3, [r7, #204]\n",
-            "ldrd r2, r3, [r7, #212]\n",
+            "strd r2, r3, [r7, #200]\n",
+            "ldrd r2, r3, [r7, #208]\n",
             "ldr r4, [r7, #44]\n",
             "adds r2, r2, r4\n",
             "adc r3, r3, #0\n",
-            "strd r2, r3, [r7, #212]\n",
+            "strd r2, r3, [r7, #208]\n",
             "movs r4, #0\n",
-            "str r4, [r7, #224]\n",
+            "str r4, [r7, #216]\n",
             "str r4, [r7, #44]\n",
-            "ldr r4, [r7, #228]\n",
-            "adds r4, #1\n",
-            "str r4, [r7, #228]\n",
-            "mov r4, #8192\n",
-            "str r4, [r7, #220]\n",
             "b 60b\n",
             "66:\n",
             "movs r0, #0\n",
@@ -915,7 +901,7 @@ macro_rules! band_body {
             "68:\n",
             "movs r0, #1\n",
             "65:\n",
-            "str r8, [r7, #232]\n",
+            "str r8, [r7, #220]\n",
             "69:\n",
             "add r1, r7, #84\n",
             "stm r1, {{r6, r9, r10, r11}}\n",
@@ -933,6 +919,7 @@ macro_rules! band_body {
             small_body!(
                 keep,
                 keep_state!(),
+                "str r2, [r0, #180]\n",
                 "ldrsh",
                 "6",
                 "ldrsh",
@@ -950,10 +937,9 @@ macro_rules! band_body {
             "30:\n",
             "adds r0, r1, #1\n",
             "str r0, [r7, #172]\n",
-            "ldr r0, [r7, #192]\n",
-            "add r2, r1, r1, lsl #2\n",
-            "add r2, r1, r2, lsl #2\n",
-            "add r12, r0, r2, lsl #2\n",
+            "ldr r12, [r7, #192]\n",
+            "add r0, r12, #84\n",
+            "str r0, [r7, #192]\n",
             "mov r0, r7\n",
             "push {{r0-r12}}\n",
             "ldm r12!, {{r1, r2, r3, r4, r5, r6, r8}}\n",
@@ -1009,7 +995,7 @@ macro_rules! band_body {
 /// covers: each face's colour taken from the band above (chain 0) while `carry` has
 /// one, else coloured by `color`, and kept for the band below (chain 1) while there is
 /// room; drawn by the small triangles' set-up and rows (`small_less_cached`: the depth
-/// test `Less` with depth writes, a two-byte colour); its counts into `counts`. A face
+/// test `Less` with depth writes, a two-byte colour); its pixel counts into `counts`. A face
 /// taken from the band above whose set-up `carry.states` holds is not set up again:
 /// its rows go on from there; a kept face's set-up is kept too while the slots follow
 /// the colours. The heads move past each face it takes. Returns where it stopped
@@ -1100,10 +1086,18 @@ fn band_faces_less_dsp<C: Copy>(
     let sroom = (skeep.len() / STATE_WORDS).min(room);
     let snext = saved.min(sroom);
     block.sfilled = filled.min(sread.len() / STATE_WORDS) as u32;
-    block.snext = snext as u32;
-    block.sread = sread.as_ptr();
-    block.skeep = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
-    block.sroom = sroom as u32;
+    // Read only below `sfilled` (at most the half's slots), as the slot of `taken`.
+    block.sread = sread
+        .as_ptr()
+        .wrapping_add((taken0 as usize).wrapping_mul(STATE_WORDS));
+    let skeep_at = skeep.as_mut_ptr().wrapping_add(snext * STATE_WORDS);
+    block.skeep = skeep_at;
+    // Slots only while they follow the kept colours one for one.
+    block.sroom = if block.kept as usize == snext {
+        sroom as u32
+    } else {
+        0
+    };
     let status: u32;
     // SAFETY: the loop composes blocks whose bounds arguments hold as they do alone.
     // The merge reads `links[f]` and `faces[f]` only for the least head's face f (the
@@ -1126,11 +1120,16 @@ fn band_faces_less_dsp<C: Copy>(
     // word-aligned; the clip inside both buffers by `kernel_buffers`; its SAFETY
     // argument); a triangle it refuses goes to the caller. The counts are stored into
     // the block by its pinned offsets. The set-ups: a slot is read only for a face taken
-    // at `taken` < sfilled ≤ the read half's slots (at `sread` + 4·STATE_WORDS·taken,
-    // 21 words); one is written only at `skeep`, slot `snext` < sroom ≤ the other half's
-    // slots (`kept == snext` below `sroom`, which is at most `room`: its colour is kept
-    // at `keep[kept]` then too), after which `skeep` moves to the next slot and `snext`
-    // counts it. Every slot below `sfilled` holds what `keep_state` saved there in the
+    // at `taken` < sfilled ≤ the read half's slots, at `sread`, which starts at slot
+    // `taken` and moves on one slot (21 words) with each face resumed, the only ones
+    // taking a slot, all taken before any other (once `taken` reaches `sfilled` it only
+    // grows): so at slot `taken` then too; one is written only at `skeep`, slot
+    // `kept` < sroom ≤ the other half's slots: a kept face saves only below `sroom`,
+    // which is 0 unless `skeep` is slot `kept` (so made at the entry, from the slots
+    // saved; each save moves both on by one; a kept face whose set-up saves nothing,
+    // having no rows, makes it 0 before the loop goes on; one that stops the loop
+    // leaves it to the next entry), and at most `room`: its colour is kept at
+    // `keep[kept]` then too; then `skeep` moves to the next slot. Every slot below `sfilled` holds what `keep_state` saved there in the
     // band above (`KeptStates`: the loop's count alone makes `sfilled`): a triangle's
     // set-up as `small_body` made it, whose rows the set-up's argument bounds
     // (first row s, its two halves' rows before any clip, each edge's t stepped exactly
@@ -1147,16 +1146,19 @@ fn band_faces_less_dsp<C: Copy>(
     unsafe {
         status = fused_asm!(band_body, block, to_color);
     }
+    // No face count: the countdown as at the start (none drawn, none flushed).
     counts.add_loop(
         (block.tested, block.run, block.failed, block.rows.failed()),
-        (block.flushes, block.drawn),
+        (0, FLUSH),
     );
     *heads = block.heads;
     *carry.taken = carry
         .taken
         .wrapping_add(block.taken.wrapping_sub(taken0) as usize);
     *carry.kept = block.kept as usize;
-    carry.states.saved = block.snext.min(block.sroom) as usize;
+    // The slots saved: those before where `skeep` ended (it moves a slot a save).
+    let moved = (block.skeep as usize).wrapping_sub(skeep_at as usize);
+    carry.states.saved = (snext + moved / (4 * STATE_WORDS)).min(sroom);
     match status {
         0 => BandStop::Done,
         1 => BandStop::Whole(block.least),
@@ -1633,8 +1635,9 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
             });
             let (clip, row) = (clip_at(b), first_row + (b * band_rows) as i32);
             let done = small_less_portable([&p, &q, &r], &clip, row, W, z, c, col);
+            // The pixels only: the band loop counts no faces (the bands take theirs
+            // from the binning).
             if let SmallDone::Drawn(tested, failed) = done {
-                counts.drawn += 1;
                 counts.tested += u64::from(tested);
                 counts.failed += u64::from(failed);
             }

@@ -663,13 +663,18 @@ macro_rules! rows_clamp {
 /// caller): ends with the pixels tested in r1. `$cols` is `clip` (each row's columns
 /// clamped to the clip's) or `inside` (not: the set-up has proven every row inside
 /// them). Expanded by `rows_less_dsp` (`clip`) and twice by `small_less_dsp` after its
-/// set-up (both). Clobbers r1–r12, lr and the flags.
+/// set-up (both). Clobbers r1–r12, lr and the flags. With `$sum0` and `$sum1`, r6
+/// starts as `$sum0` makes it and ends as `$sum1` takes it (the band loop's running
+/// sum in its block) instead of from 0 into r1.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! rows_body {
     ($cols:ident) => {
+        rows_body!($cols, "movs r6, #0\n", "mov r1, r6\n")
+    };
+    ($cols:ident, $sum0:expr, $sum1:expr) => {
         concat!(
-            "movs r6, #0\n",
+            $sum0,
             // The long and short edges to the left and right.
             "ldr r7, [r0, #68]\n",
             "cbnz r7, 11f\n",
@@ -809,7 +814,7 @@ macro_rules! rows_body {
             "add r10, r10, #2\n",
             rows_failed!("42b"),
             "9:\n",
-            "mov r1, r6\n",
+            $sum1,
         )
     };
 }
@@ -903,7 +908,13 @@ macro_rules! rows_start {
 /// clip's last row, and `$hook` run between the set-up and the rows (it finds the
 /// first row's depth in r3, px0 in r4, the first row in r5, n0 at sp + 8, xmax at
 /// sp + 12, n1 in the block, and must leave them so; label 73 follows it, where the
-/// band loop enters with a set-up of its own).
+/// band loop enters with a set-up of its own), and `$none` run for a triangle that
+/// draws nothing (r0 the block, r2 0). With `band` (the band loop's other
+/// faces): as `fused`; `band` and `keep` add the pixels tested to the band block's
+/// running sum at 216 and return that sum in r1 (not the face's own count) with the
+/// flags' N its bit 31. Every form returns r2 1 for a triangle it leaves to the
+/// general path (r1 then −1, N set), else 0 (r1 0, N clear, when nothing was drawn);
+/// nothing after those values are set writes the flags.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[rustfmt::skip]
 macro_rules! small_body {
@@ -914,6 +925,9 @@ macro_rules! small_body {
             "ldrd r8, r10, [sp, #36]\n",
             "ldr r3, [r0, #44]\n",
             "",
+            "",
+            "movs r6, #0\n",
+            "mov r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
@@ -924,10 +938,26 @@ macro_rules! small_body {
             "ldrd r8, r10, [r0, #128]\n",
             "",
             "",
+            "",
+            "movs r6, #0\n",
+            "mov r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
-    (keep, $hook:expr,
+    (band, $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
+        small_body!(
+            @ "ldrd r5, r8, [r0, #120]\n",
+            "ldr r1, [r0, #116]\n",
+            "ldrd r8, r10, [r0, #128]\n",
+            "",
+            "",
+            "",
+            "ldr r6, [r0, #216]\n",
+            "str r6, [r0, #216]\nmovs r1, r6\n",
+            $ly, $oy, $lx, $ox, $oz, $p0
+        )
+    };
+    (keep, $hook:expr, $none:literal,
      $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         small_body!(
             @ "ldr r5, [r0, #120]\nmovw r8, #0x7fff\n",
@@ -935,10 +965,14 @@ macro_rules! small_body {
             "ldrd r8, r10, [r0, #128]\n",
             "",
             concat!($hook, "73:\n"),
+            $none,
+            "ldr r6, [r0, #216]\n",
+            "str r6, [r0, #216]\nmovs r1, r6\n",
             $ly, $oy, $lx, $ox, $oz, $p0
         )
     };
     (@ $entry:literal, $zrow:literal, $clipx:literal, $failed:literal, $hook:expr,
+     $none:literal, $sum0:literal, $sum1:literal,
      $ly:literal, $oy:literal, $lx:literal, $ox:literal, $oz:literal, $p0:literal) => {
         concat!(
             // r0–r3 pushed to make the set-up's 16 bytes of scratch (r1, the first
@@ -1150,11 +1184,12 @@ macro_rules! small_body {
             "sub r10, r10, r4\n",
             "strd r8, r10, [r0, #28]\n",
             rows_start!($zrow),
-            rows_body!(clip),
+            rows_body!(clip, $sum0, $sum1),
             "b 199f\n",
             // Not drawn (90: for the general path), the steep depth's call (92).
             "90:\n",
             "movs r2, #1\n",
+            "mvns r1, #0\n",
             "b 98f\n",
             // Steep depth: q and r by a call (AAPCS: a in r0:r1, b in r2:r3, the area
             // on the stack; q, r back in r0, r1), the block kept beside the area.
@@ -1172,17 +1207,18 @@ macro_rules! small_body {
             "b 93b\n",
             "91:\n",
             "movs r2, #0\n",
+            $none,
+            "movs r1, #0\n",
             "98:\n",
             "add sp, #16\n",
-            "movs r1, #0\n",
-            "movs r3, #0\n",
+            "mov r3, #0\n",
             "b 99f\n",
             "200:\n",
             rows_start!($zrow),
-            rows_body!(inside),
+            rows_body!(inside, $sum0, $sum1),
             "199:\n",
             $failed,
-            "movs r2, #0\n",
+            "mov r2, #0\n",
             "99:\n",
             "pop {{r4-r12}}\n",
         )
