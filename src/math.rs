@@ -261,16 +261,15 @@ impl Mul for Mat4 {
     type Output = Mat4;
     #[inline(never)]
     fn mul(self, o: Mat4) -> Mat4 {
+        // Without an FPU, the 16 sums inlined are a kilobyte of library calls (run once
+        // a frame): one loop over the 64 products instead, most of them left out.
+        if crate::num::SOFT_FLOAT {
+            return mul_sparse(&self, &o);
+        }
         let mut r = [[0.0f32; 4]; 4];
         for (row, a) in r.iter_mut().zip(&self.m) {
             for (j, v) in row.iter_mut().enumerate() {
-                // Without an FPU, the 16 sums inlined are a kilobyte of library calls
-                // (run once a frame): one out-of-line sum called 16 times instead.
-                *v = if crate::num::SOFT_FLOAT {
-                    row_times_column_call(a, &o, j)
-                } else {
-                    row_times_column(a, &o, j)
-                };
+                *v = row_times_column(a, &o, j);
             }
         }
         Mat4 { m: r }
@@ -283,10 +282,36 @@ fn row_times_column(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
     (0..4).map(|k| a[k] * o.m[k][j]).sum()
 }
 
-/// [`row_times_column`] out of line.
-#[inline(never)]
-fn row_times_column_call(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
-    row_times_column(a, o, j)
+/// `a · b` as [`row_times_column`] gives it, bit for bit, without the products of an
+/// exact zero and a finite value (each a soft-float multiply and add: camera matrices
+/// are mostly zeros). Such a product is ±0, and x + ±0 is x but for x = −0: a sum of −0
+/// takes the product's sign.
+#[inline(always)]
+fn mul_sparse(a: &Mat4, b: &Mat4) -> Mat4 {
+    let (a, b) = (a.m.as_flattened(), b.m.as_flattened());
+    let mut r = [0.0f32; 16];
+    let mut sum = -0.0f32;
+    // Product i: row i / 16 of a, column i / 4 % 4 of b, term k = i % 4.
+    for i in 0..64 {
+        let (x, y) = (a[i / 16 * 4 + i % 4], b[i % 4 * 4 + i / 4 % 4]);
+        let (bx, by) = (x.to_bits(), y.to_bits());
+        // Magnitudes' bits: 0 for a zero, below 0xff00_0000 when finite.
+        let (mx, my) = (bx << 1, by << 1);
+        if mx.min(my) == 0 && mx.max(my) < 0xff00_0000 {
+            if sum.to_bits() == 1 << 31 {
+                sum = f32::from_bits((bx ^ by) & 1 << 31);
+            }
+        } else {
+            sum += x * y;
+        }
+        if i % 4 == 3 {
+            r[i / 4] = sum;
+            sum = -0.0;
+        }
+    }
+    Mat4 {
+        m: [0, 1, 2, 3].map(|k| [r[4 * k], r[4 * k + 1], r[4 * k + 2], r[4 * k + 3]]),
+    }
 }
 
 /// Degrees to radians: zraster takes every angle in radians (rotations, fields of
@@ -376,6 +401,50 @@ mod tests {
                 let mut m = Mat4::IDENTITY;
                 m.m[i / 4][i % 4] = v;
                 assert_eq!(m.is_finite(), want, "{v} at {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_sparse_product_is_the_full_one_bit_for_bit() {
+        // Zeros of both signs, infinities, NaN, subnormals and values whose products
+        // cancel, overflow or underflow.
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            1e-45,
+            -3e38,
+            3e38,
+            1e-30,
+            0.1,
+        ];
+        let mut next = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
+        let mut pick = || {
+            let r = next();
+            if r % 3 == 0 {
+                f32::from_bits((r >> 32) as u32)
+            } else {
+                special[(r >> 8) as usize % special.len()]
+            }
+        };
+        for _ in 0..50_000 {
+            let (mut a, mut b) = (Mat4::IDENTITY, Mat4::IDENTITY);
+            a.m.as_flattened_mut().iter_mut().for_each(|v| *v = pick());
+            b.m.as_flattened_mut().iter_mut().for_each(|v| *v = pick());
+            let got = mul_sparse(&a, &b);
+            for (i, got) in got.m.iter().enumerate() {
+                for (j, &got) in got.iter().enumerate() {
+                    let want = row_times_column(&a.m[i], &b, j);
+                    assert!(
+                        want.to_bits() == got.to_bits() || want.is_nan() && got.is_nan(),
+                        "{a:?} {b:?} {i} {j}: {want:?} vs {got:?}"
+                    );
+                }
             }
         }
     }
