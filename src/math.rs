@@ -532,18 +532,18 @@ mod tests {
         let mut next = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
         let mut pick = || {
             let r = next();
-            if r % 3 == 0 {
+            if r.is_multiple_of(3) {
                 f32::from_bits((r >> 32) as u32)
             } else {
                 special[(r >> 8) as usize % special.len()]
             }
         };
-        for n in 0..100_000 {
+        for n in 0..100_000u32 {
             let (mut a, mut b) = (Mat4::IDENTITY, Mat4::IDENTITY);
             a.m.as_flattened_mut().iter_mut().for_each(|v| *v = pick());
             b.m.as_flattened_mut().iter_mut().for_each(|v| *v = pick());
             // Every other pair finite (every zero's products left out).
-            if n % 2 == 0 {
+            if n.is_multiple_of(2) {
                 for v in
                     a.m.as_flattened_mut()
                         .iter_mut()
