@@ -58,7 +58,13 @@ impl Vec3 {
     /// The unit vector in the same direction, or zero for a zero (or non-finite) vector.
     pub fn normalize(self) -> Vec3 {
         let l = self.length();
-        if l > 0.0 && l.is_finite() {
+        // Positive and finite; without an FPU by the bits (float compares are calls).
+        let positive = if crate::num::SOFT_FLOAT {
+            l.to_bits().wrapping_sub(1) < 0x7f7f_ffff
+        } else {
+            l > 0.0 && l.is_finite()
+        };
+        if positive {
             self * (1.0 / l)
         } else {
             Vec3::default()
@@ -67,7 +73,7 @@ impl Vec3 {
 
     /// Are all components finite?
     pub fn is_finite(self) -> bool {
-        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+        finite(self.x) && finite(self.y) && finite(self.z)
     }
 }
 
@@ -261,16 +267,15 @@ impl Mul for Mat4 {
     type Output = Mat4;
     #[inline(never)]
     fn mul(self, o: Mat4) -> Mat4 {
+        // Without an FPU, the 16 sums inlined are a kilobyte of library calls (run once
+        // a frame): one loop over the 64 products instead, most of them left out.
+        if crate::num::SOFT_FLOAT {
+            return mul_sparse(&self, &o);
+        }
         let mut r = [[0.0f32; 4]; 4];
         for (row, a) in r.iter_mut().zip(&self.m) {
             for (j, v) in row.iter_mut().enumerate() {
-                // Without an FPU, the 16 sums inlined are a kilobyte of library calls
-                // (run once a frame): one out-of-line sum called 16 times instead.
-                *v = if crate::num::SOFT_FLOAT {
-                    row_times_column_call(a, &o, j)
-                } else {
-                    row_times_column(a, &o, j)
-                };
+                *v = row_times_column(a, &o, j);
             }
         }
         Mat4 { m: r }
@@ -283,10 +288,32 @@ fn row_times_column(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
     (0..4).map(|k| a[k] * o.m[k][j]).sum()
 }
 
-/// [`row_times_column`] out of line.
-#[inline(never)]
-fn row_times_column_call(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
-    row_times_column(a, o, j)
+/// `a · b` as [`row_times_column`] gives it, bit for bit, without the products of an
+/// exact zero and a finite value (each a soft-float multiply and add: camera matrices
+/// are mostly zeros). Such a product is ±0, and x + ±0 is x but for x = −0: a sum of −0
+/// takes the product's sign.
+#[inline(always)]
+fn mul_sparse(a: &Mat4, b: &Mat4) -> Mat4 {
+    let (a, b) = (a.m.as_flattened(), b.m.as_flattened());
+    let mut r = Mat4 { m: [[-0.0; 4]; 4] };
+    let sums = r.m.as_flattened_mut();
+    // Product i: row i / 16 of a, term k = i / 4 % 4, column j = i % 4 of b (each sum
+    // takes its terms in order of k).
+    for i in 0..64 {
+        let (x, y) = (a[i / 4], b[i % 16]);
+        let sum = &mut sums[i / 16 * 4 + i % 4];
+        let (bx, by) = (x.to_bits(), y.to_bits());
+        // Magnitudes' bits: 0 for a zero, below 0xff00_0000 when finite.
+        let (mx, my) = (bx << 1, by << 1);
+        if mx.min(my) == 0 && mx.max(my) < 0xff00_0000 {
+            if sum.to_bits() == 1 << 31 {
+                *sum = f32::from_bits((bx ^ by) & 1 << 31);
+            }
+        } else {
+            *sum += x * y;
+        }
+    }
+    r
 }
 
 /// Degrees to radians: zraster takes every angle in radians (rotations, fields of
@@ -307,9 +334,113 @@ pub fn sqrt(v: f32) -> f32 {
     // micromath's estimate is within ~5%; each Newton step squares the relative error.
     let mut r = F32Ext::sqrt(v);
     for _ in 0..3 {
-        r = 0.5 * (r + v / r);
+        r = half(r + v / r);
     }
     r
+}
+
+/// Whether `v` is finite; without an FPU by its exponent field (a float compare is a
+/// library call).
+#[inline(always)]
+pub(crate) fn finite(v: f32) -> bool {
+    finite_as(v, crate::num::SOFT_FLOAT)
+}
+
+/// [`finite`], by the bits when `soft` (tests take both ways on any target).
+#[inline(always)]
+fn finite_as(v: f32, soft: bool) -> bool {
+    if soft {
+        v.to_bits() & 0x7f80_0000 != 0x7f80_0000
+    } else {
+        v.is_finite()
+    }
+}
+
+/// `v · 2¹⁵` rounded as [`round_f32`](crate::num::round_f32) rounds it, for a finite `v`
+/// with |v| < 2¹⁵. Without an FPU the product by the exponent (exact for a normal
+/// result) and the truncation by the bits (each a library call of some 50
+/// instructions, the conversion with three float compares). Out of line there: five
+/// uses a frame.
+#[cfg_attr(zraster_soft_float, inline(never))]
+#[cfg_attr(not(zraster_soft_float), inline(always))]
+pub(crate) fn round_q15(v: f32) -> i32 {
+    round_q15_as(v, crate::num::SOFT_FLOAT)
+}
+
+/// [`round_q15`], by the bits when `soft`.
+#[inline(always)]
+fn round_q15_as(v: f32, soft: bool) -> i32 {
+    if !soft {
+        return crate::num::round_f32(v * 32768.0);
+    }
+    let bits = v.to_bits();
+    let x = if (bits >> 23 & 0xff).wrapping_sub(1) < 254 - 15 {
+        // Exponent fields 1 to 239: v · 2¹⁵ is normal, and exact.
+        f32::from_bits(bits + (15 << 23))
+    } else {
+        // (Opaque: else the multiply is made on both paths, the choice after it.)
+        core::hint::black_box(v) * 32768.0
+    };
+    // round_f32's sum, truncated toward zero: |y| < 2³¹.
+    let y = (x + 0.5f32.copysign(x)).to_bits();
+    let (e, m) = (
+        (y >> 23 & 0xff) as i32 - 150,
+        (y & 0x7f_ffff | 0x80_0000) as i32,
+    );
+    let t = if e < -23 {
+        0
+    } else if e < 0 {
+        m >> -e
+    } else {
+        m << e
+    };
+    if y >> 31 != 0 {
+        -t
+    } else {
+        t
+    }
+}
+
+/// `v.clamp(-2.0, 2.0)` for a finite `v`; without an FPU by the bits (float compares
+/// are library calls).
+#[inline(always)]
+pub(crate) fn clamp2(v: f32) -> f32 {
+    clamp2_as(v, crate::num::SOFT_FLOAT)
+}
+
+/// [`clamp2`], by the bits when `soft`.
+#[inline(always)]
+fn clamp2_as(v: f32, soft: bool) -> f32 {
+    let bits = v.to_bits();
+    if !soft {
+        v.clamp(-2.0, 2.0)
+    } else if bits & 0x7fff_ffff > 0x4000_0000 {
+        f32::from_bits(bits & 0x8000_0000 | 0x4000_0000)
+    } else {
+        v
+    }
+}
+
+/// `0.5 · v`; without an FPU, for a normal result, by the exponent (a soft-float
+/// multiply is some 50 instructions).
+#[inline(always)]
+fn half(v: f32) -> f32 {
+    half_as(v, crate::num::SOFT_FLOAT)
+}
+
+/// [`half`], by the exponent when `soft`.
+#[inline(always)]
+fn half_as(v: f32, soft: bool) -> f32 {
+    let bits = v.to_bits();
+    if !soft {
+        0.5 * v
+    } else if (bits >> 23 & 0xff).wrapping_sub(2) < 253 {
+        // Exponent fields 2 to 254: v / 2 is normal, and exact.
+        f32::from_bits(bits - (1 << 23))
+    } else {
+        // (Opaque: else the multiply is made on both paths, the choice after it.)
+        0.5 * core::hint::black_box(v)
+    }
 }
 
 /// Sine and cosine of `x` radians, to about 1e-7 absolute error for |x| ≤ 10⁴.
@@ -377,6 +508,118 @@ mod tests {
                 m.m[i / 4][i % 4] = v;
                 assert_eq!(m.is_finite(), want, "{v} at {i}");
             }
+        }
+    }
+
+    #[test]
+    fn the_sparse_product_is_the_full_one_bit_for_bit() {
+        // Zeros of both signs, infinities, NaN, subnormals and values whose products
+        // cancel, overflow or underflow.
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            1e-45,
+            -3e38,
+            3e38,
+            1e-30,
+            0.1,
+        ];
+        let mut next = crate::testing::xorshift64(0x9e37_79b9_7f4a_7c15);
+        let mut pick = || {
+            let r = next();
+            if r.is_multiple_of(3) {
+                f32::from_bits((r >> 32) as u32)
+            } else {
+                special[(r >> 8) as usize % special.len()]
+            }
+        };
+        for n in 0..100_000u32 {
+            let (mut a, mut b) = (Mat4::IDENTITY, Mat4::IDENTITY);
+            a.m.as_flattened_mut().iter_mut().for_each(|v| *v = pick());
+            b.m.as_flattened_mut().iter_mut().for_each(|v| *v = pick());
+            // Every other pair finite (every zero's products left out).
+            if n.is_multiple_of(2) {
+                for v in
+                    a.m.as_flattened_mut()
+                        .iter_mut()
+                        .chain(b.m.as_flattened_mut())
+                {
+                    if !v.is_finite() {
+                        *v = if v.is_nan() { 0.0 } else { -0.0 };
+                    }
+                }
+            }
+            let got = mul_sparse(&a, &b);
+            for (i, got) in got.m.iter().enumerate() {
+                for (j, &got) in got.iter().enumerate() {
+                    let want = row_times_column(&a.m[i], &b, j);
+                    assert!(
+                        want.to_bits() == got.to_bits() || want.is_nan() && got.is_nan(),
+                        "{a:?} {b:?} {i} {j}: {want:?} vs {got:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn round_q15_and_clamp2_are_the_float_ones() {
+        let mut next = crate::testing::xorshift64(0x0bad_cafe_f00d_d00d);
+        let special = [
+            0.0,
+            -0.0,
+            1e-45,
+            -1e-38,
+            1.17e-38,
+            0.5 / 32768.0,
+            -1.5 / 32768.0,
+        ];
+        let more = [
+            1.0, -1.0, 2.0, -2.0, 2.0000002, -2.0000002, 0.2, 0.8, 32767.998,
+        ];
+        let random = (0..200_000).map(|_| f32::from_bits(next() as u32));
+        let values = special.into_iter().chain(more).chain(random);
+        for v in values.filter(|v| v.abs() < 32768.0) {
+            let want = crate::num::round_f32(v * 32768.0);
+            assert_eq!((round_q15_as(v, true), round_q15(v)), (want, want), "{v:e}");
+            let want = v.clamp(-2.0, 2.0).to_bits();
+            assert_eq!(clamp2_as(v, true).to_bits(), want, "{v:e}");
+        }
+        for v in [1e10f32, -3e38, f32::MAX, f32::INFINITY, f32::NAN] {
+            assert_eq!(finite_as(v, true), v.is_finite(), "{v:e}");
+            if v.is_finite() {
+                assert_eq!(clamp2_as(v, true).to_bits(), v.clamp(-2.0, 2.0).to_bits());
+            }
+        }
+    }
+
+    #[test]
+    fn half_is_the_product_by_a_half() {
+        let mut next = crate::testing::xorshift64(0x1234_5678_9abc_def1);
+        let special = [
+            0.0,
+            -0.0,
+            1e-45,
+            -1e-38,
+            2.4e-38,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NAN,
+        ];
+        let values = special
+            .into_iter()
+            .chain((0..100_000).map(|_| f32::from_bits(next() as u32)));
+        for v in values {
+            let (want, got) = (0.5 * v, half_as(v, true));
+            assert!(
+                want.to_bits() == got.to_bits() || want.is_nan() && got.is_nan(),
+                "{v:e}"
+            );
         }
     }
 

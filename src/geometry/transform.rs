@@ -200,10 +200,11 @@ impl FixedTransform {
         // coefficients carry the mesh scale; the translation column does not.
         // Entry i of the matrix is row i / 4, column i % 4 (one loop each: their
         // bodies once in the code).
-        let m = mvp.m.as_flattened();
-        let value = |i: usize| Exact::product(m[i], if i % 4 < 3 { scale } else { 1.0 });
+        let (m, scale) = (mvp.m.as_flattened(), Exact::of(scale));
         // Limits by pair of rows (x and y; z and w) and column (coefficient, translation).
-        let limit = |i: usize, table: [[u64; 2]; 2]| table[i / 8][usize::from(i % 4 == 3)];
+        fn limit<T: Copy>(i: usize, table: [[T; 2]; 2]) -> T {
+            table[i / 8][usize::from(i % 4 == 3)]
+        }
         // Each pair of rows takes the largest power of two k that keeps all its values
         // within their limits: the least of each value's own.
         let mut k = [1000; 2];
@@ -213,8 +214,13 @@ impl FixedTransform {
             if !finite(m[i]) {
                 return Err(Error::NotFinite);
             }
-            *v = value(i);
-            k[i / 8] = k[i / 8].min(v.largest_fit(limit(i, FIT_LIMITS)));
+            let a = Exact::of(m[i]);
+            // A zero stays zero: it bounds no k and rounds to 0 (camera matrices are
+            // mostly zeros).
+            if a.m != 0 {
+                *v = if i % 4 < 3 { a.times(scale) } else { a };
+                k[i / 8] = k[i / 8].min(v.largest_fit(limit(i, FIT_LIMITS), limit(i, FIT_ZEROS)));
+            }
         }
         // Only zero values leave k at 1000 (any other fits below 2^400).
         if k[1] == 1000 {
@@ -308,25 +314,30 @@ impl Exact {
         }
     }
 
-    /// `a · b` for finite `a`, `b`, exactly.
-    #[inline(never)]
-    fn product(a: f32, b: f32) -> Exact {
-        let (a, b) = (Exact::of(a), Exact::of(b));
+    /// `self · o`, exactly.
+    fn times(self, o: Exact) -> Exact {
         Exact {
-            m: a.m * b.m,
-            e: a.e + b.e,
+            m: self.m * o.m,
+            e: self.e + o.e,
         }
     }
 
     /// The largest k in ±1000 with |self|·2^k ≤ lim (1000 for zero), for
-    /// 0 < lim < 2⁶³.
-    fn largest_fit(self, lim: u64) -> i32 {
+    /// 0 < lim < 2⁶³ with `lim_zeros` leading zeros.
+    fn largest_fit(self, lim: u64, lim_zeros: u32) -> i32 {
         let m = self.m.unsigned_abs();
         if m == 0 {
             return 1000;
         }
-        // m·2^s has lim's top bit; one less when that is still above lim.
-        let s = m.leading_zeros() as i32 - lim.leading_zeros() as i32;
+        // m·2^s has lim's top bit; one less when that is still above lim. Leading zeros
+        // of 32-bit halves: one library call without CLZ (ARMv6-M), not two.
+        let hi = (m >> 32) as u32;
+        let zeros = if hi != 0 {
+            hi.leading_zeros()
+        } else {
+            32 + (m as u32).leading_zeros()
+        };
+        let s = zeros as i32 - lim_zeros as i32;
         let over = if s >= 0 { m << s > lim } else { m > lim << -s };
         (s - i32::from(over) - self.e).clamp(-1000, 1000)
     }
@@ -360,6 +371,15 @@ impl Exact {
 /// The limits of [`FixedTransform`]'s values when fitting the scale: x and y rows'
 /// coefficients and translations, then z and w rows'.
 const FIT_LIMITS: [[u64; 2]; 2] = [[16383, 1 << 29], [(1 << 27) - (1 << 14), 1 << 43]];
+
+/// The leading zeros of each of [`FIT_LIMITS`].
+const FIT_ZEROS: [[u32; 2]; 2] = {
+    let [[a, b], [c, d]] = FIT_LIMITS;
+    [
+        [a.leading_zeros(), b.leading_zeros()],
+        [c.leading_zeros(), d.leading_zeros()],
+    ]
+};
 
 /// The clamps of [`FixedTransform`]'s values once scaled, ordered as [`FIT_LIMITS`].
 const ROUND_LIMITS: [[u64; 2]; 2] = [[16383, 1 << 29], [1 << 27, 1 << 43]];

@@ -35,7 +35,7 @@ use crate::fill::{clip_of, depth_runs, fill_flat_buffered, shade_triangle, FlatT
 use crate::geometry::clip::{clip_polygon, clip_segment, ClipPolygon, ClipVertex};
 use crate::geometry::project::{outcode_of, to_f32, ScreenMap, W_SHIFT_HINT};
 use crate::geometry::transform::FixedTransform;
-use crate::math::Vec3;
+use crate::math::{clamp2, round_q15, Vec3};
 use crate::mesh::{face_normal, Faces, Mesh, NORMAL_ONE};
 /// Defined beside the set-up kernel that reads its entries in place.
 pub use crate::num::kernel::CachedVertex;
@@ -332,8 +332,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
         let mvp = xf.model_view_projection();
         let fixed = FixedTransform::new(&mvp, mesh.scale)?;
         if !(options.light.direction.is_finite()
-            && options.light.ambient.is_finite()
-            && options.light.diffuse.is_finite())
+            && crate::math::finite(options.light.ambient)
+            && crate::math::finite(options.light.diffuse))
         {
             return Err(Error::NotFinite);
         }
@@ -348,14 +348,9 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             options,
             light_model,
             light_q: (
-                [light_model.x, light_model.y, light_model.z]
-                    .map(|c| crate::num::round_f32(c * 32768.0)),
-                i64::from(crate::num::round_f32(
-                    options.light.ambient.clamp(-2.0, 2.0) * 32768.0,
-                )),
-                i64::from(crate::num::round_f32(
-                    options.light.diffuse.clamp(-2.0, 2.0) * 32768.0,
-                )) << LAMBERT_SCALE,
+                [light_model.x, light_model.y, light_model.z].map(round_q15),
+                i64::from(round_q15(clamp2(options.light.ambient))),
+                i64::from(round_q15(clamp2(options.light.diffuse))) << LAMBERT_SCALE,
             ),
             cache: None,
             placed: false,
