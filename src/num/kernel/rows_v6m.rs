@@ -1088,7 +1088,7 @@ macro_rules! bw_recip_first {
 /// one, for d ≥ 2⁸ after one Newton step; 1 when exact); r0–r3, r5 and r12 scratch.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! bw_quot {
-    () => {
+    (carry) => {
         concat!(
             "asrs r0, r5, #31\n",
             "mov r12, r0\n",
@@ -1108,6 +1108,39 @@ macro_rules! bw_quot {
             "lsls r1, r1, #16\n",
             "adds r7, r7, r1\n",
             "1:\n",
+            "lsls r1, r0, #16\n",
+            "lsrs r0, r0, #16\n",
+            "adds r2, r2, r1\n",
+            "adcs r7, r0\n",
+            "movs r0, r7\n",
+            "muls r0, r4\n",
+            "subs r5, r5, r0\n",
+            "2:\n",
+            "subs r5, r5, r4\n",
+            "blo 3f\n",
+            "adds r7, #1\n",
+            "b 2b\n",
+            "3:\n",
+            "mov r0, r12\n",
+            "eors r7, r0",
+        )
+    };
+    // d ≥ 2⁸: x < 2²⁴, so xh·nl < 2²⁴ and nh·xl < 2³¹ (|n| < 2³¹): their sum carries not.
+    () => {
+        concat!(
+            "asrs r0, r5, #31\n",
+            "mov r12, r0\n",
+            "eors r5, r0\n",
+            "lsrs r0, r6, #16\n",
+            "lsrs r1, r5, #16\n",
+            "uxth r2, r6\n",
+            "uxth r3, r5\n",
+            "movs r7, r0\n",
+            "muls r7, r1\n",
+            "muls r0, r3\n",
+            "muls r1, r2\n",
+            "muls r2, r3\n",
+            "adds r0, r0, r1\n",
             "lsls r1, r0, #16\n",
             "lsrs r0, r0, #16\n",
             "adds r2, r2, r1\n",
@@ -1637,7 +1670,12 @@ core::arch::global_asm!(
     "beq 1f",
     "ldrb r5, [r7, r5]",
     bw_recip_first!(),
-    "b 2f",
+    "ldr r5, [sp]",
+    bw_quot!(),
+    "str r7, [sp]",
+    "ldr r5, [sp, #4]",
+    bw_quot!(),
+    "b 4f",
     // d < 2⁸ only: the first step leaves up to 2¹³ to fix up in a quotient, so a second
     // step makes x exact (e under 2¹⁷, two products of 32 bits, `recip32_small`).
     "1:",
@@ -1655,12 +1693,12 @@ core::arch::global_asm!(
     "adds r0, r0, r1",
     "lsrs r0, r0, #16",
     "adds r6, r6, r0",
-    "2:",
     "ldr r5, [sp]",
-    bw_quot!(),
+    bw_quot!(carry),
     "str r7, [sp]",
     "ldr r5, [sp, #4]",
-    bw_quot!(),
+    bw_quot!(carry),
+    "4:",
     // q in r0, r in r1: sx = 16q in r11, sy = 16r at [sp, #60] (after the first corner
     // given is read from there).
     "movs r1, r7",
@@ -2088,13 +2126,15 @@ mod tests {
     /// The quotients' fix-up loop after one Newton step (d ≥ 2⁸): x is at most 2³²/d,
     /// so the guess ⌊n·x/2³²⌋ is at most ⌊n/d⌋, and short of it by under
     /// n·(2³² − d·x)/(d·2³²) + 1 < (2³² − d·x)/(2d) + 1 ≤ 34 for n < 2³¹: at most 33
-    /// steps, whatever the triangle.
+    /// steps, whatever the triangle; and x < 2²⁴.
     #[test]
     fn box_walk_first_step_reciprocal_needs_few_fix_ups() {
         for d in 1u32 << 8..1 << 16 {
             let x = recip_first_step(d);
             let e = (1u64 << 32) - u64::from(d) * u64::from(x);
             assert!(u64::from(d) * u64::from(x) < 1 << 32, "d = {d}");
+            // x < 2²⁴: the quotients' middle products sum without a carry (`bw_quot`).
+            assert!(x < 1 << 24, "d = {d}");
             assert!(e < 66 * u64::from(d), "d = {d}: e = {e}");
             for n in [(1u32 << 31) - 1, (1 << 31) - d, 1 << 30] {
                 let guess = (u64::from(n) * u64::from(x) >> 32) as u32;
