@@ -1084,8 +1084,9 @@ macro_rules! bw_recip_first {
 /// `zraster_small_walk_v6m`'s quotient, inline (twice): r7 = ⌊r5/r4⌋ (signed r5,
 /// 0 < r4 < 2¹⁶) given r6 ≤ 2³²/r4, as `num::armv6m::divrem_by_recip` of |r5| flipped
 /// (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products, then fixed up
-/// by the remainder, a step a loop (at most 33 steps: x's e = 2³² − d·x over 2d, plus
-/// one, for d ≥ 2⁸ after one Newton step; 1 when exact); r0–r3, r5 and r12 scratch.
+/// by the remainder, a step a loop (at most 34 steps for d ≥ 2⁸ after one Newton
+/// step, three products: see `box_walk_first_step_reciprocal_needs_few_fix_ups`; 1 for
+/// d < 2⁸, x exact, four products); r0–r3, r5 and r12 scratch.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! bw_quot {
     (carry) => {
@@ -1125,7 +1126,8 @@ macro_rules! bw_quot {
             "eors r7, r0",
         )
     };
-    // d ≥ 2⁸: x < 2²⁴, so xh·nl < 2²⁴ and nh·xl < 2³¹ (|n| < 2³¹): their sum carries not.
+    // d ≥ 2⁸: x < 2²⁴, so xh·nl < 2²⁴ and nh·xl < 2³¹ (|n| < 2³¹): their sum carries
+    // not; the low product xl·nl is left out (the guess is then at most 1 lower).
     () => {
         concat!(
             "asrs r0, r5, #31\n",
@@ -1139,12 +1141,9 @@ macro_rules! bw_quot {
             "muls r7, r1\n",
             "muls r0, r3\n",
             "muls r1, r2\n",
-            "muls r2, r3\n",
             "adds r0, r0, r1\n",
-            "lsls r1, r0, #16\n",
             "lsrs r0, r0, #16\n",
-            "adds r2, r2, r1\n",
-            "adcs r7, r0\n",
+            "adds r7, r7, r0\n",
             "movs r0, r7\n",
             "muls r0, r4\n",
             "subs r5, r5, r0\n",
@@ -2124,9 +2123,10 @@ mod tests {
     }
 
     /// The quotients' fix-up loop after one Newton step (d ≥ 2⁸): x is at most 2³²/d,
-    /// so the guess ⌊n·x/2³²⌋ is at most ⌊n/d⌋, and short of it by under
-    /// n·(2³² − d·x)/(d·2³²) + 1 < (2³² − d·x)/(2d) + 1 ≤ 34 for n < 2³¹: at most 33
-    /// steps, whatever the triangle; and x < 2²⁴.
+    /// so ⌊n·x/2³²⌋ is at most ⌊n/d⌋, and short of it by under
+    /// n·(2³² − d·x)/(d·2³²) + 1 < (2³² − d·x)/(2d) + 1 ≤ 34 for n < 2³¹, and the
+    /// guess without the low product at most 1 short of that: at most 34 steps,
+    /// whatever the triangle; and x < 2²⁴.
     #[test]
     fn box_walk_first_step_reciprocal_needs_few_fix_ups() {
         for d in 1u32 << 8..1 << 16 {
@@ -2137,8 +2137,10 @@ mod tests {
             assert!(x < 1 << 24, "d = {d}");
             assert!(e < 66 * u64::from(d), "d = {d}: e = {e}");
             for n in [(1u32 << 31) - 1, (1 << 31) - d, 1 << 30] {
-                let guess = (u64::from(n) * u64::from(x) >> 32) as u32;
-                assert!(guess <= n / d && n / d - guess <= 33, "d = {d}, n = {n}");
+                // As `bw_quot` works it out for d ≥ 2⁸: three products, the low one dropped.
+                let (xh, xl, nh, nl) = (x >> 16, x & 0xffff, n >> 16, n & 0xffff);
+                let guess = xh * nh + ((xh * nl + nh * xl) >> 16);
+                assert!(guess <= n / d && n / d - guess <= 34, "d = {d}, n = {n}");
             }
         }
     }
