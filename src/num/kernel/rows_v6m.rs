@@ -1050,13 +1050,46 @@ extern "C" {
     ) -> u32;
 }
 
+/// `zraster_small_walk_v6m`'s reciprocal guess and first Newton step, inline (on
+/// either side of its leading-zeros branch): r6 = x, below 2³²/d (d in r4, s in r5,
+/// the table's 16 bits t, x = t·2^(s + 1) to start): e = 2³² − 2·dn·t (dn·t < 2³¹),
+/// then x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s); t·⌊e/2⁷⌋ < 2³² (see
+/// `recip_first_step`). r0 and r7 scratch.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! bw_recip_first {
+    () => {
+        concat!(
+            "movs r6, r4\n",
+            "lsls r6, r5\n",
+            "movs r0, r6\n",
+            "lsrs r6, r6, #6\n",
+            "lsls r6, r6, #1\n",
+            "ldr r7, .Lbw_recip16\n",
+            "ldrh r6, [r7, r6]\n",
+            "muls r0, r6\n",
+            "lsls r0, r0, #1\n",
+            "rsbs r0, r0, #0\n",
+            "lsrs r0, r0, #7\n",
+            "muls r0, r6\n",
+            "lsrs r0, r0, #9\n",
+            "lsls r6, r6, #16\n",
+            "adds r6, r6, r0\n",
+            "movs r7, #15\n",
+            "subs r7, r7, r5\n",
+            "lsrs r6, r7",
+        )
+    };
+}
+
 /// `zraster_small_walk_v6m`'s quotient, inline (twice): r7 = ⌊r5/r4⌋ (signed r5,
-/// 0 < r4 < 2¹⁶) given r6 = ⌊(2³² − 1)/r4⌋, as `num::armv6m::divrem_by_recip` of |r5|
-/// flipped (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products, then
-/// fixed up by the remainder; r0–r3, r5 and r12 scratch.
+/// 0 < r4 < 2¹⁶) given r6 ≤ 2³²/r4, as `num::armv6m::divrem_by_recip` of |r5| flipped
+/// (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products, then fixed up
+/// by the remainder, a step a loop (at most 34 steps for d ≥ 2⁸ after one Newton
+/// step, three products: see `box_walk_first_step_reciprocal_needs_few_fix_ups`; 1 for
+/// d < 2⁸, x exact, four products); r0–r3, r5 and r12 scratch.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! bw_quot {
-    () => {
+    (carry) => {
         concat!(
             "asrs r0, r5, #31\n",
             "mov r12, r0\n",
@@ -1084,10 +1117,40 @@ macro_rules! bw_quot {
             "muls r0, r4\n",
             "subs r5, r5, r0\n",
             "2:\n",
-            "cmp r5, r4\n",
+            "subs r5, r5, r4\n",
             "blo 3f\n",
             "adds r7, #1\n",
+            "b 2b\n",
+            "3:\n",
+            "mov r0, r12\n",
+            "eors r7, r0",
+        )
+    };
+    // d ≥ 2⁸: x < 2²⁴, so xh·nl < 2²⁴ and nh·xl < 2³¹ (|n| < 2³¹): their sum carries
+    // not; the low product xl·nl is left out (the guess is then at most 1 lower).
+    () => {
+        concat!(
+            "asrs r0, r5, #31\n",
+            "mov r12, r0\n",
+            "eors r5, r0\n",
+            "lsrs r0, r6, #16\n",
+            "lsrs r1, r5, #16\n",
+            "uxth r2, r6\n",
+            "uxth r3, r5\n",
+            "movs r7, r0\n",
+            "muls r7, r1\n",
+            "muls r0, r3\n",
+            "muls r1, r2\n",
+            "adds r0, r0, r1\n",
+            "lsrs r0, r0, #16\n",
+            "adds r7, r7, r0\n",
+            "movs r0, r7\n",
+            "muls r0, r4\n",
+            "subs r5, r5, r0\n",
+            "2:\n",
             "subs r5, r5, r4\n",
+            "blo 3f\n",
+            "adds r7, #1\n",
             "b 2b\n",
             "3:\n",
             "mov r0, r12\n",
@@ -1590,9 +1653,10 @@ core::arch::global_asm!(
     "bhs .Lbw_refuse",
     // The steps ⌊−16a/|area|⌋, ⌊−16b/|area|⌋ (the area is negative), as
     // `num::floor_div32_pair_small`: the numerators at [sp] and [sp, #4], then
-    // x = ⌊(2³² − 1)/d⌋ in r6 (d = |area| in r4) as `num::armv6m::recip32_small`:
-    // d normalised to [2¹⁵, 2¹⁶) by s (its leading zeros, from a byte table), a guess
-    // from the reciprocal table, two Newton steps (exact for every d: no fix-up).
+    // x ≤ 2³²/d in r6 (d = |area| in r4) as `num::armv6m::recip32_small`: d normalised
+    // to [2¹⁵, 2¹⁶) by s (its leading zeros, from a byte table), a guess from the
+    // reciprocal table, one Newton step (a few fix-ups a quotient are cheaper than the
+    // second step's 11 instructions), two for d < 2⁸ (then exact).
     "lsls r0, r4, #4",
     "rsbs r0, r0, #0",
     "str r0, [sp]",
@@ -1604,32 +1668,19 @@ core::arch::global_asm!(
     "lsrs r5, r4, #8",
     "beq 1f",
     "ldrb r5, [r7, r5]",
-    "b 2f",
+    bw_recip_first!(),
+    "ldr r5, [sp]",
+    bw_quot!(),
+    "str r7, [sp]",
+    "ldr r5, [sp, #4]",
+    bw_quot!(),
+    "b 4f",
+    // d < 2⁸ only: the first step leaves up to 2¹³ to fix up in a quotient, so a second
+    // step makes x exact (e under 2¹⁷, two products of 32 bits, `recip32_small`).
     "1:",
     "ldrb r5, [r7, r4]",
     "adds r5, #8",
-    "2:",
-    "movs r6, r4",
-    "lsls r6, r5",
-    "movs r0, r6",
-    "lsrs r6, r6, #6",
-    "lsls r6, r6, #1",
-    "ldr r7, .Lbw_recip16",
-    "ldrh r6, [r7, r6]",
-    // The first Newton step on t, the table's 16 bits (x = t·2^(s + 1)): e = 2³² −
-    // 2·dn·t (dn·t < 2³¹), then x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s), below
-    // 2³²/d; t·⌊e/2⁷⌋ < 2³² (see `recip_first_step`).
-    "muls r0, r6",
-    "lsls r0, r0, #1",
-    "rsbs r0, r0, #0",
-    "lsrs r0, r0, #7",
-    "muls r0, r6",
-    "lsrs r0, r0, #9",
-    "lsls r6, r6, #16",
-    "adds r6, r6, r0",
-    "movs r7, #15",
-    "subs r7, r7, r5",
-    "lsrs r6, r7",
+    bw_recip_first!(),
     "movs r5, r4",
     "muls r5, r6",
     "rsbs r5, r5, #0",
@@ -1642,10 +1693,11 @@ core::arch::global_asm!(
     "lsrs r0, r0, #16",
     "adds r6, r6, r0",
     "ldr r5, [sp]",
-    bw_quot!(),
+    bw_quot!(carry),
     "str r7, [sp]",
     "ldr r5, [sp, #4]",
-    bw_quot!(),
+    bw_quot!(carry),
+    "4:",
     // q in r0, r in r1: sx = 16q in r11, sy = 16r at [sp, #60] (after the first corner
     // given is read from there).
     "movs r1, r7",
@@ -2058,6 +2110,40 @@ fn check_small_walk(seed: &mut u32, mine: &mut [u16], twin: &mut [u16]) -> usize
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The box walk's reciprocal after one Newton step, as its assembly works it out
+    /// (`bw_recip_first`): d normalised to dn = d·2^s in [2¹⁵, 2¹⁶), the table's guess
+    /// t, then x = (t·2¹⁶ + ⌊t·⌊e/2⁷⌋/2⁹⌋) >> (15 − s) with e = 2³² − 2·dn·t.
+    fn recip_first_step(d: u32) -> u32 {
+        let s = d.leading_zeros() - 16;
+        let dn = d << s;
+        let t = u32::from(crate::num::armv6m::RECIP16[((dn >> 6) & 0x1ff) as usize]);
+        let e = (2 * dn * t).wrapping_neg();
+        ((t << 16) + ((t * (e >> 7)) >> 9)) >> (15 - s)
+    }
+
+    /// The quotients' fix-up loop after one Newton step (d ≥ 2⁸): x is at most 2³²/d,
+    /// so ⌊n·x/2³²⌋ is at most ⌊n/d⌋, and short of it by under
+    /// n·(2³² − d·x)/(d·2³²) + 1 < (2³² − d·x)/(2d) + 1 ≤ 34 for n < 2³¹, and the
+    /// guess without the low product at most 1 short of that: at most 34 steps,
+    /// whatever the triangle; and x < 2²⁴.
+    #[test]
+    fn box_walk_first_step_reciprocal_needs_few_fix_ups() {
+        for d in 1u32 << 8..1 << 16 {
+            let x = recip_first_step(d);
+            let e = (1u64 << 32) - u64::from(d) * u64::from(x);
+            assert!(u64::from(d) * u64::from(x) < 1 << 32, "d = {d}");
+            // x < 2²⁴: the quotients' middle products sum without a carry (`bw_quot`).
+            assert!(x < 1 << 24, "d = {d}");
+            assert!(e < 66 * u64::from(d), "d = {d}: e = {e}");
+            for n in [(1u32 << 31) - 1, (1 << 31) - d, 1 << 30] {
+                // As `bw_quot` works it out for d ≥ 2⁸: three products, the low one dropped.
+                let (xh, xl, nh, nl) = (x >> 16, x & 0xffff, n >> 16, n & 0xffff);
+                let guess = xh * nh + ((xh * nl + nh * xl) >> 16);
+                assert!(guess <= n / d && n / d - guess <= 34, "d = {d}, n = {n}");
+            }
+        }
+    }
 
     #[test]
     fn rows_walk_kernel_matches_its_twin() {
