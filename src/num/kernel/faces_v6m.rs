@@ -101,8 +101,8 @@ macro_rules! v6m_round {
     };
 }
 
-/// The set-up block's fields the loop writes and reads (`RowsWalk`'s `color` and
-/// `failed`, pinned in `rows_v6m`).
+/// The set-up block's fields the loop writes and reads (`SmallWalk`'s `color` and
+/// `failed`, pinned at these offsets in `rows_v6m`).
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 const WALK_COLOR: usize = 12;
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
@@ -725,8 +725,8 @@ pub(crate) fn faces_less_v6m<'a, C: Copy>(
     }
 }
 
-/// [`faces_less_v6m`] on ARMv6-M, a call of the `back` loop covering at most `chunk`
-/// faces (`FLUSH`; the check's fewer test its resumption). Out of line (it runs once
+/// [`faces_less_v6m`] on ARMv6-M; `chunk`: the most faces a call of the `back` loop
+/// covers (`FLUSH`; the check's fewer test its resumption), ignored by the checked loops. Out of line (it runs once
 /// for a run of faces): its block is not stacked on the caller's frame.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 #[inline(never)]

@@ -418,13 +418,13 @@ pub(crate) fn small_walk_cached_as_u16<C: Copy>(
 /// Colour and depth rows of the same geometry (`width` pixels a row from screen row
 /// `first_row`), and the pixels drawing may touch (`clip`); on ARMv6-M with the fields
 /// of the set-up's block that stay the same for these buffers, written once here
-/// rather than a triangle (the depth address, the colour's offset from it, the pitch,
-/// the clip and first row, as [`Buffers::start`] found them).
+/// rather than a triangle (`SmallWalk`'s depth address of row 0, the colour's offset
+/// from it, the pitch and the clip, as [`Buffers::start`] found them).
 ///
 /// The buffers are private and handed out only as reborrows, so that the block's
 /// addresses stay theirs while it lives: [`walk_cached`](Buffers::walk_cached) relies
-/// on it. `width`, `first_row` and `clip` are the Rust paths' copies (the block has its
-/// own, checked against the buffers).
+/// on it. `width`, `first_row` and `clip` are the Rust paths' copies (the block holds the
+/// clip and, folded into its row-0 address and pitch, the width and first row).
 pub(crate) struct Buffers<'z, 'c, C> {
     zdata: &'z mut [u16],
     cdata: &'c mut [C],
@@ -633,8 +633,8 @@ struct BoxWalk {
 }
 
 /// [`BoxWalk`] for the small triangle `tri` in `clip`, or what to do instead: the same
-/// refusals, in the same order, as [`small_walk_setup`] (the DDA's set-up), so that the
-/// two take the same triangles.
+/// refusals, in the same order, as `small_walk_setup` (the DDA's set-up, the tests'
+/// reference), so that the two take the same triangles.
 fn box_walk_setup(tri: [&ScreenVertex; 3], clip: &Clip) -> Result<BoxWalk, SmallDone> {
     let [p0, p1, p2] = tri;
     let (ymin, ymax) = (
@@ -1083,10 +1083,10 @@ macro_rules! bw_recip_first {
 
 /// `zraster_small_walk_v6m`'s quotient, inline (twice): r7 = ⌊r5/r4⌋ (signed r5,
 /// 0 < r4 < 2¹⁶) given r6 ≤ 2³²/r4, as `num::armv6m::divrem_by_recip` of |r5| flipped
-/// (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from four 16 × 16-bit products, then fixed up
-/// by the remainder, a step a loop (at most 34 steps for d ≥ 2⁸ after one Newton
-/// step, three products: see `box_walk_first_step_reciprocal_needs_few_fix_ups`; 1 for
-/// d < 2⁸, x exact, four products); r0–r3, r5 and r12 scratch.
+/// (⌊n/d⌋ = !⌊!n/d⌋): r7 = ⌊r6·r5/2³²⌋ from 16 × 16-bit products (three for d ≥ 2⁸, four
+/// below), then fixed up by the remainder, a step a loop (at most 34 steps for d ≥ 2⁸
+/// after one Newton step: see `box_walk_first_step_reciprocal_needs_few_fix_ups`; 1 for
+/// d < 2⁸, x exact); r0–r3, r5 and r12 scratch.
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 macro_rules! bw_quot {
     (carry) => {
@@ -1202,8 +1202,6 @@ core::arch::global_asm!(
     "mov r6, r10",
     "mov r7, r11",
     "push {{r4, r5, r6, r7}}",
-    // zraster_small_walk_v6m joins here, its frame the same.
-    ".Lzraster_rows_walk_body:",
     "mov r8, r1",
     "mov r9, r2",
     "ldr r6, [r0, #36]",
@@ -1620,7 +1618,7 @@ core::arch::global_asm!(
     "adds r7, r7, r2",
     "str r7, [sp, #40]",
     // The numerators exact in 32 bits: (⌊(hi − lo)/2¹⁵⌋ + 1)·max(width, height) below
-    // 2¹⁹, else the general path (see `small_walk_setup`).
+    // 2¹⁹, else the general path (see `box_walk_setup`).
     "lsrs r1, r1, #15",
     "adds r1, #1",
     "ldr r3, [sp, #64]",
@@ -2245,8 +2243,8 @@ mod tests {
         );
     }
 
-    /// What the set-up hands the rows loop keeps every row's columns inside the clip's
-    /// (the loop does not clip): random small triangles near and across the edges of
+    /// The tests' DDA reference (`small_walk_setup`) keeps every row's columns inside the
+    /// clip's, as the DDA rows loop needs (it does not clip): random small triangles near and across the edges of
     /// random clips, each taken one checked.
     #[test]
     fn small_walk_setup_keeps_rows_inside_the_clip() {
