@@ -295,23 +295,25 @@ fn row_times_column(a: &[f32; 4], o: &Mat4, j: usize) -> f32 {
 #[inline(always)]
 fn mul_sparse(a: &Mat4, b: &Mat4) -> Mat4 {
     let (a, b) = (a.m.as_flattened(), b.m.as_flattened());
-    let mut r = Mat4 { m: [[-0.0; 4]; 4] };
-    let sums = r.m.as_flattened_mut();
-    // Product i: row i / 16 of a, term k = i / 4 % 4, column j = i % 4 of b (each sum
-    // takes its terms in order of k).
-    for i in 0..64 {
-        let (x, y) = (a[i / 4], b[i % 16]);
-        let sum = &mut sums[i / 16 * 4 + i % 4];
-        let (bx, by) = (x.to_bits(), y.to_bits());
-        // Magnitudes' bits: 0 for a zero, below 0xff00_0000 when finite.
-        let (mx, my) = (bx << 1, by << 1);
-        if mx.min(my) == 0 && mx.max(my) < 0xff00_0000 {
-            if sum.to_bits() == 1 << 31 {
-                *sum = f32::from_bits((bx ^ by) & 1 << 31);
+    let mut r = Mat4 { m: [[0.0; 4]; 4] };
+    // Sum s: row s / 4 of a by column s % 4 of b, its 4 terms in order of k (the sum
+    // stays in a register across them).
+    for (s, out) in r.m.as_flattened_mut().iter_mut().enumerate() {
+        let mut sum = -0.0f32;
+        for k in 0..4 {
+            let (x, y) = (a[s / 4 * 4 + k], b[k * 4 + s % 4]);
+            let (bx, by) = (x.to_bits(), y.to_bits());
+            // Magnitudes' bits: 0 for a zero, below 0xff00_0000 when finite.
+            let (mx, my) = (bx << 1, by << 1);
+            if mx.min(my) == 0 && mx.max(my) < 0xff00_0000 {
+                if sum.to_bits() == 1 << 31 {
+                    sum = f32::from_bits((bx ^ by) & 1 << 31);
+                }
+            } else {
+                sum += x * y;
             }
-        } else {
-            *sum += x * y;
         }
+        *out = sum;
     }
     r
 }

@@ -313,6 +313,65 @@ fn lambert_q14_of(([lx, ly, lz], amb, diff): ([i32; 3], i64, i64), n: &[i16; 3])
     (amb as i32 + term).clamp(0, i32::from(u16::MAX)) as u16
 }
 
+/// Fills `cache` with the entries of `positions` (as many as it holds);
+/// whether it knows that none is marked (where a vertex kernel filled it).
+fn fill_cache(
+    fixed: &FixedTransform,
+    map: &ScreenMap,
+    positions: &[[i16; 3]],
+    cache: &mut [CachedVertex],
+) -> bool {
+    // The usual vertex by the vertex kernel (which only places), any other out of
+    // line (on ARMv6-M always: the loop below is not built there).
+    let mut placed = true;
+    let kernel = map.place_all(fixed, positions, cache, |p| {
+        let e = cache_entry(fixed, map, p);
+        placed &= !e.marked();
+        e
+    });
+    if kernel || crate::num::kernel::PLACE_V6M_KERNEL {
+        return crate::num::kernel::PLACE_V6M_KERNEL && kernel && placed;
+    }
+    // x86-64: the usual vertex four at a time in SSE2, any other out of line.
+    if PLACE4_KERNEL {
+        if let Some(block) = map.place_block(fixed) {
+            place_quads(&block, positions, cache, |p| cache_entry(fixed, map, p));
+            return false;
+        }
+    }
+    // w's bits beyond 31 at the previous vertex, for the next (project_fast).
+    let mut sh_hint = W_SHIFT_HINT;
+    for (p, slot) in positions.iter().zip(cache.iter_mut()) {
+        // The usual vertex (project_vertex's fast path) here, any other out of line.
+        let c = fixed.apply(p);
+        let usual = if !crate::num::INTEGER_PROJECTION {
+            map.project_float_inside(c.to_f32())
+        } else if crate::num::ARMV6M {
+            map.project_fast(&c, &mut sh_hint)
+        } else {
+            None
+        };
+        *slot = match usual.and_then(CachedVertex::placing) {
+            Some(entry) => entry,
+            None => cache_entry(fixed, map, p),
+        };
+    }
+    false
+}
+
+/// The cache entry of position `p`, out of line: [`Renderer::project_vertex`]'s without
+/// the fast path (for the vertices it does not place).
+#[inline(never)]
+fn cache_entry(fixed: &FixedTransform, map: &ScreenMap, p: &[i16; 3]) -> CachedVertex {
+    let c = fixed.apply(p);
+    let (code, screen) = if crate::num::INTEGER_PROJECTION {
+        map.project_exact(&c)
+    } else {
+        map.classify_float(c.to_f32())
+    };
+    CachedVertex::new(code, screen)
+}
+
 /// A fetched vertex: screen position if inside (code 0), and its light.
 #[derive(Clone, Copy)]
 pub(crate) struct Fetched {
@@ -328,6 +387,19 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     ///
     /// Errors: a NaN/∞ or degenerate transform, a mesh scale that is not finite.
     pub fn new(mesh: &Mesh<'m, M>, xf: &Camera, options: RenderOptions) -> Result<Self, Error> {
+        Self::build(mesh, xf, options, None)
+    }
+
+    /// [`new`](Renderer::new), and with `cache` [`with_cache`](Renderer::with_cache):
+    /// the renderer made in the place it is returned to (a move of the 300-byte renderer
+    /// is a copy), the cache filled before.
+    #[inline(never)]
+    fn build(
+        mesh: &Mesh<'m, M>,
+        xf: &Camera,
+        options: RenderOptions,
+        cache: Option<&'c mut [CachedVertex]>,
+    ) -> Result<Self, Error> {
         mesh.check_for(options.shading)?;
         let mvp = xf.model_view_projection();
         let fixed = FixedTransform::new(&mvp, mesh.scale)?;
@@ -341,10 +413,19 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
             .model
             .transpose_dir(options.light.direction.normalize())
             .normalize();
+        let map = ScreenMap::new(&xf.viewport);
+        let (cache, placed) = match cache {
+            Some(cache) => {
+                let cache = crate::error::prefix_mut(cache, mesh.positions.len())?;
+                let placed = fill_cache(&fixed, &map, mesh.positions, cache);
+                (Some(cache), placed)
+            }
+            None => (None, false),
+        };
         Ok(Renderer {
             mesh: *mesh,
             fixed,
-            map: ScreenMap::new(&xf.viewport),
+            map,
             options,
             light_model,
             light_q: (
@@ -352,8 +433,8 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
                 i64::from(round_q15(clamp2(options.light.ambient))),
                 i64::from(round_q15(clamp2(options.light.diffuse))) << LAMBERT_SCALE,
             ),
-            cache: None,
-            placed: false,
+            cache,
+            placed,
             stats: FrameStats::default(),
             counted: false,
             see_through: None,
@@ -366,66 +447,13 @@ impl<'m, 'c, M: Copy> Renderer<'m, 'c, M> {
     /// [`CachedVertex`] per mesh vertex, 8 bytes each).
     ///
     /// Errors: as [`new`](Renderer::new), and [`Error::BufferTooSmall`] for a short cache.
-    // Out of line on ARMv6-M: inlined into a caller (with the vertex loop out of line,
-    // it is small), its locals would join the caller's frame, under every draw.
-    #[cfg_attr(zraster_armv6m, inline(never))]
     pub fn with_cache(
         mesh: &Mesh<'m, M>,
         xf: &Camera,
         options: RenderOptions,
         cache: &'c mut [CachedVertex],
     ) -> Result<Self, Error> {
-        // Made in the place it is returned from (a move of the 300-byte renderer is a
-        // copy).
-        let mut made = Self::new(mesh, xf, options);
-        if let Ok(r) = &mut made {
-            let cache = crate::error::prefix_mut(cache, mesh.positions.len())?;
-            r.placed = r.fill_cache(cache);
-            r.cache = Some(cache);
-        }
-        made
-    }
-
-    /// Fills `cache` with the entries of the mesh's positions (as many as it holds);
-    /// whether it knows that none is marked (where a vertex kernel filled it).
-    fn fill_cache(&self, cache: &mut [CachedVertex]) -> bool {
-        let positions = self.mesh.positions;
-        // The usual vertex by the vertex kernel (which only places), any other out of
-        // line (on ARMv6-M always: the loop below is not built there).
-        let mut placed = true;
-        let kernel = self.map.place_all(&self.fixed, positions, cache, |p| {
-            let e = self.cache_entry(p);
-            placed &= !e.marked();
-            e
-        });
-        if kernel || crate::num::kernel::PLACE_V6M_KERNEL {
-            return crate::num::kernel::PLACE_V6M_KERNEL && kernel && placed;
-        }
-        // x86-64: the usual vertex four at a time in SSE2, any other out of line.
-        if PLACE4_KERNEL {
-            if let Some(block) = self.map.place_block(&self.fixed) {
-                place_quads(&block, positions, cache, |p| self.cache_entry(p));
-                return false;
-            }
-        }
-        // w's bits beyond 31 at the previous vertex, for the next (project_fast).
-        let mut sh_hint = W_SHIFT_HINT;
-        for (p, slot) in positions.iter().zip(cache.iter_mut()) {
-            // The usual vertex (project_vertex's fast path) here, any other out of line.
-            let c = self.fixed.apply(p);
-            let usual = if !crate::num::INTEGER_PROJECTION {
-                self.map.project_float_inside(c.to_f32())
-            } else if crate::num::ARMV6M {
-                self.map.project_fast(&c, &mut sh_hint)
-            } else {
-                None
-            };
-            *slot = match usual.and_then(CachedVertex::placing) {
-                Some(entry) => entry,
-                None => self.cache_entry(p),
-            };
-        }
-        false
+        Self::build(mesh, xf, options, Some(cache))
     }
 
     /// This renderer with the render state `T` fixed at compile time: a firmware that
@@ -521,21 +549,6 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         } else {
             self.map.project_float(c.to_f32())
         }
-    }
-
-    /// The cache entry of position `p`, out of line: [`project_vertex`]'s without the
-    /// fast path (for the vertices it does not place).
-    ///
-    /// [`project_vertex`]: Renderer::project_vertex
-    #[inline(never)]
-    fn cache_entry(&self, p: &[i16; 3]) -> CachedVertex {
-        let c = self.fixed.apply(p);
-        let (code, screen) = if crate::num::INTEGER_PROJECTION {
-            self.map.project_exact(&c)
-        } else {
-            self.map.classify_float(c.to_f32())
-        };
-        CachedVertex::new(code, screen)
     }
 
     /// The clip coordinates of position `p` in `f32`, for clipping.
