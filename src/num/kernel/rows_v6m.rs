@@ -1091,17 +1091,7 @@ macro_rules! bw_recip_first {
 macro_rules! bw_quot {
     (carry) => {
         concat!(
-            "asrs r0, r5, #31\n",
-            "mov r12, r0\n",
-            "eors r5, r0\n",
-            "lsrs r0, r6, #16\n",
-            "lsrs r1, r5, #16\n",
-            "uxth r2, r6\n",
-            "uxth r3, r5\n",
-            "movs r7, r0\n",
-            "muls r7, r1\n",
-            "muls r0, r3\n",
-            "muls r1, r2\n",
+            bw_quot!(@head),
             "muls r2, r3\n",
             "adds r0, r0, r1\n",
             "bcc 1f\n",
@@ -1113,22 +1103,22 @@ macro_rules! bw_quot {
             "lsrs r0, r0, #16\n",
             "adds r2, r2, r1\n",
             "adcs r7, r0\n",
-            "movs r0, r7\n",
-            "muls r0, r4\n",
-            "subs r5, r5, r0\n",
-            "2:\n",
-            "subs r5, r5, r4\n",
-            "blo 3f\n",
-            "adds r7, #1\n",
-            "b 2b\n",
-            "3:\n",
-            "mov r0, r12\n",
-            "eors r7, r0",
+            bw_quot!(@fix),
         )
     };
     // d ≥ 2⁸: x < 2²⁴, so xh·nl < 2²⁴ and nh·xl < 2³¹ (|n| < 2³¹): their sum carries
     // not; the low product xl·nl is left out (the guess is then at most 1 lower).
     () => {
+        concat!(
+            bw_quot!(@head),
+            "adds r0, r0, r1\n",
+            "lsrs r0, r0, #16\n",
+            "adds r7, r7, r0\n",
+            bw_quot!(@fix),
+        )
+    };
+    // Both forms: |n| with its sign in r12, then xh·nh, xh·nl and xl·nh.
+    (@head) => {
         concat!(
             "asrs r0, r5, #31\n",
             "mov r12, r0\n",
@@ -1141,9 +1131,12 @@ macro_rules! bw_quot {
             "muls r7, r1\n",
             "muls r0, r3\n",
             "muls r1, r2\n",
-            "adds r0, r0, r1\n",
-            "lsrs r0, r0, #16\n",
-            "adds r7, r7, r0\n",
+        )
+    };
+    // Both forms: the remainder, the guess raised while it is not below d, the sign
+    // given back.
+    (@fix) => {
+        concat!(
             "movs r0, r7\n",
             "muls r0, r4\n",
             "subs r5, r5, r0\n",
