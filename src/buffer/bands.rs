@@ -64,9 +64,9 @@ impl<'a, C: PixelColor> BandBuffers<'a, C> {
     /// them up again: for [`carry_needed`](BandBuffers::carry_needed)`(n)` words, up to
     /// `n` such triangles a band (at most 64; those beyond are set up again, as they
     /// all are without it). The picture is the same either way. Used by the bands'
-    /// assembly loop on ARMv7E-M (Cortex-M4, M7) for a cached triangle mesh drawn with
-    /// flat or Lambert shading, the `Less` depth test and a two-byte colour; elsewhere
-    /// the scratch is left unused.
+    /// assembly loops on ARMv7E-M (Cortex-M4, M7) and ARMv6-M (Cortex-M0+, RP2040) for
+    /// a cached triangle mesh drawn with flat or Lambert shading, the `Less` depth test
+    /// and a two-byte colour; elsewhere the scratch is left unused.
     pub fn with_carry(self, carry: &'a mut [u32]) -> Self {
         BandBuffers { carry, ..self }
     }

@@ -488,24 +488,28 @@ pub(crate) const STATE_WORDS: usize = 21;
 pub(crate) const CARRY: usize = 64;
 
 /// The set-ups of a band's faces that reach the band below, kept for it by the fused
-/// band loop (ARMv7E-M): the band below resumes their rows where this band stops them
-/// rather than set them up again. Two halves of the caller's scratch, a slot of
-/// [`STATE_WORDS`] a face, at most as many as the colours carried: a band resumes from
-/// one what the band above saved, and saves into the other. Only the loop writes a
-/// slot, and it counts one only once written, so that a band resumes only set-ups the
-/// loop made in this draw.
-#[cfg(all(zraster_thumb, zraster_dsp))]
+/// band loop (ARMv7E-M; ARMv6-M's keeps the walks of `rows_v6m::KEPT_WALK_WORDS`):
+/// the band below resumes their rows where this band stops them rather than set them
+/// up again. Two halves of the caller's scratch, a slot of [`STATE_WORDS`] a face, at
+/// most as many as the colours carried: a band resumes from one what the band above
+/// saved, and saves into the other. Only the loop writes a slot, and it counts one
+/// only once written, so that a band resumes only set-ups the loop made in this draw.
+#[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
 pub(crate) struct KeptStates<'s> {
     halves: [&'s mut [u32]; 2],
     /// The half this band resumes from; it saves into the other.
     read: bool,
     /// Slots of the read half the band above saved.
-    filled: usize,
+    pub(super) filled: usize,
     /// Slots of the other half this band has saved.
-    saved: usize,
+    pub(super) saved: usize,
+    /// ARMv6-M: the clip's columns of the band that saved each half (its walks stay
+    /// inside them; a band of other columns sets them up again).
+    #[cfg(zraster_armv6m)]
+    pub(super) columns: [(i32, i32); 2],
 }
 
-#[cfg(all(zraster_thumb, zraster_dsp))]
+#[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
 impl<'s> KeptStates<'s> {
     /// Slots for at most `faces` kept faces a band in `scratch` (none when it holds
     /// fewer than two words).
@@ -518,6 +522,8 @@ impl<'s> KeptStates<'s> {
             read: false,
             filled: 0,
             saved: 0,
+            #[cfg(zraster_armv6m)]
+            columns: [(0, 0); 2],
         }
     }
 
@@ -528,8 +534,20 @@ impl<'s> KeptStates<'s> {
         self.saved = 0;
     }
 
+    /// ARMv6-M: the columns of the band that saved the read half, and those of this
+    /// band, which saves into the other.
+    #[cfg(zraster_armv6m)]
+    pub(super) fn columns(&mut self) -> (&(i32, i32), &mut (i32, i32)) {
+        let [a, b] = &mut self.columns;
+        if self.read {
+            (b, a)
+        } else {
+            (a, b)
+        }
+    }
+
     /// The slots this band resumes from (filled) and saves into (saved so far).
-    fn halves(&mut self) -> (&[u32], &mut [u32]) {
+    pub(super) fn halves(&mut self) -> (&[u32], &mut [u32]) {
         let [a, b] = &mut self.halves;
         if self.read {
             (b, a)
@@ -540,10 +558,10 @@ impl<'s> KeptStates<'s> {
 }
 
 /// Where there is no fused band loop, nothing is kept.
-#[cfg(not(all(zraster_thumb, zraster_dsp)))]
+#[cfg(not(all(zraster_thumb, any(zraster_dsp, zraster_armv6m))))]
 pub(crate) struct KeptStates<'s>(core::marker::PhantomData<&'s mut [u32]>);
 
-#[cfg(not(all(zraster_thumb, zraster_dsp)))]
+#[cfg(not(all(zraster_thumb, any(zraster_dsp, zraster_armv6m))))]
 impl<'s> KeptStates<'s> {
     /// Nothing kept.
     #[inline(always)]

@@ -107,6 +107,9 @@ macro_rules! v6m_round {
 const WALK_COLOR: usize = 12;
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
 const WALK_FAILED: usize = 28;
+/// `SmallWalk`'s `save`: the slot to keep a walk in (the bands' loop writes it).
+#[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
+const WALK_SAVE: usize = 36;
 
 /// The diffuse term's numerator before its rounding, from dot (r3, at least 0) and the
 /// weight w (r1) into r3 (r5, r6 written): `general` as `lambert_term_narrow` (dot =
@@ -894,7 +897,9 @@ struct BandV6m {
     flat: u32,          // 84
     /// Pixels tested (the loop returns once the sum reaches 2³¹).
     tested: u32, // 88
-    unused: u32,        // 92
+    /// The walks kept by the band above (slots of `STATE_WORDS` from `sread`) that
+    /// were written, resumed as their colours are taken.
+    sfilled: u32, // 92
     /// Taken below `filled`, kept below `room`.
     filled: u32, // 96
     taken: u32,         // 100
@@ -902,8 +907,13 @@ struct BandV6m {
     room: u32,          // 108
     /// The head of the face the loop stopped at.
     least: u32, // 112
+    /// The read half of the walks kept, the half this band keeps into (a slot a colour
+    /// kept, below `sroom`).
+    sread: u32, // 116
+    skeep: u32,         // 120
+    sroom: u32,         // 124
     /// The chains' heads in increasing order (`face << 2 | chain`).
-    heads: [u32; 4], // 116
+    heads: [u32; 4], // 128
 }
 
 #[cfg(target_pointer_width = "32")]
@@ -918,7 +928,15 @@ const _: () = {
     assert!(offset_of!(B, tested) == 88);
     assert!(offset_of!(B, filled) == 96 && offset_of!(B, taken) == 100);
     assert!(offset_of!(B, kept) == 104 && offset_of!(B, room) == 108);
-    assert!(offset_of!(B, least) == 112 && offset_of!(B, heads) == 116);
+    assert!(offset_of!(B, least) == 112 && offset_of!(B, heads) == 128);
+    assert!(offset_of!(B, sfilled) == 92 && offset_of!(B, sread) == 116);
+    assert!(offset_of!(B, skeep) == 120 && offset_of!(B, sroom) == 124);
+};
+
+// A slot holds a kept walk, slots 84 bytes apart (the band loop's stride).
+const _: () = {
+    use super::{faces::STATE_WORDS, rows_v6m::KEPT_WALK_WORDS};
+    assert!(KEPT_WALK_WORDS <= STATE_WORDS && STATE_WORDS * 4 == 84);
 };
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
@@ -1007,7 +1025,7 @@ core::arch::global_asm!(
     "push {{r4, r5, r6, r7}}",
     "sub sp, #12",
     "str r0, [sp]",
-    "adds r0, #116",
+    "adds r0, #128",
     "ldm r0!, {{r1, r2, r3, r4}}",
     "mov r8, r1",
     "mov r9, r2",
@@ -1052,9 +1070,13 @@ core::arch::global_asm!(
     "adds r1, r0, #1",
     "str r1, [r7, #100]",
     "ldr r1, [r7, #68]",
-    "lsls r0, r0, #1",
-    "ldrh r2, [r1, r0]",
-    "b 22f",
+    "lsls r3, r0, #1",
+    "ldrh r2, [r1, r3]",
+    // Its walk kept by the band above (slot `taken` below `sfilled`): resumed (`40f`).
+    "ldr r1, [r7, #92]",
+    "cmp r0, r1",
+    "bhs 22f",
+    "b 40f",
     "26:",
     "bl 30f",
     "ldr r7, [sp]",
@@ -1077,20 +1099,22 @@ core::arch::global_asm!(
     "25:",
     "bl 30f",
     "mov r6, r2",
-    band_call!(),
-    // (r1 the tested sum, kept for its sign.)
+    // A slot for its walk while one follows each colour kept (kept < sroom): slot
+    // `kept` of the keep half, named in the set-up's block (`save`).
+    "ldr r7, [sp]",
     "ldr r3, [r7, #104]",
-    "ldr r2, [r7, #108]",
-    "cmp r3, r2",
-    "bhs 1f",
-    "ldr r2, [r7, #72]",
-    "lsls r0, r3, #1",
-    "strh r6, [r2, r0]",
-    "adds r3, #1",
-    "str r3, [r7, #104]",
-    "1:",
-    "cmp r1, #0",
-    "bge 60b",
+    "ldr r1, [r7, #124]",
+    "cmp r3, r1",
+    "bhs 23f",
+    "movs r1, #84",
+    "muls r3, r1",
+    "ldr r1, [r7, #120]",
+    "adds r3, r3, r1",
+    "ldr r0, [r7, #76]",
+    "str r3, [r0, #{save}]",
+    "23:",
+    band_call!(),
+    "b 41f",
     "10:",
     "movs r0, #3",
     "b 9f",
@@ -1128,7 +1152,7 @@ core::arch::global_asm!(
     // The heads back into the block.
     "9:",
     "ldr r7, [sp]",
-    "adds r7, #116",
+    "adds r7, #128",
     "mov r1, r8",
     "mov r2, r9",
     "mov r3, r10",
@@ -1156,9 +1180,60 @@ core::arch::global_asm!(
     "32:",
     "uxth r2, r2",
     "bx lr",
+    // A taken face's walk resumed from slot `taken` (r0) of the read half, its colour
+    // in r2; the counts as `band_call`'s.
+    "40:",
+    "movs r1, #84",
+    "muls r0, r1",
+    "ldr r1, [r7, #116]",
+    "adds r1, r1, r0",
+    "ldr r0, [r7, #76]",
+    "str r2, [r0, #{color}]",
+    "bl zraster_small_resume_v6m",
+    "adds r1, r0, #1",
+    "bne 1f",
+    "b 67b",
+    "1:",
+    "ldr r1, [r7, #88]",
+    "adds r1, r1, r0",
+    "str r1, [r7, #88]",
+    "bmi 2f",
+    "b 60b",
+    "2:",
+    "b 10b",
+    // A kept face drawn (r1 the tested sum, kept for its sign; its colour in r6): the
+    // set-up clears `save` once it kept the walk there; where it did not, no slot from
+    // this one on (sroom = kept). The colour kept for the band below while there is
+    // room.
+    "41:",
+    "ldr r0, [r7, #76]",
+    "ldr r3, [r0, #{save}]",
+    "cmp r3, #0",
+    "beq 1f",
+    "movs r3, #0",
+    "str r3, [r0, #{save}]",
+    "ldr r3, [r7, #104]",
+    "str r3, [r7, #124]",
+    "1:",
+    "ldr r3, [r7, #104]",
+    "ldr r2, [r7, #108]",
+    "cmp r3, r2",
+    "bhs 1f",
+    "ldr r2, [r7, #72]",
+    "lsls r0, r3, #1",
+    "strh r6, [r2, r0]",
+    "adds r3, #1",
+    "str r3, [r7, #104]",
+    "1:",
+    "cmp r1, #0",
+    "blt 2f",
+    "b 60b",
+    "2:",
+    "b 10b",
     ".size zraster_band_faces_v6m, . - zraster_band_faces_v6m",
     ".popsection",
     color = const WALK_COLOR,
+    save = const WALK_SAVE,
 );
 
 /// Draw a band's faces from its merged bin chains (`heads` in increasing order, each
@@ -1212,6 +1287,24 @@ fn band_faces_v6m<C: Copy>(
     // delta goes back into the caller's cursor.
     let taken0 = (*carry.taken).min(carry.read.len() + 1) as u32;
     let kept0 = (*carry.kept).min(carry.keep.len()) as u32;
+    // The walks the band above kept, resumed below `sfilled` (none where its clip's
+    // columns were not this band's); slot `kept` of the other half for a face kept
+    // while every colour kept so far has its walk beside it (below `sroom`, else
+    // `sroom` is what was saved: no more).
+    let states = &mut *carry.states;
+    let (saved, columns) = (states.saved, (b.clip.x0, b.clip.x1));
+    let (above, here) = states.columns();
+    let same = *above == columns;
+    *here = columns;
+    let sfilled = if same { states.filled } else { 0 };
+    let (sread, skeep) = states.halves();
+    let sfilled = sfilled.min(sread.len() / super::STATE_WORDS) as u32;
+    let slots = (skeep.len() / super::STATE_WORDS).min(carry.keep.len());
+    let sroom = if kept0 as usize == saved {
+        slots
+    } else {
+        saved.min(slots)
+    };
     let mut block = BandV6m {
         light: [0; 3],
         ambient: 0,
@@ -1230,7 +1323,7 @@ fn band_faces_v6m<C: Copy>(
         entries: cache.as_ptr() as u32,
         flat: 0,
         tested: 0,
-        unused: 0,
+        sfilled,
         heads: *heads,
         read: carry.read.as_ptr() as u32,
         keep: carry.keep.as_mut_ptr() as u32,
@@ -1239,6 +1332,9 @@ fn band_faces_v6m<C: Copy>(
         kept: kept0,
         room: carry.keep.len().min(u32::MAX as usize) as u32,
         least: 0,
+        sread: sread.as_ptr() as u32,
+        skeep: skeep.as_mut_ptr() as u32,
+        sroom: sroom.min(u32::MAX as usize) as u32,
     };
     match *color {
         FaceColor::Flat(c) => match super::rows::as_u16(&mut [], c) {
@@ -1274,6 +1370,17 @@ fn band_faces_v6m<C: Copy>(
         }
         block.tested = 0;
     };
+    // A face left with a slot named (refused, or nothing kept there): no slot from it
+    // on. The slots saved are those below where `sroom` and `kept` stop.
+    let save = walk.wrapping_add(WALK_SAVE).cast::<u32>();
+    // SAFETY: the started block's `save` (a word at its pinned offset), as `failed`.
+    unsafe {
+        if save.read() != 0 {
+            save.write(0);
+            block.sroom = block.kept;
+        }
+    }
+    states.saved = block.sroom.min(block.kept) as usize;
     // The face it left (1, 2): the heads and the carry as before it, for the caller's
     // loop (its next head taken out again, the face's put back in front; a taken
     // colour of a refused face given back).

@@ -249,7 +249,9 @@ pub(crate) fn rows_walk_less_portable(
 /// comments; `color` and `failed` where `faces_v6m`'s loops write and read them): the
 /// depth address of screen row 0's column 0 (wrapping: `zaddr − first_row·pitch`),
 /// the bytes a row, the clip (rows `y0..y1`, columns `x0..x1`), the colour, its
-/// address's offset from the depth's, and the failed pixels' count.
+/// address's offset from the depth's, the failed pixels' count, and where to keep the
+/// set-up of a triangle whose rows go on past the clip (0: nowhere; the bands' loop
+/// sets it for a face the band below resumes: [`KEPT_WALK_WORDS`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
@@ -263,6 +265,7 @@ struct SmallWalk {
     x0: i32,     // 24
     failed: u32, // 28
     x1: i32,     // 32
+    save: u32,   // 36
 }
 
 #[cfg_attr(not(all(zraster_thumb, zraster_armv6m)), allow(dead_code))]
@@ -294,6 +297,7 @@ impl SmallWalk {
             (&raw mut (*p).y1).write(clip.y1);
             (&raw mut (*p).x0).write(clip.x0);
             (&raw mut (*p).x1).write(clip.x1);
+            (&raw mut (*p).save).write(0);
         }
     }
 }
@@ -304,7 +308,7 @@ const _: () = {
     assert!(offset_of!(SmallWalk, color) == 12 && offset_of!(SmallWalk, delta) == 16);
     assert!(offset_of!(SmallWalk, y1) == 20 && offset_of!(SmallWalk, x0) == 24);
     assert!(offset_of!(SmallWalk, failed) == 28 && offset_of!(SmallWalk, x1) == 32);
-    assert!(size_of::<SmallWalk>() == 36);
+    assert!(offset_of!(SmallWalk, save) == 36 && size_of::<SmallWalk>() == 40);
     assert!(SMALL == 8192 && DEPTH_BIAS == 32768);
     // The corners as the cache holds them: the depth, then x (low half) and y.
     assert!(offset_of!(CachedVertex, z) == 0 && offset_of!(CachedVertex, xy) == 4);
@@ -1050,6 +1054,16 @@ extern "C" {
     ) -> u32;
 }
 
+/// Words of a small triangle's walk kept for the band below (ARMv6-M): the set-up
+/// (`zraster_small_walk_v6m`) keeps it in the slot its block's `save` names when the
+/// triangle's rows go on past the clip, once its rows to y1 are drawn (and clears
+/// `save`); `zraster_small_resume_v6m` draws the rows below from it. In order: the
+/// depth and the three edge functions at the box's first column on row y1, their
+/// steps a row, lo, hi − lo, the edges' steps a column, sx, 2·bx0, y1 and the end row
+/// (the first row below the triangle's). Every value is the set-up's own: the rows
+/// drawn from it are those the set-up would draw in a clip from y1 on.
+pub(crate) const KEPT_WALK_WORDS: usize = 17;
+
 /// `zraster_small_walk_v6m`'s reciprocal guess and first Newton step, inline (on
 /// either side of its leading-zeros branch): r6 = x, below 2³²/d (d in r4, s in r5,
 /// the table's 16 bits t, x = t·2^(s + 1) to start): e = 2³² − 2·dn·t (dn·t < 2³¹),
@@ -1478,7 +1492,20 @@ core::arch::global_asm!(
     "ldr r6, [r0, #20]",
     "cmp r7, r6",
     "ble 7f",
-    "mov r7, r6",
+    // Rows past the clip's last: with a slot to keep the walk in (`save`), the end row
+    // into it and the colour flagged (bit 16), so that the rows' end saves there.
+    "mov r12, r6",
+    "ldr r6, [r0, #36]",
+    "cmp r6, #0",
+    "beq 8f",
+    "str r7, [r6, #64]",
+    "ldr r7, [r0, #12]",
+    "movs r6, #1",
+    "lsls r6, r6, #16",
+    "orrs r7, r6",
+    "str r7, [r0, #12]",
+    "8:",
+    "mov r7, r12",
     "7:",
     "str r5, [sp, #32]",
     "subs r7, r7, r5",
@@ -1783,10 +1810,10 @@ core::arch::global_asm!(
     "muls r2, r3",
     "adds r2, r2, r1",
     "str r2, [sp, #36]",
-    "movs r2, #0",
-    "mov lr, r2",
     "ldr r2, [r0, #12]",
     "str r2, [sp, #48]",
+    "lsrs r2, r2, #16",
+    "mov lr, r2",
     "ldr r2, [r0, #16]",
     "str r2, [sp, #52]",
     "mov r2, r8",
@@ -1937,11 +1964,45 @@ core::arch::global_asm!(
     "ldr r4, [sp, #36]",
     "cmp r4, r12",
     "bne .Lbw_rowR",
-    // Done: the pixels tested (bytes over 2).
+    // Done: the pixels tested (bytes over 2; bit 0 the flag to keep the walk).
     ".Lbw_done:",
     "mov r0, lr",
     "lsrs r0, r0, #1",
-    "b .Lbw_out",
+    "bcs .Lbw_save",
+    ".Lbw_ret:",
+    "add sp, #72",
+    "pop {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    "pop {{r4, r5, r6, r7, pc}}",
+    // The walk kept in the slot (`KEPT_WALK_WORDS`), the slot cleared in the block (the
+    // bands' loop reads that it saved): the row state at y1 where the rows stopped, its
+    // steps, lo, hi − lo, the steps a column, sx, 2·bx0 and y1 (the end row is there).
+    ".Lbw_save:",
+    "ldr r1, [sp, #56]",
+    "ldr r2, [r1, #36]",
+    "movs r3, #0",
+    "str r3, [r1, #36]",
+    "mov r7, sp",
+    "ldm r7!, {{r3, r4, r5, r6}}",
+    "stm r2!, {{r3, r4, r5, r6}}",
+    "ldm r7!, {{r3, r4, r5, r6}}",
+    "stm r2!, {{r3, r4, r5, r6}}",
+    "ldr r3, [sp, #40]",
+    "ldr r4, [sp, #44]",
+    "mov r5, r8",
+    "mov r6, r9",
+    "stm r2!, {{r3, r4, r5, r6}}",
+    "mov r3, r10",
+    "mov r4, r11",
+    "ldr r5, [sp, #68]",
+    "asrs r5, r5, #3",
+    "subs r5, #1",
+    "ldr r6, [r1, #20]",
+    "stm r2!, {{r3, r4, r5, r6}}",
+    "b .Lbw_ret",
     "27:",
     "ldr r6, [sp, #40]",
     "cmp r0, r6",
@@ -1968,6 +2029,108 @@ core::arch::global_asm!(
     ".Lbw_range:",
     ".word 0x0fffffff",
     ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
+    // `zraster_small_resume_v6m(s, slot)`, called by the bands' loop (`faces_v6m`): the
+    // rows of a walk `.Lbw_save` kept in `slot` ([`KEPT_WALK_WORDS`]) drawn with block
+    // `s` as the set-up would draw that triangle in its clip: from y0, at or below the
+    // row it was kept at (else u32::MAX, nothing drawn, for the set-up to do), to the
+    // end row or y1. Returns the pixels tested (the failed ones added to `failed`).
+    // SAFETY: as the walk's, `slot` holding what the walk kept there from a block of
+    // the same clip columns (x0, x1): every value as the set-up makes it, so the rows
+    // are the set-up's (its argument above), those of rows y0 .. min(end, y1) of the
+    // triangle's own (y0 ≥ the kept row, the first below the triangle's first).
+    ".balign 2",
+    ".global zraster_small_resume_v6m",
+    ".hidden zraster_small_resume_v6m",
+    ".type zraster_small_resume_v6m, %function",
+    ".thumb_func",
+    "zraster_small_resume_v6m:",
+    "push {{r4, r5, r6, r7, lr}}",
+    "mov r4, r8",
+    "mov r5, r9",
+    "mov r6, r10",
+    "mov r7, r11",
+    "push {{r4, r5, r6, r7}}",
+    "sub sp, #72",
+    "str r0, [sp, #56]",
+    // Its rows from y0, skip (r3) ≥ 0 rows past the kept row (else the set-up's: never
+    // for bands one below the other), to the end row or y1; none, nothing.
+    "ldr r2, [r0, #8]",
+    "ldr r3, [r1, #60]",
+    "subs r3, r2, r3",
+    "bpl 1f",
+    "b .Lbw_refuse",
+    "1:",
+    "ldr r4, [r1, #64]",
+    "ldr r5, [r0, #20]",
+    "cmp r4, r5",
+    "ble 1f",
+    "mov r4, r5",
+    "1:",
+    "subs r4, r4, r2",
+    "bgt 1f",
+    "b .Lbw_empty",
+    "1:",
+    // The first row's depth address at column bx0 (base + y0·pitch + 2·bx0) in r12,
+    // the rows' end address, the pitch, the colour and its offset; nothing tested.
+    "ldr r5, [r0, #4]",
+    "str r5, [sp, #60]",
+    "muls r2, r5",
+    "ldr r6, [r0]",
+    "adds r2, r2, r6",
+    "ldr r6, [r1, #56]",
+    "adds r2, r2, r6",
+    "mov r12, r2",
+    "muls r4, r5",
+    "adds r4, r4, r2",
+    "str r4, [sp, #36]",
+    "ldr r4, [r0, #12]",
+    "str r4, [sp, #48]",
+    "ldr r4, [r0, #16]",
+    "str r4, [sp, #52]",
+    "movs r4, #0",
+    "mov lr, r4",
+    // lo and hi − lo; the steps a column and sx in r8–r11.
+    "ldr r4, [r1, #32]",
+    "str r4, [sp, #40]",
+    "ldr r4, [r1, #36]",
+    "str r4, [sp, #44]",
+    "movs r0, r1",
+    "adds r0, #40",
+    "ldm r0!, {{r4, r5, r6, r7}}",
+    "mov r8, r4",
+    "mov r9, r5",
+    "mov r10, r6",
+    "mov r11, r7",
+    // The row state stepped skip rows on (its steps at r1 after the LDM), then the steps.
+    "ldm r1!, {{r4, r5, r6, r7}}",
+    "cmp r3, #0",
+    "bne 2f",
+    "3:",
+    "mov r0, sp",
+    "stm r0!, {{r4, r5, r6, r7}}",
+    "ldm r1!, {{r4, r5, r6, r7}}",
+    "stm r0!, {{r4, r5, r6, r7}}",
+    "mov r2, r8",
+    "cmp r2, #0",
+    "blt 4f",
+    "b .Lbw_rowL",
+    "4:",
+    "b .Lbw_rowR",
+    "2:",
+    "ldr r0, [r1]",
+    "muls r0, r3",
+    "adds r4, r4, r0",
+    "ldr r0, [r1, #4]",
+    "muls r0, r3",
+    "adds r5, r5, r0",
+    "ldr r0, [r1, #8]",
+    "muls r0, r3",
+    "adds r6, r6, r0",
+    "ldr r0, [r1, #12]",
+    "muls r0, r3",
+    "adds r7, r7, r0",
+    "b 3b",
+    ".size zraster_small_resume_v6m, . - zraster_small_resume_v6m",
     ".popsection",
     lz8 = sym crate::num::armv6m::LEADING_ZEROS8,
     recip16 = sym crate::num::armv6m::RECIP16,
