@@ -399,6 +399,8 @@ pub use scene::Scene;
 #[doc(hidden)]
 pub use num::kernel::check_band_carry_kernel;
 #[doc(hidden)]
+pub use num::kernel::check_band_carry_v6m_kernel;
+#[doc(hidden)]
 pub use num::kernel::check_band_faces_kernel;
 #[doc(hidden)]
 pub use num::kernel::check_band_faces_v6m_kernel;

@@ -274,6 +274,9 @@ fn check_faces_v6m(buf: &mut [u16]) {
     hprintln!("faces v6m kernel cases differing from the portable twin: {}", bad);
     let bad = zraster::check_band_faces_v6m_kernel(buf, 4_000);
     hprintln!("band faces v6m kernel cases differing from the portable twin: {}", bad);
+    // And with the walks of faces reaching the band below kept and resumed there.
+    let bad = zraster::check_band_carry_v6m_kernel(buf, carry_band(), 4_000);
+    hprintln!("band carry v6m kernel cases differing from the portable twin: {}", bad);
 }
 
 /// The lit face colour against its portable twin (random normals, lights and

@@ -1393,7 +1393,7 @@ pub fn check_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
 /// are kept ([`check_band_carry_kernel`] keeps them).
 #[inline(never)]
 pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
-    band_faces_cases(buf, &mut [], cases, 0x3c6e_f372)
+    band_faces_cases::<DspLoop>(buf, &mut [], cases, 0x3c6e_f372)
 }
 
 /// [`check_band_faces_kernel`] with the kept faces' set-ups in `carry` (up to four
@@ -1404,7 +1404,7 @@ pub fn check_band_faces_kernel(buf: &mut [u16], cases: usize) -> usize {
 #[inline(never)]
 pub fn check_band_carry_kernel(buf: &mut [u16], carry: &mut [u32], cases: usize) -> usize {
     match carry.get_mut(..2 * 4 * STATE_WORDS) {
-        Some(carry) => band_faces_cases(buf, carry, cases, 0x9e37_79b9),
+        Some(carry) => band_faces_cases::<DspLoop>(buf, carry, cases, 0x9e37_79b9),
         None => usize::MAX,
     }
 }
@@ -1450,10 +1450,113 @@ impl Carry8 {
     }
 }
 
-/// The cases of [`check_band_faces_kernel`] from `seed`, kept set-ups in `scratch`.
-fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u32) -> usize {
+/// A band loop as the band checks drive it: the loop over a band's rows and the small
+/// triangles' twin its faces must match, with what it takes. Generic (not function
+/// pointers): the check's frame is the bench's deepest stack.
+pub(super) trait BandLoop {
+    /// Whether it takes lit colours written by a function (not only packed 5-6-5).
+    const ANY_LIT: bool;
+    /// The diffuse weights' range, ±2^(16 + this).
+    const DIFFUSE_SHIFT: u32;
+    /// Whether a refusal fails a case (where the loop is assembly).
+    const NEVER_REFUSES: bool;
+    /// The loop on depth rows `z` and colour rows `c` (48 pixels a row from screen row
+    /// `first_row`) drawn inside `clip`: as [`band_faces_less`], a face it leaves
+    /// named with the heads already past it.
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        heads: &mut [u32; 4],
+        tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
+        carry: &mut BandCarry<'_, '_, u16>,
+        color: &FaceColor<'_, u16>,
+        z: &mut [u16],
+        c: &mut [u16],
+        band: (i32, crate::raster::Clip),
+        counts: &mut FacesCounts,
+    ) -> BandStop;
+    /// The small triangle's portable twin (corners, clip, first row, width, rows,
+    /// colour).
+    fn twin(
+        tri: [&crate::raster::ScreenVertex; 3],
+        clip: &crate::raster::Clip,
+        first_row: i32,
+        width: usize,
+        z: &mut [u16],
+        c: &mut [u16],
+        color: u16,
+    ) -> super::SmallDone;
+}
+
+/// ARMv7E-M's band loop ([`band_faces_less`]; the twin's alone elsewhere).
+struct DspLoop;
+
+impl BandLoop for DspLoop {
+    const ANY_LIT: bool = true;
+    const DIFFUSE_SHIFT: u32 = 3;
+    const NEVER_REFUSES: bool = false;
+    #[inline(always)]
+    fn run(
+        heads: &mut [u32; 4],
+        tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
+        carry: &mut BandCarry<'_, '_, u16>,
+        color: &FaceColor<'_, u16>,
+        z: &mut [u16],
+        c: &mut [u16],
+        (first_row, clip): (i32, crate::raster::Clip),
+        counts: &mut FacesCounts,
+    ) -> BandStop {
+        let mut t = SmallTarget {
+            z,
+            c,
+            width: 48,
+            first_row,
+            clip,
+        };
+        band_faces_less(heads, tables, carry, color, &mut t, counts)
+    }
+    #[inline(always)]
+    fn twin(
+        tri: [&crate::raster::ScreenVertex; 3],
+        clip: &crate::raster::Clip,
+        first_row: i32,
+        width: usize,
+        z: &mut [u16],
+        c: &mut [u16],
+        color: u16,
+    ) -> super::SmallDone {
+        super::rows::small_less_portable(tri, clip, first_row, width, z, c, color)
+    }
+}
+
+/// The band loop's merge (the checks' model): the least head's face (`None` past the
+/// faces or links, the smaller `n` of their lengths), its chain's next in its place.
+pub(super) fn merge_next(heads: &mut [u32; 4], links: &[u16], n: usize) -> Option<u32> {
+    let least = heads[0];
+    let f = (least >> 2) as usize;
+    let &link = links.get(f).filter(|_| f < n)?;
+    let next = u32::from(link) << 2 | least & 3;
+    let mut i = 0;
+    while let Some(&h) = heads.get(i + 1).filter(|&&h| next >= h) {
+        if let Some(slot) = heads.get_mut(i) {
+            *slot = h;
+        }
+        i += 1;
+    }
+    if let Some(slot) = heads.get_mut(i) {
+        *slot = next;
+    }
+    Some(least)
+}
+
+/// The cases of the band checks from `seed` for `kernel`, kept set-ups in `scratch`.
+pub(super) fn band_faces_cases<K: BandLoop>(
+    buf: &mut [u16],
+    scratch: &mut [u32],
+    cases: usize,
+    seed: u32,
+) -> usize {
     use super::light::lit_565_portable;
-    use super::rows::{small_less_portable, SmallDone};
+    use super::rows::SmallDone;
     use crate::raster::{Clip, ScreenVertex};
     const W: usize = 48;
     const H: usize = 16;
@@ -1479,17 +1582,21 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
         // The bands' first rows and rows (the colour rows end `off` sooner).
         let band_rows = if two { 8 } else { H };
         // Each band's clip, as small numbers (the check's stack is the bench's deepest).
+        // Random clips' columns shared by the two bands on some cases: the second then
+        // resumes what the first kept, rows below where it stopped or above.
+        let (sx0, sx1) = ((rnd() % 20) as i32, (rnd() % 30) as i32);
+        let shared = two && rnd().is_multiple_of(2);
+        // The first of two bands stops short of the second by 0 to 2 rows (its last
+        // rows not drawn: the second resumes rows further on).
+        let gap = (rnd() % 4).saturating_sub(1) as usize;
         let mut clip_of = |b: usize| {
             let y = first_row + (b * band_rows) as i32;
-            let rows = (band_rows - if b == 0 && two { 0 } else { off }) as i32;
+            let rows = (band_rows - if b == 0 && two { gap } else { off }) as i32;
             let [x0, y0, x1, y1] = if case % 3 == 0 {
                 let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
-                [
-                    x0,
-                    y + y0,
-                    x0 + (rnd() % 30) as i32,
-                    (y + y0 + (rnd() % 10) as i32).min(y + rows),
-                ]
+                let x1 = x0 + (rnd() % 30) as i32;
+                let (x0, x1) = if shared { (sx0, sx0 + sx1) } else { (x0, x1) };
+                [x0, y + y0, x1, (y + y0 + (rnd() % 10) as i32).min(y + rows)]
             } else {
                 [0, y, W as i32, y + rows]
             };
@@ -1506,7 +1613,11 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
         };
         let mut cache = [CachedVertex::EMPTY; 12];
         let span = 64 << (case % 4);
-        // Two bands: the corners about their common row.
+        // Two bands: the corners about their common row, mostly at depths near each
+        // other as a mesh's are (random depths leave most triangles to the general
+        // path: too steep for the small set-ups).
+        let near = two && !rnd().is_multiple_of(4);
+        let z0 = rnd() >> 2;
         let (bx, by) = (
             (rnd() % (W as u32 * 16)) as i32 - 40,
             match two {
@@ -1518,7 +1629,14 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
             let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
             let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
             let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
-            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
+            // Near ones on a half-pixel grid on some cases: edges through pixel centres.
+            let grid = if near && case % 8 < 4 { !7 } else { !0 };
+            let (x, y) = (x & grid, y & grid);
+            let z = match near {
+                true => z0 + rnd() % (1 << 16),
+                false => rnd() >> 1,
+            }
+            .min(crate::fixed::MAX_DEPTH);
             *e = CachedVertex {
                 z,
                 xy: super::XyWord::new(x, y),
@@ -1580,7 +1698,7 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
         let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
         let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
         let ambient = (rnd() % 131_073) as i32 - 65536;
-        let diffuse = ((rnd() % 131_073) as i32 - 65536) << 3;
+        let diffuse = ((rnd() % 131_073) as i32 - 65536) << K::DIFFUSE_SHIFT;
         let channels = [0; 3].map(|_| rnd() as u8);
         let count = match two && !rnd().is_multiple_of(4) {
             true => faces.len(),
@@ -1599,6 +1717,7 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
         let color = match case % 4 {
             3 => FaceColor::Flat(flat),
             2 => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
+            _ if !K::ANY_LIT => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
             _ => FaceColor::Lit(&block, turn, None),
         };
         let color_of = |k: usize| match color {
@@ -1652,7 +1771,7 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
                 ScreenVertex::from_raw(x, y, e.z)
             });
             let (clip, row) = (clip_at(b), first_row + (b * band_rows) as i32);
-            let done = small_less_portable([&p, &q, &r], &clip, row, W, z, c, col);
+            let done = K::twin([&p, &q, &r], &clip, row, W, z, c, col);
             // The pixels only: the band loop counts no faces (the bands take theirs
             // from the binning).
             if let SmallDone::Drawn(tested, failed) = done {
@@ -1663,26 +1782,10 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
         };
         // The band loop's merge: the least head's face, its chain's next in its place.
         let n = links.len().min(faces.len());
-        let next = |heads: &mut [u32; 4]| {
-            let least = heads[0];
-            let f = (least >> 2) as usize;
-            let &link = links.get(f).filter(|_| f < n)?;
-            let next = u32::from(link) << 2 | least & 3;
-            let mut i = 0;
-            while let Some(&h) = heads.get(i + 1).filter(|&&h| next >= h) {
-                if let Some(slot) = heads.get_mut(i) {
-                    *slot = h;
-                }
-                i += 1;
-            }
-            if let Some(slot) = heads.get_mut(i) {
-                *slot = next;
-            }
-            Some(least)
-        };
+        let next = |heads: &mut [u32; 4]| merge_next(heads, links, n);
         let (mut mine, mut theirs) = (FacesCounts::default(), FacesCounts::default());
         let (mut stopped, mut stopped2) = (false, false);
-        let mut same_heads = true;
+        let (mut same_heads, mut refused) = (true, false);
         for (b, &first) in first.iter().enumerate().take(1 + usize::from(two)) {
             let at = b * band_rows * W;
             let (Some(za), Some(ca)) = (z1.get_mut(at..), c1.get_mut(off + at..)) else {
@@ -1694,13 +1797,6 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
             let row = first_row + (b * band_rows) as i32;
             // The fused loop, the faces it leaves drawn by the twin.
             let mut heads1 = heads_of(first);
-            let mut t = SmallTarget {
-                z: za,
-                c: ca,
-                width: W,
-                first_row: row,
-                clip: clip_at(b),
-            };
             while !stopped {
                 let Carry8 {
                     read,
@@ -1718,25 +1814,31 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
                     states: &mut states,
                 };
                 let tables = (links, faces, cache);
-                let (head, carried) = match band_faces_less(
+                let band = (row, clip_at(b));
+                let stop = K::run(
                     &mut heads1,
                     tables,
                     &mut parts,
                     &color,
-                    &mut t,
+                    za,
+                    ca,
+                    band,
                     &mut mine,
-                ) {
+                );
+                let (head, carried) = match stop {
                     BandStop::Done => break,
                     BandStop::Whole(h) => (h, false),
                     BandStop::Fill(h) => (h, true),
-                    BandStop::Refused => match next(&mut heads1) {
+                    BandStop::Refused => {
                         // Only where there is no assembly: the twin's face by face.
-                        Some(h) => (h, false),
-                        None => break,
-                    },
+                        refused = true;
+                        match next(&mut heads1) {
+                            Some(h) => (h, false),
+                            None => break,
+                        }
+                    }
                 };
-                let (z, c) = (&mut *t.z, &mut *t.c);
-                if !face(head, carried, &mut carry, b, z, c, &mut mine) {
+                if !face(head, carried, &mut carry, b, za, ca, &mut mine) {
                     stopped = true;
                 }
             }
@@ -1756,7 +1858,7 @@ fn band_faces_cases(buf: &mut [u16], scratch: &mut [u32], cases: usize, seed: u3
         // After a stop (an error: the frame is not drawn on) the carry is not compared.
         let same_carry = stopped || carry == carry2;
         let same_draw = mine == theirs && z1 == z2 && c1 == c2 && same_heads;
-        if !same_draw || stopped != stopped2 || !same_carry {
+        if !same_draw || stopped != stopped2 || !same_carry || (K::NEVER_REFUSES && refused) {
             bad += 1;
         }
     }

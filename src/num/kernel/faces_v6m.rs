@@ -6,7 +6,9 @@
 #![allow(unsafe_code)]
 
 use super::cull::ScanRegs;
-use super::faces::{BandCarry, BandStop, FaceColor, FacesCounts, FacesStop, KeptStates};
+use super::faces::{
+    band_faces_cases, merge_next, BandCarry, BandLoop, BandStop, FaceColor, FacesCounts, FacesStop,
+};
 use super::{Buffers, CachedVertex};
 
 /// Whether [`faces_less_v6m`] runs the assembly loop (ARMv6-M); elsewhere it leaves
@@ -1181,7 +1183,8 @@ core::arch::global_asm!(
     "uxth r2, r2",
     "bx lr",
     // A taken face's walk resumed from slot `taken` (r0) of the read half, its colour
-    // in r2; the counts as `band_call`'s.
+    // in r2 (and r6); the counts as `band_call`'s. A slot it refuses (marked empty) is
+    // the set-up's.
     "40:",
     "movs r1, #84",
     "muls r0, r1",
@@ -1189,10 +1192,12 @@ core::arch::global_asm!(
     "adds r1, r1, r0",
     "ldr r0, [r7, #76]",
     "str r2, [r0, #{color}]",
+    "mov r6, r2",
     "bl zraster_small_resume_v6m",
     "adds r1, r0, #1",
     "bne 1f",
-    "b 67b",
+    "mov r2, r6",
+    "b 22b",
     "1:",
     "ldr r1, [r7, #88]",
     "adds r1, r1, r0",
@@ -1202,18 +1207,20 @@ core::arch::global_asm!(
     "2:",
     "b 10b",
     // A kept face drawn (r1 the tested sum, kept for its sign; its colour in r6): the
-    // set-up clears `save` once it kept the walk there; where it did not, no slot from
-    // this one on (sroom = kept). The colour kept for the band below while there is
-    // room.
+    // set-up clears `save` once it kept the walk there; where it did not (no rows
+    // past the band), the slot marked empty (its kept row i32::MAX: the band below sets
+    // the face up). The colour kept for the band below while there is room.
     "41:",
     "ldr r0, [r7, #76]",
     "ldr r3, [r0, #{save}]",
     "cmp r3, #0",
     "beq 1f",
-    "movs r3, #0",
-    "str r3, [r0, #{save}]",
-    "ldr r3, [r7, #104]",
-    "str r3, [r7, #124]",
+    "movs r2, #0",
+    "str r2, [r0, #{save}]",
+    "movs r2, #1",
+    "lsls r2, r2, #31",
+    "subs r2, #1",
+    "str r2, [r3, #60]",
     "1:",
     "ldr r3, [r7, #104]",
     "ldr r2, [r7, #108]",
@@ -1643,274 +1650,76 @@ pub fn check_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
 
 /// On-target check of the ARMv6-M band loop (`band_faces_less_v6m`) against its twin
 /// (the band loop's merge, carry, colour and the set-up's portable twin, face by
-/// face), for the bench firmware: `cases` random bands (buffers, clips, caches, meshes
-/// and colours as [`check_faces_v6m_kernel`]'s) walked from random bins: four chains' heads, links
-/// increasing, ending in `END` or a face past the faces, over links shorter or longer
-/// than the faces; tall faces among them; carried colours up to and past the read
-/// half, the keep half sometimes full. The faces the loop leaves are drawn by the twin
-/// as the band loop would. Returns the number of cases whose buffers, pixel counts,
-/// drawn faces, heads or carry differ. `buf` holds four 48 × 16 buffers (a shorter one
-/// is a failure).
+/// face), for the bench firmware: the cases of
+/// [`check_band_faces_kernel`](super::check_band_faces_kernel) (random bands and bins,
+/// every other case two bands one below the other) with the colours this loop takes.
+/// Returns the number of cases whose buffers, pixel counts, heads or carry differ, or
+/// where the loop refuses on ARMv6-M. `buf` holds four 48 × 16 buffers (a shorter one
+/// is a failure). No walks are kept ([`check_band_carry_v6m_kernel`] keeps them).
 #[inline(never)]
 pub fn check_band_faces_v6m_kernel(buf: &mut [u16], cases: usize) -> usize {
-    use super::faces::{Carry8, Raw565};
-    use super::light::{lit_565_portable, LightBlock};
-    use super::rows_v6m::small_walk_portable;
-    use super::SmallDone;
-    use crate::raster::{Clip, ScreenVertex};
-    const W: usize = 48;
-    const H: usize = 16;
-    const N: usize = W * H;
-    const END: u16 = u16::MAX;
-    let Some(buf) = buf.get_mut(..4 * N) else {
-        return usize::MAX;
-    };
-    let (mine, theirs) = buf.split_at_mut(2 * N);
-    let (z1, c1) = mine.split_at_mut(N);
-    let (z2, c2) = theirs.split_at_mut(N);
-    let mut rnd = super::xorshift32(0xa54f_f53a);
-    let mut bad = 0;
-    for case in 0..cases {
-        for (d, c) in z1.iter_mut().zip(c1.iter_mut()) {
-            (*d, *c) = (rnd() as u16 | 0x8000 >> (case % 3), rnd() as u16);
-        }
-        z2.copy_from_slice(z1);
-        c2.copy_from_slice(c1);
-        let off = case / 2 % 2;
-        let first_row = (rnd() % 5) as i32 - 2;
-        let rows = (H - off) as i32;
-        let clip = if case % 3 == 0 {
-            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
-            Clip {
-                x0,
-                y0: first_row + y0,
-                x1: x0 + (rnd() % 29) as i32,
-                y1: first_row + y0 + (rnd() % 10) as i32,
-            }
-        } else {
-            Clip {
-                x0: 0,
-                y0: first_row,
-                x1: W as i32,
-                y1: first_row + rows,
-            }
-        };
-        let len = rnd() as usize % 13;
-        let mut cache = [CachedVertex::EMPTY; 12];
-        let span = 64 << (case % 4);
-        let (bx, by) = (
-            (rnd() % (W as u32 * 16)) as i32 - 40,
-            (rnd() % (H as u32 * 16)) as i32 - 40 + first_row * 16,
-        );
-        for (i, e) in cache.iter_mut().enumerate() {
-            let far = if case % 11 == 0 && i == 1 { 9000 } else { 0 };
-            let x = ((rnd() % span) as i32 + bx - span as i32 / 2 + far) as i16;
-            let y = ((rnd() % span) as i32 + by - span as i32 / 2) as i16;
-            let z = (rnd() >> 1).min(crate::fixed::MAX_DEPTH);
-            *e = CachedVertex {
-                z,
-                xy: super::XyWord::new(x, y),
-            };
-            if rnd().is_multiple_of(24) {
-                e.xy = super::XyWord::new(i16::MIN, (rnd() % 64) as i16);
-            }
-        }
-        let cache = cache.get(..len).unwrap_or(&[]);
-        let mut faces = [[0u16; 3]; 16];
-        for t in faces.iter_mut() {
-            for i in t.iter_mut() {
-                *i = (rnd() % (len as u32 + 1).min(12)) as u16;
-                if rnd().is_multiple_of(64) {
-                    *i = (len as u32 + rnd() % 4) as u16; // out of range
+    band_faces_cases::<V6mLoop>(buf, &mut [], cases, 0xa54f_f53a)
+}
+
+/// [`check_band_faces_v6m_kernel`] with the kept faces' walks in `carry` (up to four
+/// slots a band, none on some cases): the loop keeps them in the first band and
+/// resumes them in the second, where the twin sets them up again. `carry` holds at
+/// least [`BandBuffers::carry_needed`](crate::BandBuffers::carry_needed)`(4)` words (a
+/// shorter one is a failure).
+#[inline(never)]
+pub fn check_band_carry_v6m_kernel(buf: &mut [u16], carry: &mut [u32], cases: usize) -> usize {
+    match carry.get_mut(..2 * 4 * super::STATE_WORDS) {
+        Some(carry) => band_faces_cases::<V6mLoop>(buf, carry, cases, 0x510e_527f),
+        None => usize::MAX,
+    }
+}
+
+/// ARMv6-M's band loop ([`band_faces_less_v6m`]; it leaves every face to the twin
+/// elsewhere) for the band checks: packed 5-6-5 light only, diffuse weights within
+/// ±2¹⁶.
+struct V6mLoop;
+
+impl BandLoop for V6mLoop {
+    const ANY_LIT: bool = false;
+    const DIFFUSE_SHIFT: u32 = 0;
+    const NEVER_REFUSES: bool = FACES_V6M_KERNEL;
+    #[inline(always)]
+    fn run(
+        heads: &mut [u32; 4],
+        tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
+        carry: &mut BandCarry<'_, '_, u16>,
+        color: &FaceColor<'_, u16>,
+        z: &mut [u16],
+        c: &mut [u16],
+        (first_row, clip): (i32, crate::raster::Clip),
+        counts: &mut FacesCounts,
+    ) -> BandStop {
+        let mut b = Buffers::unstarted(z, c, 48, first_row, clip);
+        b.start();
+        match band_faces_less_v6m(heads, tables, carry, color, &mut b, counts) {
+            // It leaves a face with the heads before it: past it, as the checks take it.
+            BandStop::Whole(_) => {
+                let n = tables.0.len().min(tables.1.len());
+                match merge_next(heads, tables.0, n) {
+                    Some(h) => BandStop::Whole(h),
+                    None => BandStop::Done,
                 }
             }
-        }
-        let faces = faces.get(..rnd() as usize % 17).unwrap_or(&[]);
-        // The bins: links increasing (so every chain ends), to END or past the faces.
-        let mut links = [0u16; 18];
-        for (f, l) in links.iter_mut().enumerate() {
-            *l = match rnd() % 8 {
-                0 => END,
-                1 => 16 + (rnd() % 3) as u16,
-                _ => (f as u32 + 1 + rnd() % 3) as u16,
-            };
-        }
-        let links = links.get(..rnd() as usize % 19).unwrap_or(&[]);
-        let mut heads = [0u32; 4];
-        for (c, h) in heads.iter_mut().enumerate() {
-            let f = if rnd().is_multiple_of(5) {
-                END
-            } else {
-                (rnd() % 18) as u16
-            };
-            // Tall faces (chain 3) on some cases only, as a band has few.
-            let c = if c == 3 && case % 4 != 0 { 2 } else { c as u32 };
-            *h = u32::from(f) << 2 | c;
-        }
-        heads.sort_unstable();
-        let normals = [[0i16; 3]; 16].map(|n| n.map(|_| ((rnd() % 32769) as i32 - 16384) as i16));
-        let light = [0; 3].map(|_| (rnd() % 65537) as i32 - 32768);
-        let ambient = (rnd() % 131_073) as i32 - 65536;
-        let diffuse = (rnd() % 131_073) as i32 - 65536;
-        let channels = [0; 3].map(|_| rnd() as u8);
-        let count = rnd() as usize % (faces.len() + 2);
-        let block = LightBlock::new(
-            light,
-            ambient,
-            diffuse,
-            channels,
-            normals.get(..count).unwrap_or(&normals),
-        );
-        let flat = rnd() as u16;
-        let same: fn(u16) -> u16 = |c| c;
-        let color = match case % 4 {
-            3 => FaceColor::Flat(flat),
-            _ => FaceColor::Lit(&block, same, Some(Raw565::<u16>::PROOF)),
-        };
-        let color_of = |k: usize| match color {
-            FaceColor::Flat(c) => c,
-            FaceColor::Lit(b, f, _) => lit_565_portable(k, b).map_or(0x1234, f),
-        };
-        let mut carry = Carry8 {
-            read: [0; 8].map(|_| rnd() as u16),
-            keep: [0; 8].map(|_| rnd() as u16),
-            filled: rnd() as usize % 11,
-            taken: rnd() as usize % 3,
-            kept: rnd() as usize % 9,
-        };
-        let mut carry2 = carry.clone();
-        // One face as the band loop draws it (`carried`: its carry done by the fused
-        // loop); `false` at a corner past the cache (the band loop's error: it stops).
-        let face = |head: u32,
-                    carried: bool,
-                    carry: &mut Carry8,
-                    z: &mut [u16],
-                    c: &mut [u16],
-                    counts: &mut FacesCounts| {
-            let (f, k) = ((head >> 2) as usize, head & 3);
-            let Some(&t) = faces.get(f) else {
-                return false;
-            };
-            let get = |i: u16| cache.get(usize::from(i));
-            let (Some(a), Some(b), Some(e)) = (get(t[0]), get(t[1]), get(t[2])) else {
-                return false;
-            };
-            let taken = match (k, carried) {
-                (0, false) => carry.take(),
-                (0, true) => carry.last_taken(),
-                _ => None,
-            };
-            let col = taken.unwrap_or_else(|| color_of(f));
-            if k == 1 && !carried {
-                carry.keep(col);
-            }
-            let [p, q, r] = [a, b, e].map(|e| {
-                let (x, y) = e.xy();
-                ScreenVertex::from_raw(x, y, e.z)
-            });
-            let done = small_walk_portable([&p, &q, &r], &clip, first_row, W, z, c, col);
-            if let SmallDone::Drawn(tested, failed) = done {
-                counts.drawn += 1;
-                counts.tested += u64::from(tested);
-                counts.failed += u64::from(failed);
-            }
-            true
-        };
-        // The band loop's merge: the least head's face, its chain's next in its place.
-        let n = links.len().min(faces.len());
-        let next = |heads: &mut [u32; 4]| {
-            let least = heads[0];
-            let f = (least >> 2) as usize;
-            let &link = links.get(f).filter(|_| f < n)?;
-            let next = u32::from(link) << 2 | least & 3;
-            let mut i = 0;
-            while let Some(&h) = heads.get(i + 1).filter(|&&h| next >= h) {
-                if let Some(slot) = heads.get_mut(i) {
-                    *slot = h;
-                }
-                i += 1;
-            }
-            if let Some(slot) = heads.get_mut(i) {
-                *slot = next;
-            }
-            Some(least)
-        };
-        // The fused loop, the faces it leaves drawn by the twin.
-        let mut mine = FacesCounts::default();
-        let mut heads1 = heads;
-        let (Some(ca), Some(cb)) = (c1.get_mut(off..), c2.get_mut(off..)) else {
-            return usize::MAX;
-        };
-        let mut t = Buffers::unstarted(&mut z1[..], ca, W, first_row, clip);
-        t.start();
-        let mut stopped = false;
-        let mut refused = false;
-        loop {
-            let Carry8 {
-                read,
-                keep,
-                filled,
-                taken,
-                kept,
-            } = &mut carry;
-            let mut parts = BandCarry {
-                read: &read[..],
-                keep: &mut keep[..],
-                filled: *filled,
-                taken,
-                kept,
-                states: &mut KeptStates::new(&mut [], 0), // nothing kept on ARMv6-M
-            };
-            let tables = (links, faces, cache);
-            let (head, carried) = match band_faces_less_v6m(
-                &mut heads1,
-                tables,
-                &mut parts,
-                &color,
-                &mut t,
-                &mut mine,
-            ) {
-                BandStop::Done => break,
-                // The heads and the carry as before the face it left: the twin's.
-                BandStop::Whole(_) | BandStop::Fill(_) => match next(&mut heads1) {
-                    Some(h) => (h, false),
-                    None => break,
-                },
-                BandStop::Refused => {
-                    // Only where there is no assembly: the twin's face by face.
-                    refused = true;
-                    match next(&mut heads1) {
-                        Some(h) => (h, false),
-                        None => break,
-                    }
-                }
-            };
-            let (z, c) = t.parts();
-            if !face(head, carried, &mut carry, z, c, &mut mine) {
-                stopped = true;
-                break;
-            }
-        }
-        // The twin.
-        let mut theirs = FacesCounts::default();
-        let mut heads2 = heads;
-        let mut stopped2 = false;
-        while let Some(head) = next(&mut heads2) {
-            if !face(head, false, &mut carry2, z2, cb, &mut theirs) {
-                stopped2 = true;
-                break;
-            }
-        }
-        // After a stop (an error: the frame is not drawn on) the carry is not compared.
-        let same_carry = stopped || carry == carry2;
-        // The loop does not count drawn faces (the band loop does not use them).
-        let same_counts = (mine.tested, mine.failed) == (theirs.tested, theirs.failed);
-        let same_draw = same_counts && z1 == z2 && c1 == c2 && heads1 == heads2;
-        if !same_draw || stopped != stopped2 || !same_carry || (FACES_V6M_KERNEL && refused) {
-            bad += 1;
+            stop => stop,
         }
     }
-    bad
+    #[inline(always)]
+    fn twin(
+        tri: [&crate::raster::ScreenVertex; 3],
+        clip: &crate::raster::Clip,
+        first_row: i32,
+        width: usize,
+        z: &mut [u16],
+        c: &mut [u16],
+        color: u16,
+    ) -> super::SmallDone {
+        super::rows_v6m::small_walk_portable(tri, clip, first_row, width, z, c, color)
+    }
 }
 
 #[cfg(test)]
@@ -1929,5 +1738,11 @@ mod tests {
         let mut buf = [0u16; 4 * 48 * 16];
         assert_eq!(check_band_faces_v6m_kernel(&mut buf, 4_000), 0);
         assert_eq!(check_band_faces_v6m_kernel(&mut buf[..100], 1), usize::MAX);
+        let mut carry = [0u32; 2 * 4 * super::super::STATE_WORDS];
+        assert_eq!(check_band_carry_v6m_kernel(&mut buf, &mut carry, 4_000), 0);
+        assert_eq!(
+            check_band_carry_v6m_kernel(&mut buf, &mut carry[1..], 1),
+            usize::MAX
+        );
     }
 }

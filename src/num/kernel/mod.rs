@@ -87,7 +87,9 @@ pub(crate) use faces::{
 };
 pub use faces::{check_band_carry_kernel, check_band_faces_kernel, check_faces_kernel};
 pub(crate) use faces_v6m::{band_faces_less_v6m, faces_less_v6m, FACES_V6M_KERNEL};
-pub use faces_v6m::{check_band_faces_v6m_kernel, check_faces_v6m_kernel};
+pub use faces_v6m::{
+    check_band_carry_v6m_kernel, check_band_faces_v6m_kernel, check_faces_v6m_kernel,
+};
 #[cfg(zraster_x86_64)]
 pub(crate) use faces_x86::FacesX86;
 pub(crate) use faces_x86::FACES_X86_KERNEL;

@@ -824,6 +824,28 @@ fn box_walk_rows(
     (tested, failed)
 }
 
+/// The model of a walk kept and resumed (`.Lbw_save` and `zraster_small_resume_v6m`):
+/// `w`, set up in a clip whose rows end at `y1` above the triangle's rows' end `end`,
+/// kept at row y1 (its row state stepped there), then resumed in `clip` from its first
+/// row (`None` above y1: the set-up's), the state stepped on to it. The tests hold it
+/// to the set-up in `clip` itself.
+#[cfg(test)]
+fn box_walk_resume(w: &BoxWalk, y1: i32, end: i32, clip: &Clip) -> Option<BoxWalk> {
+    let step = |v: u32, s: u32, rows: i32| v.wrapping_add(s.wrapping_mul(rows as u32));
+    let rows = (y1 - w.start) + clip.y0.checked_sub(y1).filter(|&k| k >= 0)?;
+    let mut e = w.e;
+    for (e, by) in e.iter_mut().zip(w.by) {
+        *e = step(*e as u32, by as u32, rows) as i32;
+    }
+    Some(BoxWalk {
+        start: clip.y0,
+        end: end.min(clip.y1),
+        z: step(w.z, w.sy, rows),
+        e,
+        ..*w
+    })
+}
+
 /// The portable twin of `zraster_small_walk_v6m` (the bounding-box walk):
 /// [`box_walk_setup`] then [`box_walk_rows`]. The clip must lie inside the buffers
 /// (pixels outside are skipped).
@@ -2053,13 +2075,15 @@ core::arch::global_asm!(
     "sub sp, #72",
     "str r0, [sp, #56]",
     // Its rows from y0, skip (r3) ≥ 0 rows past the kept row (else the set-up's: never
-    // for bands one below the other), to the end row or y1; none, nothing.
+    // for bands one below the other, always for a slot marked empty by a kept row of
+    // i32::MAX), to the end row or y1; none, nothing.
     "ldr r2, [r0, #8]",
     "ldr r3, [r1, #60]",
-    "subs r3, r2, r3",
-    "bpl 1f",
+    "cmp r2, r3",
+    "bge 1f",
     "b .Lbw_refuse",
     "1:",
+    "subs r3, r2, r3",
     "ldr r4, [r1, #64]",
     "ldr r5, [r0, #20]",
     "cmp r4, r5",
@@ -2397,6 +2421,70 @@ mod tests {
             drawn > 100_000 && pixels > 150_000,
             "{drawn} drawn, {pixels} pixels"
         );
+    }
+
+    /// A walk kept at the end of a clip and resumed in a clip below it with the same
+    /// columns (`box_walk_resume`, the model of the assembly's save and resume) is the
+    /// set-up's own in that clip, field for field, or none when the set-up finds no
+    /// rows there: on random small triangles crossing random clips' last rows, the
+    /// clip below starting 0 to 3 rows further on.
+    #[test]
+    fn kept_walk_resumes_as_the_set_up_below() {
+        let mut seed = 0x4b45_5054;
+        let mut resumed = 0;
+        for case in 0..200_000u32 {
+            let n = |seed: &mut u32, m: u32| (next(seed) % m) as i32;
+            let (x0, x1) = (n(&mut seed, 8), 40 + n(&mut seed, 8));
+            let a = Clip {
+                x0,
+                y0: n(&mut seed, 8) - 4,
+                x1,
+                y1: n(&mut seed, 8) + 4,
+            };
+            let span = [48, 96, 200, 400][(case % 4) as usize];
+            let (bx, by) = (200 + n(&mut seed, 400), a.y1 * 16 + n(&mut seed, 96) - 48);
+            let z0 = next(&mut seed) >> 2;
+            let tri = [0; 3].map(|_| {
+                let (mut x, mut y) = (bx + n(&mut seed, span), by + n(&mut seed, span));
+                if case % 8 < 3 {
+                    (x, y) = (x & !7, y & !7);
+                }
+                let z = z0.saturating_add(next(&mut seed) % (1 << 20));
+                ScreenVertex::new(x, y, z.min(crate::fixed::MAX_DEPTH))
+                    .unwrap_or(ScreenVertex::ORIGIN)
+            });
+            let end = (tri.iter().map(ScreenVertex::y).max().unwrap_or(0) + 7) >> 4;
+            let Ok(w) = box_walk_setup(tri.each_ref(), &a) else {
+                continue;
+            };
+            if end <= a.y1 {
+                continue;
+            }
+            let y0 = a.y1 + n(&mut seed, 4);
+            let b = Clip {
+                x0,
+                y0,
+                x1,
+                y1: y0 + 1 + n(&mut seed, 12),
+            };
+            let kept = box_walk_resume(&w, a.y1, end, &b);
+            // (The set-up refuses nothing below a walk it took: its tests are of the
+            // triangle and the columns.)
+            match box_walk_setup(tri.each_ref(), &b) {
+                Ok(fresh) => {
+                    assert_eq!(kept, Some(fresh), "case {case}: {tri:?} in {a:?}, {b:?}");
+                    resumed += 1;
+                }
+                done => {
+                    assert_eq!(done, Err(SmallDone::Drawn(0, 0)), "case {case}");
+                    assert!(kept.is_some_and(|k| k.start >= k.end), "case {case}");
+                }
+            }
+            // Above the row it was kept at, the set-up's.
+            let above = Clip { y0: a.y1 - 1, ..b };
+            assert_eq!(box_walk_resume(&w, a.y1, end, &above), None);
+        }
+        assert!(resumed > 10_000, "{resumed} resumed");
     }
 
     /// The tests' DDA reference (`small_walk_setup`) keeps every row's columns inside the
