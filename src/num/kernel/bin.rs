@@ -69,7 +69,7 @@ struct V6mConsts {
     tall_less1: u32,        // 24: the tall faces' chain, less 1
     span: u32,              // 28: the scan's range of dropped areas
     drawn: u32,             // 32: drawn faces found
-    back: u32,              // 36: not 0: the loop without the corners' test, by the sign
+    placed: u32, // 36: not 0: `placed` claimed (the `back` loop where it drops back faces)
 }
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
@@ -80,7 +80,7 @@ const _: () = {
     assert!(offset_of!(V, tails1) == 8 && offset_of!(V, slots) == 12);
     assert!(offset_of!(V, faces) == 16 && offset_of!(V, third) == 20);
     assert!(offset_of!(V, tall_less1) == 24 && offset_of!(V, span) == 28);
-    assert!(offset_of!(V, drawn) == 32 && offset_of!(V, back) == 36);
+    assert!(offset_of!(V, drawn) == 32 && offset_of!(V, placed) == 36);
 };
 
 impl<'b> BinChains<'b> {
@@ -119,7 +119,7 @@ impl<'b> BinChains<'b> {
                     tall_less1: 0,
                     span: 0,
                     drawn: 0,
-                    back: 0,
+                    placed: 0,
                 },
             },
             tails,
@@ -418,7 +418,6 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
     if *pos >= r.faces_len {
         return;
     }
-    let back = chains.placed && r.neg_lo == 0 && r.span == i32::MAX as u32;
     let c = &mut chains.consts;
     c.v6m = V6mConsts {
         last_row: c.last_row,
@@ -430,7 +429,7 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
         tall_less1: c.tall_less1,
         span: r.span,
         drawn: c.drawn,
-        back: u32::from(back),
+        placed: u32::from(chains.placed),
     };
     let consts: *mut V6mConsts = &mut c.v6m;
     let at: *const [u16; 3];
@@ -477,9 +476,16 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "mov r10, r6", // the drawn faces so far
             "movs r6, #1",
             "mov r11, r6",
+            // `back` for `placed` claimed, lo 0 and span 2³¹ − 1 (+ 1 overflows).
             "ldr r6, [r5, #36]",
             "cmp r6, #0",
-            "bne 11f",
+            "beq 1f",
+            "cmp r4, #0",
+            "bne 1f",
+            "ldr r6, [r5, #28]",
+            "adds r6, #1",
+            "bvs 11f",
+            "1:",
             "bl 10f", // the loop's head (the return address) into r9, and on there
             // `checked`: the corners' test, the range of dropped areas.
             "2:",
