@@ -69,7 +69,7 @@ struct V6mConsts {
     tall_less1: u32,        // 24: the tall faces' chain, less 1
     span: u32,              // 28: the scan's range of dropped areas
     drawn: u32,             // 32: drawn faces found
-    placed: u32, // 36: not 0: `placed` claimed (the `back` loop where it drops back faces)
+    placed: u32,            // 36: not 0: `placed` claimed (see `bin_scan_v6m`)
 }
 
 #[cfg(all(zraster_thumb, zraster_armv6m))]
