@@ -21,11 +21,8 @@ pub(crate) struct BinChains<'b> {
     /// The constants the assembly reads, and the drawn faces it counts.
     consts: BinConsts,
     /// No cache entry is unplaced (the renderer's `placed`): the assembly scans may then
-    /// skip the corners' test where back faces are dropped.
-    #[cfg_attr(
-        not(all(zraster_thumb, any(zraster_dsp, zraster_armv6m))),
-        allow(dead_code)
-    )]
+    /// skip the corners' test where back faces are dropped (elsewhere not kept).
+    #[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
     placed: bool,
 }
 
@@ -42,8 +39,12 @@ struct BinConsts {
     tails1: *mut u16, // 16, 20: the second tail and the slots, set from the slices
     slots: *mut u16,  //   before each run of the assembly
     shift: u32,       // 24: log2(rows) (ARMv6-M: rows a power of two)
-    faces_len: u32,   // 28: the faces' number (ARMv7E-M, kept there by the assembly)
-    placed: u32,      // 32: not 0: `placed` claimed (ARMv7E-M, see `bin_scan_dsp`)
+    /// ARMv7E-M's scan: the faces' number (kept there by the assembly), and not 0
+    /// where `placed` is claimed (see `bin_scan_dsp`).
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    faces_len: u32, // 28
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    placed: u32, // 32
     /// The ARMv6-M scan's copy, filled before each run (kept here rather than on the
     /// stack: LLVM then fully unrolls the chains' loops around it, +0.7 KB of hot code).
     #[cfg(all(zraster_thumb, zraster_armv6m))]
@@ -57,8 +58,8 @@ const _: () = {
     // The pointers as the assembly (32-bit) reads them by one LDRD.
     assert!(offset_of!(BinConsts, tails1) == 16);
     assert!(core::mem::size_of::<usize>() != 4 || offset_of!(BinConsts, slots) == 20);
-    assert!(core::mem::size_of::<usize>() != 4 || offset_of!(BinConsts, faces_len) == 28);
-    assert!(core::mem::size_of::<usize>() != 4 || offset_of!(BinConsts, placed) == 32);
+    #[cfg(all(zraster_thumb, zraster_dsp))]
+    assert!(offset_of!(BinConsts, faces_len) == 28 && offset_of!(BinConsts, placed) == 32);
 };
 
 /// What the ARMv6-M scan ([`bin_scan`]) reads through one register, in the order its
@@ -115,7 +116,9 @@ impl<'b> BinChains<'b> {
                 tails1: core::ptr::null_mut(),
                 slots: core::ptr::null_mut(),
                 shift: rows.trailing_zeros(),
+                #[cfg(all(zraster_thumb, zraster_dsp))]
                 faces_len: 0,
+                #[cfg(all(zraster_thumb, zraster_dsp))]
                 placed: 0,
                 #[cfg(all(zraster_thumb, zraster_armv6m))]
                 v6m: V6mConsts {
@@ -133,6 +136,7 @@ impl<'b> BinChains<'b> {
             },
             tails,
             slots,
+            #[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
             placed: false,
         })
     }
@@ -165,7 +169,11 @@ impl<'b> BinChains<'b> {
     /// a wrong claim bins the wrong faces but writes nothing outside the chains).
     #[inline(always)]
     pub(crate) fn set_placed(&mut self, placed: bool) {
-        self.placed = placed;
+        #[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
+        {
+            self.placed = placed;
+        }
+        let _ = placed;
     }
 
     /// Append face `f` to chain `c`.
