@@ -289,6 +289,7 @@ impl<'m, 'c, M: Copy, S: RenderState> Renderer<'m, 'c, M, S> {
         let Some(mut bins) = BinChains::new(tails, slots, height, rows) else {
             return off(self, Unbinned::BinsTooShort);
         };
+        bins.set_placed(self.placed);
         while let Some(next) = walk.next_binned(&mut bins) {
             let (f, tri) = next?;
             let Some([p, q, r]) = tri else {

@@ -254,7 +254,8 @@ pub struct Renderer<'m, 'c, M, S = Dynamic> {
     pub(crate) light_q: ([i32; 3], i64, i64),
     pub(crate) cache: Option<&'c mut [CachedVertex]>,
     /// Whether no entry of `cache` is marked (each placed: |x|, |y| < 2¹⁴), known where
-    /// ARMv6-M's vertex kernel filled it: its face loop then skips that test.
+    /// a vertex kernel filled it: ARMv6-M's face loop and the binning scans then skip
+    /// that test.
     pub(crate) placed: bool,
     pub(crate) stats: FrameStats,
     pub(crate) counted: bool,
@@ -330,7 +331,7 @@ fn fill_cache(
         e
     });
     if kernel || crate::num::kernel::PLACE_V6M_KERNEL {
-        return crate::num::kernel::PLACE_V6M_KERNEL && kernel && placed;
+        return kernel && placed;
     }
     // x86-64: the usual vertex four at a time in SSE2, any other out of line.
     if PLACE4_KERNEL {
