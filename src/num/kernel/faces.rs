@@ -496,17 +496,21 @@ pub(crate) const CARRY: usize = 64;
 /// only once written, so that a band resumes only set-ups the loop made in this draw.
 #[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
 pub(crate) struct KeptStates<'s> {
-    halves: [&'s mut [u32]; 2],
+    /// The two halves, one after the other.
+    scratch: &'s mut [u32],
+    /// Slots a half holds (each half holds this many [`STATE_WORDS`]).
+    pub(super) slots: usize,
     /// The half this band resumes from; it saves into the other.
     read: bool,
     /// Slots of the read half the band above saved.
     pub(super) filled: usize,
     /// Slots of the other half this band has saved.
     pub(super) saved: usize,
-    /// ARMv6-M: the clip's columns of the band that saved each half (its walks stay
-    /// inside them; a band of other columns sets them up again).
+    /// ARMv6-M: the clip's columns of the band that saved each half, x0 and x1 in a
+    /// word's halves (its walks stay inside them; a band of other columns sets them up
+    /// again).
     #[cfg(zraster_armv6m)]
-    pub(super) columns: [(i32, i32); 2],
+    pub(super) columns: [u32; 2],
 }
 
 #[cfg(all(zraster_thumb, any(zraster_dsp, zraster_armv6m)))]
@@ -514,16 +518,15 @@ impl<'s> KeptStates<'s> {
     /// Slots for at most `faces` kept faces a band in `scratch` (none when it holds
     /// fewer than two words).
     pub(crate) fn new(scratch: &'s mut [u32], faces: usize) -> Self {
-        let room = (scratch.len() / (2 * STATE_WORDS)).min(faces);
-        let (a, rest) = scratch.split_at_mut(room * STATE_WORDS);
-        let b = rest.get_mut(..room * STATE_WORDS).unwrap_or(&mut []);
+        let slots = (scratch.len() / (2 * STATE_WORDS)).min(faces);
         KeptStates {
-            halves: [a, b],
+            scratch,
+            slots,
             read: false,
             filled: 0,
             saved: 0,
             #[cfg(zraster_armv6m)]
-            columns: [(0, 0); 2],
+            columns: [0; 2],
         }
     }
 
@@ -537,7 +540,7 @@ impl<'s> KeptStates<'s> {
     /// ARMv6-M: the columns of the band that saved the read half, and those of this
     /// band, which saves into the other.
     #[cfg(zraster_armv6m)]
-    pub(super) fn columns(&mut self) -> (&(i32, i32), &mut (i32, i32)) {
+    pub(super) fn columns(&mut self) -> (&u32, &mut u32) {
         let [a, b] = &mut self.columns;
         if self.read {
             (b, a)
@@ -548,7 +551,9 @@ impl<'s> KeptStates<'s> {
 
     /// The slots this band resumes from (filled) and saves into (saved so far).
     pub(super) fn halves(&mut self) -> (&[u32], &mut [u32]) {
-        let [a, b] = &mut self.halves;
+        let n = self.slots * STATE_WORDS;
+        let (a, b) = self.scratch.split_at_mut_checked(n).unwrap_or_default();
+        let b = b.get_mut(..n).unwrap_or_default();
         if self.read {
             (b, a)
         } else {

@@ -1299,14 +1299,24 @@ fn band_faces_v6m<C: Copy>(
     // while every colour kept so far has its walk beside it (below `sroom`, else
     // `sroom` is what was saved: no more).
     let states = &mut *carry.states;
-    let (saved, columns) = (states.saved, (b.clip.x0, b.clip.x1));
+    // The clip's columns (inside the buffers: below 2¹⁶) in one word.
+    let (saved, kept_above, columns) = (
+        states.saved,
+        states.filled,
+        b.clip.x0 as u16 as u32 | (b.clip.x1 as u32) << 16,
+    );
     let (above, here) = states.columns();
     let same = *above == columns;
     *here = columns;
-    let sfilled = if same { states.filled } else { 0 };
+    let slots = states.slots;
     let (sread, skeep) = states.halves();
-    let sfilled = sfilled.min(sread.len() / super::STATE_WORDS) as u32;
-    let slots = (skeep.len() / super::STATE_WORDS).min(carry.keep.len());
+    // Slots both halves hold (all `slots`: none where they would not).
+    let slots = match sread.len().min(skeep.len()) >= slots * super::STATE_WORDS {
+        true => slots,
+        false => 0,
+    };
+    let sfilled = if same { kept_above.min(slots) } else { 0 } as u32;
+    let slots = slots.min(carry.keep.len());
     let sroom = if kept0 as usize == saved {
         slots
     } else {
