@@ -826,13 +826,15 @@ fn box_walk_rows(
 
 /// The model of a walk kept and resumed (`.Lbw_save` and `zraster_small_resume_v6m`):
 /// `w`, set up in a clip whose rows end at `y1` above the triangle's rows' end `end`,
-/// kept at row y1 (its row state stepped there), then resumed in `clip` from its first
-/// row (`None` above y1: the set-up's), the state stepped on to it. The tests hold it
-/// to the set-up in `clip` itself.
+/// kept at row y1 (its row state stepped there), then resumed in `clip` if that starts
+/// at y1 (else `None`: the set-up's). The tests hold it to the set-up in `clip`.
 #[cfg(test)]
 fn box_walk_resume(w: &BoxWalk, y1: i32, end: i32, clip: &Clip) -> Option<BoxWalk> {
     let step = |v: u32, s: u32, rows: i32| v.wrapping_add(s.wrapping_mul(rows as u32));
-    let rows = (y1 - w.start) + clip.y0.checked_sub(y1).filter(|&k| k >= 0)?;
+    if clip.y0 != y1 {
+        return None;
+    }
+    let rows = y1 - w.start;
     let mut e = w.e;
     for (e, by) in e.iter_mut().zip(w.by) {
         *e = step(*e as u32, by as u32, rows) as i32;
@@ -2053,13 +2055,13 @@ core::arch::global_asm!(
     ".size zraster_small_walk_v6m, . - zraster_small_walk_v6m",
     // `zraster_small_resume_v6m(s, slot)`, called by the bands' loop (`faces_v6m`): the
     // rows of a walk `.Lbw_save` kept in `slot` ([`KEPT_WALK_WORDS`]) drawn with block
-    // `s` as the set-up would draw that triangle in its clip: from y0, at or below the
-    // row it was kept at (else u32::MAX, nothing drawn, for the set-up to do), to the
-    // end row or y1. Returns the pixels tested (the failed ones added to `failed`).
+    // `s` as the set-up would draw that triangle in its clip: from y0, the row it was
+    // kept at (else u32::MAX, nothing drawn, for the set-up to do), to the end row or
+    // y1. Returns the pixels tested (the failed ones added to `failed`).
     // SAFETY: as the walk's, `slot` holding what the walk kept there from a block of
     // the same clip columns (x0, x1): every value as the set-up makes it, so the rows
     // are the set-up's (its argument above), those of rows y0 .. min(end, y1) of the
-    // triangle's own (y0 ≥ the kept row, the first below the triangle's first).
+    // triangle's own (y0 the kept row, below the triangle's first).
     ".balign 2",
     ".global zraster_small_resume_v6m",
     ".hidden zraster_small_resume_v6m",
@@ -2074,16 +2076,15 @@ core::arch::global_asm!(
     "push {{r4, r5, r6, r7}}",
     "sub sp, #72",
     "str r0, [sp, #56]",
-    // Its rows from y0, skip (r3) ≥ 0 rows past the kept row (else the set-up's: never
-    // for bands one below the other, always for a slot marked empty by a kept row of
-    // i32::MAX), to the end row or y1; none, nothing.
+    // Its rows from y0, the row it was kept at (else the set-up's: never for bands one
+    // below the other, always for a slot marked empty by a kept row of i32::MAX), to
+    // the end row or y1; none, nothing.
     "ldr r2, [r0, #8]",
     "ldr r3, [r1, #60]",
     "cmp r2, r3",
-    "bge 1f",
+    "beq 1f",
     "b .Lbw_refuse",
     "1:",
-    "subs r3, r2, r3",
     "ldr r4, [r1, #64]",
     "ldr r5, [r0, #20]",
     "cmp r4, r5",
@@ -2125,11 +2126,8 @@ core::arch::global_asm!(
     "mov r9, r5",
     "mov r10, r6",
     "mov r11, r7",
-    // The row state stepped skip rows on (its steps at r1 after the LDM), then the steps.
+    // The row state, then its steps.
     "ldm r1!, {{r4, r5, r6, r7}}",
-    "cmp r3, #0",
-    "bne 2f",
-    "3:",
     "mov r0, sp",
     "stm r0!, {{r4, r5, r6, r7}}",
     "ldm r1!, {{r4, r5, r6, r7}}",
@@ -2140,20 +2138,6 @@ core::arch::global_asm!(
     "b .Lbw_rowL",
     "4:",
     "b .Lbw_rowR",
-    "2:",
-    "ldr r0, [r1]",
-    "muls r0, r3",
-    "adds r4, r4, r0",
-    "ldr r0, [r1, #4]",
-    "muls r0, r3",
-    "adds r5, r5, r0",
-    "ldr r0, [r1, #8]",
-    "muls r0, r3",
-    "adds r6, r6, r0",
-    "ldr r0, [r1, #12]",
-    "muls r0, r3",
-    "adds r7, r7, r0",
-    "b 3b",
     ".size zraster_small_resume_v6m, . - zraster_small_resume_v6m",
     ".popsection",
     lz8 = sym crate::num::armv6m::LEADING_ZEROS8,
@@ -2423,11 +2407,11 @@ mod tests {
         );
     }
 
-    /// A walk kept at the end of a clip and resumed in a clip below it with the same
-    /// columns (`box_walk_resume`, the model of the assembly's save and resume) is the
-    /// set-up's own in that clip, field for field, or none when the set-up finds no
-    /// rows there: on random small triangles crossing random clips' last rows, the
-    /// clip below starting 0 to 3 rows further on.
+    /// A walk kept at the end of a clip and resumed in the clip just below it with the
+    /// same columns (`box_walk_resume`, the model of the assembly's save and resume) is
+    /// the set-up's own in that clip, field for field, or none when the set-up finds
+    /// no rows there: on random small triangles crossing random clips' last rows. A
+    /// clip starting rows further on, or above, is left to the set-up.
     #[test]
     fn kept_walk_resumes_as_the_set_up_below() {
         let mut seed = 0x4b45_5054;
@@ -2460,7 +2444,7 @@ mod tests {
             if end <= a.y1 {
                 continue;
             }
-            let y0 = a.y1 + n(&mut seed, 4);
+            let y0 = a.y1;
             let b = Clip {
                 x0,
                 y0,
@@ -2480,9 +2464,10 @@ mod tests {
                     assert!(kept.is_some_and(|k| k.start >= k.end), "case {case}");
                 }
             }
-            // Above the row it was kept at, the set-up's.
-            let above = Clip { y0: a.y1 - 1, ..b };
-            assert_eq!(box_walk_resume(&w, a.y1, end, &above), None);
+            // Above or below the row it was kept at, the set-up's.
+            for y0 in [a.y1 - 1, a.y1 + 1] {
+                assert_eq!(box_walk_resume(&w, a.y1, end, &Clip { y0, ..b }), None);
+            }
         }
         assert!(resumed > 10_000, "{resumed} resumed");
     }
