@@ -730,7 +730,7 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
 /// band heights (half of them a power of two; on ARMv6-M the others must leave
 /// everything as it was), the chains in `scratch` (two sets of up to 2 · 257 + 12
 /// entries: every case counts as differing when it holds fewer than 1,052). Half the
-/// cases claim `placed` ([`BinChains::set_placed`]): for a cache with no unplaced entry
+/// cases claim `placed` (`BinChains::set_placed`): for a cache with no unplaced entry
 /// on most, and on some for one that may have them (never the renderer's state: the
 /// faces binned may then be wrong, so such a case checks only that nothing outside the
 /// chains is written and that the place stays among the faces). Returns the number of

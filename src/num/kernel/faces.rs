@@ -1553,6 +1553,54 @@ pub(super) fn merge_next(heads: &mut [u32; 4], links: &[u16], n: usize) -> Optio
     Some(least)
 }
 
+/// The band checks' clips of one case (`[x0, y0, x1, y1]`, small numbers): the whole
+/// band or random ones; two bands of `rows` rows from `first_row` when `two` (the
+/// colour rows end `off` sooner). Random clips of two bands meet (the first's reaches
+/// its last row, the second's starts at its first) and share their columns on some
+/// cases: the second then resumes what the first kept; else it must set those faces up
+/// again (a kept walk stays inside the columns it was set up in). The first of two
+/// bands stops short of the second by 0 to 2 rows on some cases (its last rows not
+/// drawn: the second sets up again what the first kept).
+#[inline(never)]
+fn band_clips(
+    rnd: &mut impl FnMut() -> u32,
+    case: usize,
+    two: bool,
+    first_row: i32,
+    rows: usize,
+    off: usize,
+) -> [[i8; 4]; 2] {
+    const W: i32 = 48;
+    let (sx0, sx1) = ((rnd() % 6) as i32, W - (rnd() % 6) as i32);
+    let shared = two && rnd().is_multiple_of(2);
+    let gap = (rnd() % 4).saturating_sub(1) as usize;
+    let mut clip_of = |b: usize| {
+        let y = first_row + (b * rows) as i32;
+        let n = (rows - if b == 0 && two { gap } else { off }) as i32;
+        let [x0, y0, x1, y1] = if case.is_multiple_of(3) {
+            let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
+            let x1 = x0 + (rnd() % 30) as i32;
+            // Two bands: wide columns, the second's the first's or inside them.
+            let inset = (2 + rnd() % 6) as i32;
+            let (x0, x1) = match (two, b == 0 || shared) {
+                (true, true) => (sx0, sx1),
+                (true, false) => (sx0 + inset, sx1 - inset),
+                (false, _) => (x0, x1),
+            };
+            let (top, bottom) = (y + y0, (y + y0 + (rnd() % 10) as i32).min(y + n));
+            match (two, b) {
+                (true, 0) => [x0, top, x1, y + n],
+                (true, _) => [x0, y, x1, bottom],
+                _ => [x0, top, x1, bottom],
+            }
+        } else {
+            [0, y, W, y + n]
+        };
+        [x0, y0, x1, y1].map(|v| v as i8)
+    };
+    [clip_of(0), clip_of(1)]
+}
+
 /// The cases of the band checks from `seed` for `kernel`, kept set-ups in `scratch`.
 pub(super) fn band_faces_cases<K: BandLoop>(
     buf: &mut [u16],
@@ -1586,28 +1634,9 @@ pub(super) fn band_faces_cases<K: BandLoop>(
         let first_row = (rnd() % 5) as i32 - 2;
         // The bands' first rows and rows (the colour rows end `off` sooner).
         let band_rows = if two { 8 } else { H };
-        // Each band's clip, as small numbers (the check's stack is the bench's deepest).
-        // Random clips' columns shared by the two bands on some cases: the second then
-        // resumes what the first kept, rows below where it stopped or above.
-        let (sx0, sx1) = ((rnd() % 20) as i32, (rnd() % 30) as i32);
-        let shared = two && rnd().is_multiple_of(2);
-        // The first of two bands stops short of the second by 0 to 2 rows (its last
-        // rows not drawn: the second resumes rows further on).
-        let gap = (rnd() % 4).saturating_sub(1) as usize;
-        let mut clip_of = |b: usize| {
-            let y = first_row + (b * band_rows) as i32;
-            let rows = (band_rows - if b == 0 && two { gap } else { off }) as i32;
-            let [x0, y0, x1, y1] = if case % 3 == 0 {
-                let (x0, y0) = ((rnd() % 20) as i32, (rnd() % 6) as i32);
-                let x1 = x0 + (rnd() % 30) as i32;
-                let (x0, x1) = if shared { (sx0, sx0 + sx1) } else { (x0, x1) };
-                [x0, y + y0, x1, (y + y0 + (rnd() % 10) as i32).min(y + rows)]
-            } else {
-                [0, y, W as i32, y + rows]
-            };
-            [x0, y0, x1, y1].map(|v| v as i8)
-        };
-        let clips = [clip_of(0), clip_of(1)];
+        // Each band's clip, as small numbers, out of line (the check's stack is the
+        // bench's deepest).
+        let clips = band_clips(&mut rnd, case, two, first_row, band_rows, off);
         let clip_at = |b: usize| {
             let [x0, y0, x1, y1] = clips.get(b).copied().unwrap_or_default().map(i32::from);
             Clip { x0, y0, x1, y1 }

@@ -1007,6 +1007,18 @@ macro_rules! band_call {
 // proves is). A face's three indices are tested below the cache's length before its
 // entries' addresses (entries + 8 · index) are formed; the set-up is
 // `zraster_faces_v6m`'s call. It keeps r4–r11: the heads live in r8–r11 across it.
+// The kept walks: slot k (84 bytes from `sread` or `skeep`) is read only for a face
+// taken at k < sfilled, at most the slots both halves hold (the wrapper checks their
+// lengths), and named for the set-up to write (`save`) only for a face kept at
+// k < sroom, at most those slots and the keep half's colours; a slot named and not
+// saved is marked empty (word 15, its kept row, i32::MAX: the resume refuses it).
+// `save` is never left set after a face: cleared by the set-up once it saved, else
+// here (and by the wrapper after a face left midway). So slots 0 .. min(sroom, kept)
+// of a band are each saved or marked for that colour's face in this draw, the wrapper
+// names slots only while every colour kept so far has its slot (kept = saved at the
+// entry), and the band below reads below that count (`sfilled`) only with the same
+// clip columns (else 0): each slot it resumes holds the set-up's own walk, so the
+// resume's argument holds (`rows_v6m`).
 // The block's address is at [sp], the least head at [sp, #4]; the frame is 48 bytes
 // (8-aligned at the calls); the colour is a local subroutine (BL, its return by
 // `bx lr`: lr was saved by the prologue).
@@ -1387,16 +1399,15 @@ fn band_faces_v6m<C: Copy>(
         }
         block.tested = 0;
     };
-    // A face left with a slot named (refused, or nothing kept there): no slot from it
-    // on. The slots saved are those below where `sroom` and `kept` stop.
+    // A face left with a slot named (refused after the set-up flagged it): the slot
+    // unnamed, so that no later walk (the Rust path's included) saves there. The face
+    // is not counted: `kept` is still its slot's number (its colour is the caller's to
+    // keep), below `sroom`. The slots saved are those below where `sroom` and `kept`
+    // stop; the next entry names more only if this band's colours and slots still
+    // follow one for one.
     let save = walk.wrapping_add(WALK_SAVE).cast::<u32>();
     // SAFETY: the started block's `save` (a word at its pinned offset), as `failed`.
-    unsafe {
-        if save.read() != 0 {
-            save.write(0);
-            block.sroom = block.kept;
-        }
-    }
+    unsafe { save.write(0) };
     states.saved = block.sroom.min(block.kept) as usize;
     // The face it left (1, 2): the heads and the carry as before it, for the caller's
     // loop (its next head taken out again, the face's put back in front; a taken

@@ -563,8 +563,11 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
             // struct's private fields, never replaced (only reborrows are handed out),
             // and `&mut self` borrows them exclusively for the call: another caller's
             // buffers cannot meet this block (a new `Buffers` writes a block of its
-            // own). The assembly writes only the rows' scratch fields, never those.
-            // `failed` is written here, and the assembly only adds to it.
+            // own). The assembly writes none of those; `color` (written here, below
+            // 2¹⁶) and `save` only where `save` names a slot, which here it never does
+            // (`write_buffers` made it 0; only the bands' loop names one, and clears it
+            // after each face). `failed` is written here, and the assembly only adds
+            // to it.
             unsafe {
                 let bits = core::mem::transmute_copy::<C, u16>(&color);
                 (&raw mut (*p).color).write(u32::from(bits));
@@ -1069,7 +1072,8 @@ extern "C" {
     /// # Safety
     ///
     /// `s` points to a valid block; every row and column of the clip lies
-    /// inside both buffers.
+    /// inside both buffers; its `color` is below 2¹⁶ (bit 16 is the walk's flag to keep
+    /// itself) and its `save` 0 or the address of [`KEPT_WALK_WORDS`] writable words.
     fn zraster_small_walk_v6m(
         s: *mut SmallWalk,
         p0: &CachedVertex,
@@ -1205,7 +1209,10 @@ macro_rules! bw_quot {
 // SAFETY (of the box walk, `zraster_small_walk_v6m`, for `small_walk_less_as_u16` and
 // `Buffers::walk_cached`): every row and column of the clip lies inside both buffers
 // (its callers' check). It reads the three corners and the block through r0–r3 and
-// writes only the block's `failed`, its own 72-byte frame and pixels. Its rows are
+// writes only the block's `failed`, its own 72-byte frame and pixels, and where the
+// block's `save` names a slot (the bands' loop, a slot of the caller's scratch), for a
+// triangle whose rows go past clip.y1: the slot's 17 words, the block's `color` (bit
+// 16 set: only its low half is ever stored as a pixel) and `save` (cleared). Its rows are
 // start .. end with clip.y0 ≤ start < end ≤ clip.y1 (none: it returns first), at depth
 // addresses zaddr + (row − first_row)·pitch + 2·column; it goes on only when xmin >> 4
 // ≥ clip.x0 and ⌈(xmax − 8)/16⌉ ≤ clip.x1. A pixel is read and written only where all
