@@ -1465,18 +1465,26 @@ pub(super) trait BandLoop {
     const DIFFUSE_SHIFT: u32;
     /// Whether a refusal fails a case (where the loop is assembly).
     const NEVER_REFUSES: bool;
-    /// The loop on depth rows `z` and colour rows `c` (48 pixels a row from screen row
-    /// `first_row`) drawn inside `clip`: as [`band_faces_less`], a face it leaves
-    /// named with the heads already past it.
-    #[allow(clippy::too_many_arguments)]
+    /// A band's rows as the loop takes them: depth rows `z` and colour rows `c` (48
+    /// pixels a row from screen row `first_row`) drawn inside `clip`, made once a band
+    /// (ARMv6-M's set-up block lives in them across the loop's calls, as in a frame).
+    type Rows<'a>;
+    /// The rows of a band.
+    fn rows<'a>(
+        z: &'a mut [u16],
+        c: &'a mut [u16],
+        band: (i32, crate::raster::Clip),
+    ) -> Self::Rows<'a>;
+    /// Their depth and colour rows, for the faces the twin draws.
+    fn parts<'r>(rows: &'r mut Self::Rows<'_>) -> (&'r mut [u16], &'r mut [u16]);
+    /// The loop on `rows`: as [`band_faces_less`], a face it leaves named with the
+    /// heads already past it.
     fn run(
         heads: &mut [u32; 4],
         tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
         carry: &mut BandCarry<'_, '_, u16>,
         color: &FaceColor<'_, u16>,
-        z: &mut [u16],
-        c: &mut [u16],
-        band: (i32, crate::raster::Clip),
+        rows: &mut Self::Rows<'_>,
         counts: &mut FacesCounts,
     ) -> BandStop;
     /// The small triangle's portable twin (corners, clip, first row, width, rows,
@@ -1499,25 +1507,35 @@ impl BandLoop for DspLoop {
     const ANY_LIT: bool = true;
     const DIFFUSE_SHIFT: u32 = 3;
     const NEVER_REFUSES: bool = false;
+    type Rows<'a> = SmallTarget<'a, 'a, u16>;
+    #[inline(always)]
+    fn rows<'a>(
+        z: &'a mut [u16],
+        c: &'a mut [u16],
+        (first_row, clip): (i32, crate::raster::Clip),
+    ) -> Self::Rows<'a> {
+        SmallTarget {
+            z,
+            c,
+            width: 48,
+            first_row,
+            clip,
+        }
+    }
+    #[inline(always)]
+    fn parts<'r>(t: &'r mut Self::Rows<'_>) -> (&'r mut [u16], &'r mut [u16]) {
+        (&mut *t.z, &mut *t.c)
+    }
     #[inline(always)]
     fn run(
         heads: &mut [u32; 4],
         tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
         carry: &mut BandCarry<'_, '_, u16>,
         color: &FaceColor<'_, u16>,
-        z: &mut [u16],
-        c: &mut [u16],
-        (first_row, clip): (i32, crate::raster::Clip),
+        t: &mut Self::Rows<'_>,
         counts: &mut FacesCounts,
     ) -> BandStop {
-        let mut t = SmallTarget {
-            z,
-            c,
-            width: 48,
-            first_row,
-            clip,
-        };
-        band_faces_less(heads, tables, carry, color, &mut t, counts)
+        band_faces_less(heads, tables, carry, color, t, counts)
     }
     #[inline(always)]
     fn twin(
@@ -1831,6 +1849,7 @@ pub(super) fn band_faces_cases<K: BandLoop>(
             let row = first_row + (b * band_rows) as i32;
             // The fused loop, the faces it leaves drawn by the twin.
             let mut heads1 = heads_of(first);
+            let mut t = K::rows(za, ca, (row, clip_at(b)));
             while !stopped {
                 let Carry8 {
                     read,
@@ -1848,17 +1867,7 @@ pub(super) fn band_faces_cases<K: BandLoop>(
                     states: &mut states,
                 };
                 let tables = (links, faces, cache);
-                let band = (row, clip_at(b));
-                let stop = K::run(
-                    &mut heads1,
-                    tables,
-                    &mut parts,
-                    &color,
-                    za,
-                    ca,
-                    band,
-                    &mut mine,
-                );
+                let stop = K::run(&mut heads1, tables, &mut parts, &color, &mut t, &mut mine);
                 let (head, carried) = match stop {
                     BandStop::Done => break,
                     BandStop::Whole(h) => (h, false),
@@ -1872,7 +1881,8 @@ pub(super) fn band_faces_cases<K: BandLoop>(
                         }
                     }
                 };
-                if !face(head, carried, &mut carry, b, za, ca, &mut mine) {
+                let (z, c) = K::parts(&mut t);
+                if !face(head, carried, &mut carry, b, z, c, &mut mine) {
                     stopped = true;
                 }
             }

@@ -1704,20 +1704,32 @@ impl BandLoop for V6mLoop {
     const ANY_LIT: bool = false;
     const DIFFUSE_SHIFT: u32 = 0;
     const NEVER_REFUSES: bool = FACES_V6M_KERNEL;
+    // Started once a band, in place: the loop's calls share its set-up block (and what
+    // the wrapper leaves in it), as a frame's do.
+    type Rows<'a> = Buffers<'a, 'a, u16>;
+    #[inline(always)]
+    fn rows<'a>(
+        z: &'a mut [u16],
+        c: &'a mut [u16],
+        (first_row, clip): (i32, crate::raster::Clip),
+    ) -> Self::Rows<'a> {
+        Buffers::unstarted(z, c, 48, first_row, clip)
+    }
+    #[inline(always)]
+    fn parts<'r>(b: &'r mut Self::Rows<'_>) -> (&'r mut [u16], &'r mut [u16]) {
+        b.parts()
+    }
     #[inline(always)]
     fn run(
         heads: &mut [u32; 4],
         tables: (&[u16], &[[u16; 3]], &[CachedVertex]),
         carry: &mut BandCarry<'_, '_, u16>,
         color: &FaceColor<'_, u16>,
-        z: &mut [u16],
-        c: &mut [u16],
-        (first_row, clip): (i32, crate::raster::Clip),
+        b: &mut Self::Rows<'_>,
         counts: &mut FacesCounts,
     ) -> BandStop {
-        let mut b = Buffers::unstarted(z, c, 48, first_row, clip);
-        b.start();
-        match band_faces_less_v6m(heads, tables, carry, color, &mut b, counts) {
+        b.start_once();
+        match band_faces_less_v6m(heads, tables, carry, color, b, counts) {
             // It leaves a face with the heads before it: past it, as the checks take it.
             BandStop::Whole(_) => {
                 let n = tables.0.len().min(tables.1.len());

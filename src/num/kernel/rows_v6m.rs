@@ -496,6 +496,16 @@ impl<'z, 'c, C: Copy> Buffers<'z, 'c, C> {
         self.start_walk();
     }
 
+    /// [`Buffers::start`] unless started: the band checks call it before each run of
+    /// the loop, which then shares one block across its calls, as a frame's band does.
+    #[inline(always)]
+    pub(crate) fn start_once(&mut self) {
+        #[cfg(all(zraster_thumb, zraster_armv6m))]
+        if !self.walk {
+            self.start_walk();
+        }
+    }
+
     /// The depth and colour rows.
     #[inline(always)]
     pub(crate) fn parts(&mut self) -> (&mut [u16], &mut [C]) {
