@@ -302,6 +302,27 @@ pub(crate) fn bin_scan_portable<T>(
     }
 }
 
+/// One loop of the ARMv7E-M binning scan (`bin_scan_dsp`), headed by label `$head`:
+/// the face at r0 (moved on to the next; its indices below r3, else to `3f`; its cache
+/// words from r2 into r8, r9, r10), the corners' tests `$placed` (each may go to `3f`),
+/// the cull test of the area against the range r4, r5 (a drawn face to `4f`), while r1
+/// counts faces down.
+#[cfg(all(zraster_thumb, zraster_dsp))]
+macro_rules! bin_dsp_loop {
+    ($head:literal $(, $placed:literal)*) => {
+        concat!(
+            $head, ":\n",
+            "ldrh r8, [r0], #6\nldrh r9, [r0, #-4]\nldrh r10, [r0, #-2]\n",
+            "cmp r8, r3\nitt lo\ncmplo r9, r3\ncmplo r10, r3\nbhs 3f\n",
+            "ldr r8, [r2, r8, lsl #3]\nldr r9, [r2, r9, lsl #3]\nldr r10, [r2, r10, lsl #3]\n",
+            $($placed,)*
+            "ssub16 r9, r9, r8\nssub16 r10, r10, r8\nsmlsdx r11, r9, r10, r4\n",
+            "cmp r11, r5\nbhi 4f\n",
+            "subs r1, #1\nbne ", $head, "b\n",
+        )
+    };
+}
+
 /// [`bin_scan`] on ARMv7E-M.
 #[cfg(all(zraster_thumb, zraster_dsp))]
 #[inline(always)]
@@ -358,53 +379,16 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "1:",
             "bl 10f", // the loop's head (the return address) into lr, and on there
             // `checked`: the corners' test.
-            "2:",
-            "ldrh r8, [r0], #6",
-            "ldrh r9, [r0, #-4]",
-            "ldrh r10, [r0, #-2]",
-            "cmp r8, r3",
-            "itt lo",
-            "cmplo r9, r3",
-            "cmplo r10, r3",
-            "bhs 3f",
-            "ldr r8, [r2, r8, lsl #3]",
-            "ldr r9, [r2, r9, lsl #3]",
-            "ldr r10, [r2, r10, lsl #3]",
-            "cmp r12, r8, lsl #16",
-            "itt le",
-            "cmple r12, r9, lsl #16",
-            "cmple r12, r10, lsl #16",
-            "bgt 3f",
-            "ssub16 r9, r9, r8",
-            "ssub16 r10, r10, r8",
-            "smlsdx r11, r9, r10, r4",
-            "cmp r11, r5",
-            "bhi 4f",
-            "subs r1, #1",
-            "bne 2b",
+            bin_dsp_loop!(
+                "2",
+                "cmp r12, r8, lsl #16\nitt le\ncmple r12, r9, lsl #16\n",
+                "cmple r12, r10, lsl #16\nbgt 3f\n"
+            ),
             "b 3f",
             // `back`: no corners' test.
             "11:",
             "bl 10f",
-            "20:",
-            "ldrh r8, [r0], #6",
-            "ldrh r9, [r0, #-4]",
-            "ldrh r10, [r0, #-2]",
-            "cmp r8, r3",
-            "itt lo",
-            "cmplo r9, r3",
-            "cmplo r10, r3",
-            "bhs 3f",
-            "ldr r8, [r2, r8, lsl #3]",
-            "ldr r9, [r2, r9, lsl #3]",
-            "ldr r10, [r2, r10, lsl #3]",
-            "ssub16 r9, r9, r8",
-            "ssub16 r10, r10, r8",
-            "smlsdx r11, r9, r10, r4",
-            "cmp r11, r5",
-            "bhi 4f",
-            "subs r1, #1",
-            "bne 20b",
+            bin_dsp_loop!("20"),
             "3:", // a bad index or an unplaced corner, or none left
             "ldr lr, [r6, #28]",
             "sub r1, lr, r1", // the face it stopped at (`pos` if none was left)
@@ -475,6 +459,31 @@ fn bin_scan_dsp<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
 /// range) and `back`, for a cache [`BinChains::set_placed`] claims has no unplaced
 /// entry and back faces dropped (lo 0, span 2³¹ − 1): no corners' test, the area's
 /// sign alone (11 instructions a face fewer).
+/// One loop of the ARMv6-M binning scan (`bin_scan_v6m`), headed by label `$head`:
+/// the face at r0 (its indices below r8, else to `3f`; its cache words from r1 into r2,
+/// r3, r4), the corners' tests `$placed` (each may go to `3f`), the area (xb − xa)(yc −
+/// ya) − (xc − xa)(yb − ya) into r5 (ya in r2, yb − ya in r3, yc − ya in r4: the drawn
+/// face's rows), the cull test `$cull` (a drawn face to `4f`), the next face until r7.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! bin_v6m_loop {
+    ($head:literal $(, $placed:literal)*; $cull:literal) => {
+        concat!(
+            $head, ":\n",
+            "ldrh r2, [r0, #0]\nldrh r3, [r0, #2]\nldrh r4, [r0, #4]\n",
+            "cmp r2, r8\nbhs 3f\ncmp r3, r8\nbhs 3f\ncmp r4, r8\nbhs 3f\n",
+            "lsls r2, r2, #3\nlsls r3, r3, #3\nlsls r4, r4, #3\n",
+            "ldr r2, [r1, r2]\nldr r3, [r1, r3]\nldr r4, [r1, r4]\n",
+            $($placed,)*
+            "subs r5, r3, r2\nsxth r5, r5\nsubs r6, r4, r2\nsxth r6, r6\n",
+            "asrs r2, r2, #16\nasrs r3, r3, #16\nsubs r3, r3, r2\n",
+            "asrs r4, r4, #16\nsubs r4, r4, r2\n",
+            "muls r5, r4, r5\nmuls r6, r3, r6\nsubs r5, r5, r6\n",
+            $cull,
+            "adds r0, #6\ncmp r0, r7\nbne ", $head, "b\n",
+        )
+    };
+}
+
 #[cfg(all(zraster_thumb, zraster_armv6m))]
 #[inline(always)]
 fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChains<'_>) {
@@ -551,86 +560,19 @@ fn bin_scan_v6m<T>(pos: &mut usize, scan: &CullScan<'_, T>, chains: &mut BinChai
             "bvs 11f",
             "1:",
             "bl 10f", // the loop's head (the return address) into r9, and on there
-            // `checked`: the corners' test, the range of dropped areas.
-            "2:",
-            "ldrh r2, [r0, #0]",
-            "ldrh r3, [r0, #2]",
-            "ldrh r4, [r0, #4]",
-            "cmp r2, r8",
-            "bhs 3f",
-            "cmp r3, r8",
-            "bhs 3f",
-            "cmp r4, r8",
-            "bhs 3f",
-            "lsls r2, r2, #3",
-            "lsls r3, r3, #3",
-            "lsls r4, r4, #3",
-            "ldr r2, [r1, r2]",
-            "ldr r3, [r1, r3]",
-            "ldr r4, [r1, r4]",
-            "lsls r5, r2, #16",
-            "adds r5, r5, r5",
-            "bvs 3f",
-            "lsls r5, r3, #16",
-            "adds r5, r5, r5",
-            "bvs 3f",
-            "lsls r5, r4, #16",
-            "adds r5, r5, r5",
-            "bvs 3f",
-            "subs r5, r3, r2",
-            "sxth r5, r5", // xb − xa
-            "subs r6, r4, r2",
-            "sxth r6, r6", // xc − xa
-            "asrs r2, r2, #16",
-            "asrs r3, r3, #16",
-            "subs r3, r3, r2", // yb − ya
-            "asrs r4, r4, #16",
-            "subs r4, r4, r2", // yc − ya
-            "muls r5, r4, r5", // (xb − xa)(yc − ya)
-            "muls r6, r3, r6", // (xc − xa)(yb − ya)
-            "subs r5, r5, r6",
-            "add r5, r12",
-            "cmp r5, lr",
-            "bhi 4f",
-            "adds r0, #6",
-            "cmp r0, r7",
-            "bne 2b",
+            bin_v6m_loop!(
+                "2",
+                // `checked`: the corners' test, the range of dropped areas.
+                "lsls r5, r2, #16\nadds r5, r5, r5\nbvs 3f\n",
+                "lsls r5, r3, #16\nadds r5, r5, r5\nbvs 3f\n",
+                "lsls r5, r4, #16\nadds r5, r5, r5\nbvs 3f\n";
+                "add r5, r12\ncmp r5, lr\nbhi 4f\n"
+            ),
             "b 3f",
             // `back`: no corners' test, back faces (area ≥ 0) dropped.
             "11:",
             "bl 10f",
-            "20:",
-            "ldrh r2, [r0, #0]",
-            "ldrh r3, [r0, #2]",
-            "ldrh r4, [r0, #4]",
-            "cmp r2, r8",
-            "bhs 3f",
-            "cmp r3, r8",
-            "bhs 3f",
-            "cmp r4, r8",
-            "bhs 3f",
-            "lsls r2, r2, #3",
-            "lsls r3, r3, #3",
-            "lsls r4, r4, #3",
-            "ldr r2, [r1, r2]",
-            "ldr r3, [r1, r3]",
-            "ldr r4, [r1, r4]",
-            "subs r5, r3, r2",
-            "sxth r5, r5",
-            "subs r6, r4, r2",
-            "sxth r6, r6",
-            "asrs r2, r2, #16",
-            "asrs r3, r3, #16",
-            "subs r3, r3, r2",
-            "asrs r4, r4, #16",
-            "subs r4, r4, r2",
-            "muls r5, r4, r5",
-            "muls r6, r3, r6",
-            "subs r5, r5, r6",
-            "bmi 4f",
-            "adds r0, #6",
-            "cmp r0, r7",
-            "bne 20b",
+            bin_v6m_loop!("20"; "bmi 4f\n"),
             "3:", // a bad index or an unplaced corner, or none left
             "ldr r6, [sp, #4]",
             "mov r5, r10",

@@ -1455,6 +1455,18 @@ impl Carry8 {
     }
 }
 
+/// A small triangle's portable twin: corners, clip, first row, width, depth and colour
+/// rows, colour.
+pub(super) type SmallTwin = fn(
+    [&crate::raster::ScreenVertex; 3],
+    &crate::raster::Clip,
+    i32,
+    usize,
+    &mut [u16],
+    &mut [u16],
+    u16,
+) -> super::SmallDone;
+
 /// A band loop as the band checks drive it: the loop over a band's rows and the small
 /// triangles' twin its faces must match, with what it takes. Generic (not function
 /// pointers): the check's frame is the bench's deepest stack.
@@ -1465,6 +1477,8 @@ pub(super) trait BandLoop {
     const DIFFUSE_SHIFT: u32;
     /// Whether a refusal fails a case (where the loop is assembly).
     const NEVER_REFUSES: bool;
+    /// The small triangle's portable twin its faces must match.
+    const TWIN: SmallTwin;
     /// A band's rows as the loop takes them: depth rows `z` and colour rows `c` (48
     /// pixels a row from screen row `first_row`) drawn inside `clip`, made once a band
     /// (ARMv6-M's set-up block lives in them across the loop's calls, as in a frame).
@@ -1487,17 +1501,6 @@ pub(super) trait BandLoop {
         rows: &mut Self::Rows<'_>,
         counts: &mut FacesCounts,
     ) -> BandStop;
-    /// The small triangle's portable twin (corners, clip, first row, width, rows,
-    /// colour).
-    fn twin(
-        tri: [&crate::raster::ScreenVertex; 3],
-        clip: &crate::raster::Clip,
-        first_row: i32,
-        width: usize,
-        z: &mut [u16],
-        c: &mut [u16],
-        color: u16,
-    ) -> super::SmallDone;
 }
 
 /// ARMv7E-M's band loop ([`band_faces_less`]; the twin's alone elsewhere).
@@ -1507,6 +1510,7 @@ impl BandLoop for DspLoop {
     const ANY_LIT: bool = true;
     const DIFFUSE_SHIFT: u32 = 3;
     const NEVER_REFUSES: bool = false;
+    const TWIN: SmallTwin = super::rows::small_less_portable;
     type Rows<'a> = SmallTarget<'a, 'a, u16>;
     #[inline(always)]
     fn rows<'a>(
@@ -1536,18 +1540,6 @@ impl BandLoop for DspLoop {
         counts: &mut FacesCounts,
     ) -> BandStop {
         band_faces_less(heads, tables, carry, color, t, counts)
-    }
-    #[inline(always)]
-    fn twin(
-        tri: [&crate::raster::ScreenVertex; 3],
-        clip: &crate::raster::Clip,
-        first_row: i32,
-        width: usize,
-        z: &mut [u16],
-        c: &mut [u16],
-        color: u16,
-    ) -> super::SmallDone {
-        super::rows::small_less_portable(tri, clip, first_row, width, z, c, color)
     }
 }
 
@@ -1823,7 +1815,7 @@ pub(super) fn band_faces_cases<K: BandLoop>(
                 ScreenVertex::from_raw(x, y, e.z)
             });
             let (clip, row) = (clip_at(b), first_row + (b * band_rows) as i32);
-            let done = K::twin([&p, &q, &r], &clip, row, W, z, c, col);
+            let done = (K::TWIN)([&p, &q, &r], &clip, row, W, z, c, col);
             // The pixels only: the band loop counts no faces (the bands take theirs
             // from the binning).
             if let SmallDone::Drawn(tested, failed) = done {

@@ -8,6 +8,7 @@
 use super::cull::ScanRegs;
 use super::faces::{
     band_faces_cases, merge_next, BandCarry, BandLoop, BandStop, FaceColor, FacesCounts, FacesStop,
+    SmallTwin,
 };
 use super::{Buffers, CachedVertex};
 
@@ -478,12 +479,7 @@ core::arch::global_asm!(
     concat!(".type ", $name, ", %function"),
     ".thumb_func",
     concat!($name, ":"),
-    "push {{r4, r5, r6, r7, lr}}",
-    "mov r4, r8",
-    "mov r5, r9",
-    "mov r6, r10",
-    "mov r7, r11",
-    "push {{r4, r5, r6, r7}}",
+    v6m_save!(),
     "sub sp, #4",
     "str r0, [sp]",
     // The scan's operands: entries in r8, end in r9; r10, r11 by the mode.
@@ -578,12 +574,7 @@ core::arch::global_asm!(
     "9:",
     v6m_sums!($mode),
     "add sp, #4",
-    "pop {{r4, r5, r6, r7}}",
-    "mov r8, r4",
-    "mov r9, r5",
-    "mov r10, r6",
-    "mov r11, r7",
-    "pop {{r4, r5, r6, r7, pc}}",
+    v6m_return!(),
     v6m_face_cold!($term),
     concat!(".size ", $name, ", . - ", $name),
     ".popsection",
@@ -1031,12 +1022,7 @@ core::arch::global_asm!(
     ".type zraster_band_faces_v6m, %function",
     ".thumb_func",
     "zraster_band_faces_v6m:",
-    "push {{r4, r5, r6, r7, lr}}",
-    "mov r4, r8",
-    "mov r5, r9",
-    "mov r6, r10",
-    "mov r7, r11",
-    "push {{r4, r5, r6, r7}}",
+    v6m_save!(),
     "sub sp, #12",
     "str r0, [sp]",
     "adds r0, #128",
@@ -1173,12 +1159,7 @@ core::arch::global_asm!(
     "mov r4, r11",
     "stm r7!, {{r1, r2, r3, r4}}",
     "add sp, #12",
-    "pop {{r4, r5, r6, r7}}",
-    "mov r8, r4",
-    "mov r9, r5",
-    "mov r10, r6",
-    "mov r11, r7",
-    "pop {{r4, r5, r6, r7, pc}}",
+    v6m_return!(),
     // The colour of the face at r4 into r2 (the block in r7 at every call); without a
     // normal the flat colour, else the face is the caller's (nothing of its carry done
     // yet).
@@ -1704,6 +1685,7 @@ impl BandLoop for V6mLoop {
     const ANY_LIT: bool = false;
     const DIFFUSE_SHIFT: u32 = 0;
     const NEVER_REFUSES: bool = FACES_V6M_KERNEL;
+    const TWIN: SmallTwin = super::rows_v6m::small_walk_portable;
     // Started once a band, in place: the loop's calls share its set-up block (and what
     // the wrapper leaves in it), as a frame's do.
     type Rows<'a> = Buffers<'a, 'a, u16>;
@@ -1740,18 +1722,6 @@ impl BandLoop for V6mLoop {
             }
             stop => stop,
         }
-    }
-    #[inline(always)]
-    fn twin(
-        tri: [&crate::raster::ScreenVertex; 3],
-        clip: &crate::raster::Clip,
-        first_row: i32,
-        width: usize,
-        z: &mut [u16],
-        c: &mut [u16],
-        color: u16,
-    ) -> super::SmallDone {
-        super::rows_v6m::small_walk_portable(tri, clip, first_row, width, z, c, color)
     }
 }
 

@@ -50,6 +50,23 @@ pub(crate) fn xorshift32(mut seed: u32) -> impl FnMut() -> u32 {
     move || xorshift_next(&mut seed)
 }
 
+/// ARMv6-M assembly functions' entry: lr and r4–r11 saved as AAPCS wants (Thumb-1
+/// pushes only low registers and lr, so r8–r11 go through r4–r7).
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_save {
+    () => {
+        "push {{r4, r5, r6, r7, lr}}\nmov r4, r8\nmov r5, r9\nmov r6, r10\nmov r7, r11\npush {{r4, r5, r6, r7}}\n"
+    };
+}
+
+/// Their return: r4–r11 restored as [`v6m_save`] saved them, then to the caller.
+#[cfg(all(zraster_thumb, zraster_armv6m))]
+macro_rules! v6m_return {
+    () => {
+        "pop {{r4, r5, r6, r7}}\nmov r8, r4\nmov r9, r5\nmov r10, r6\nmov r11, r7\npop {{r4, r5, r6, r7, pc}}\n"
+    };
+}
+
 mod bin;
 // Before `faces`, which uses the scan's, the colour's and the set-up's macros.
 #[macro_use]
